@@ -19,14 +19,15 @@ $(VENV)/.installed: requirements.txt requirements-dev.txt
 	touch $@
 
 build: venv
-	$(BIN)/colcon build --paths . --build-base build --install-base install --log-base log \
+	$(BIN)/colcon --log-base log build --paths . --build-base build --install-base install \
 		--event-handlers console_cohesion- status-
 
 demo: build
 	$(BIN)/python -m rope_sim_ros.demo
 
+# test/conftest.py gives the run its own ROS_DOMAIN_ID (1..101) unless one is set.
 test: venv
-	ROS_DOMAIN_ID=$${ROS_DOMAIN_ID:-$$(( $$$$ % 100 + 100 ))} $(BIN)/python -m pytest -q test
+	$(BIN)/python -m pytest -q test
 
 lint: venv
 	$(BIN)/python -m pytest -q test/test_flake8.py test/test_pep257.py test/test_copyright.py
