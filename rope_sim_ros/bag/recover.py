@@ -86,7 +86,9 @@ def recover(path: PathLike, output: Optional[PathLike] = None) -> int:
     files: List[storage.McapFile] = []
     try:
         for source, target in zip(sources, targets):
-            files.append(storage.McapFile(target, chunk_size=storage.DEFAULT_CHUNK_SIZE))
+            files.append(storage.McapFile(
+                target, chunk_size=storage.DEFAULT_CHUNK_SIZE,
+                name=os.path.basename(target if output is not None else source)))
             _copy(source, files[-1])
         metadata = storage.metadata_for(files)
         for storage_file in files:

@@ -124,18 +124,20 @@ class McapFile:
         topics: The TopicRecords by topic name, with their message counts so far.
     """
 
-    def __init__(self, path: str, *, chunk_size: int) -> None:
+    def __init__(self, path: str, *, chunk_size: int, name: Optional[str] = None) -> None:
         """Create the file and write the MCAP header.
 
         Args:
             path: The .mcap file to create; it must not exist.
             chunk_size: Bytes of messages after which a chunk is written out.
+            name: The file's name in the bag's metadata, if it is written under another
+                name first (default: the base name of path).
 
         Raises:
             BagError: the file exists or cannot be created.
         """
         self.path = path
-        self.record = meta.FileRecord(os.path.basename(path))
+        self.record = meta.FileRecord(name or os.path.basename(path))
         self.topics: Dict[str, meta.TopicRecord] = {}
         self._schemas: Dict[str, int] = {}
         self._channels: Dict[str, int] = {}
