@@ -1,0 +1,255 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""The line's parameters: one table shared by the ROS node, the offline runner and the tests.
+
+Every parameter has a name, a default, a unit, a description and an allowed range. The node
+turns the table into ParameterDescriptors; the runner reads the same keys from the standard
+ROS parameter file (`mooring_line: ros__parameters: {...}`).
+"""
+
+from dataclasses import dataclass, field, fields, replace
+import math
+from typing import Any, Mapping, Optional
+
+import yaml
+
+
+NODE_NAME = 'mooring_line'
+MATERIALS = ('nylon', 'polyester', 'hmpe', 'steel_wire', 'manila')
+INTEGRATORS = ('improved_euler',)
+DAMPING_MODELS = ('axial', 'seed')
+
+
+class ParameterError(ValueError):
+    """A parameter value is not allowed; the message names it and the allowed range."""
+
+
+@dataclass(frozen=True)
+class Spec:
+    """How one parameter may be set.
+
+    Attributes:
+        default: value when the user gives none; its type is the parameter's type.
+        unit: SI unit, '' when dimensionless.
+        description: one line for `ros2 param describe` and the README.
+        low / high: inclusive bounds for numbers (None = unbounded).
+        low_open: the lower bound itself is not allowed (e.g. length > 0).
+        choices: allowed strings.
+        read_only: a change needs a restart (the node refuses it at run time).
+    """
+
+    default: Any
+    unit: str
+    description: str
+    low: Optional[float] = None
+    high: Optional[float] = None
+    low_open: bool = False
+    choices: tuple = ()
+    read_only: bool = True
+
+
+SPECS: Mapping[str, Spec] = {
+    'material': Spec('polyester', '', 'rope material preset', choices=MATERIALS),
+    'diameter': Spec(0.064, 'm', 'nominal rope diameter', 0.0, 1.0, low_open=True),
+    'length': Spec(40.0, 'm', 'unstretched line length', 0.0, 10000.0, low_open=True),
+    'segments': Spec(20, '', 'number of segments N (N+1 particles)', 2, 2000),
+    'mass_per_length': Spec(
+        0.0, 'kg/m', 'mass per unit length; 0 = from the material', 0.0, 1.0e4),
+    'axial_stiffness': Spec(
+        0.0, 'N', 'axial stiffness EA; 0 = from the material', 0.0, 1.0e13),
+    'axial_damping': Spec(
+        0.0, 'N*s', 'axial damping BA (per unit strain rate, as MoorDyn); '
+        '0 = 1 % of critical for the first axial mode', 0.0, 1.0e10, read_only=False),
+    'damping_model': Spec(
+        'axial', '', 'axial: damp the stretch rate only; seed: K_SD (V_A - V_B), which also '
+        'damps rigid rotation of a segment', choices=DAMPING_MODELS),
+    'bending_stiffness_ratio': Spec(
+        0.01, '', 'bending spring (i, i+2) stiffness relative to a structural spring',
+        0.0, 10.0),
+    'bending_damping_ratio': Spec(
+        0.01, '', 'bending spring damping relative to a structural spring', 0.0, 10.0,
+        read_only=False),
+    'air_drag_coefficient': Spec(
+        0.0, 'N*s^2/m^3', 'quadratic air drag K_A per metre of rope: f = -K_A |v| v '
+        '(0.5 rho Cd d is about 0.05 for a 64 mm line)', 0.0, 1.0e4, read_only=False),
+    'gravity': Spec([0.0, 0.0, -9.81], 'm/s^2', 'gravity vector in frame_id (REP-103: z up)'),
+    'max_strain': Spec(
+        0.25, '', 'super-elasticity threshold: no structural spring is left stretched beyond '
+        'this strain', 0.0, 10.0, low_open=True, read_only=False),
+    'superelastic_adjustment': Spec(
+        True, '', 'apply the position and velocity adjustment at max_strain', read_only=False),
+    'integrator': Spec('improved_euler', '', 'time integration scheme', choices=INTEGRATORS),
+    'time_step': Spec(
+        0.0, 's', 'integration step; 0 = automatic from the stability limit', 0.0, 0.1),
+    'bollard_position': Spec(
+        [0.0, 0.0, 0.0], 'm', 'bollard point in frame_id while no bollard/pose arrives'),
+    'fairlead_offset': Spec(
+        [0.0, 0.0, 0.0], 'm', 'fairlead in the body frame of fairlead/pose', read_only=False),
+    'bollard_offset': Spec(
+        [0.0, 0.0, 0.0], 'm', 'bollard in the body frame of bollard/pose', read_only=False),
+    'frame_id': Spec('world', '', 'frame of all outputs and of bollard_position'),
+    'publish_rate': Spec(
+        50.0, 'Hz', 'rate of rope/particles and the tension topics', 0.0, 1000.0,
+        low_open=True, read_only=False),
+    'teleport_distance': Spec(
+        5.0, 'm', 'a fairlead jump larger than this restarts the rope on the catenary',
+        0.0, 1.0e6, low_open=True, read_only=False),
+    'record_path': Spec('', '', 'bag directory to record to; empty = no recording'),
+}
+
+
+def _describe_range(name: str, spec: Spec) -> str:
+    if spec.choices:
+        return 'one of ' + ', '.join(spec.choices)
+    if isinstance(spec.default, list):
+        return 'a list of 3 finite numbers'
+    if isinstance(spec.default, bool):
+        return 'true or false'
+    low = '' if spec.low is None else f'{">" if spec.low_open else ">="} {spec.low:g}'
+    high = '' if spec.high is None else f'<= {spec.high:g}'
+    unit = f' {spec.unit}' if spec.unit else ''
+    return ' and '.join(p for p in (low, high) if p) + unit
+
+
+def check(name: str, value: Any) -> Any:
+    """Validate one parameter value and return it in its canonical type.
+
+    Raises:
+        ParameterError: unknown name, wrong type, non-finite or out of range; the message
+            names the parameter and what is allowed.
+    """
+    if name not in SPECS:
+        raise ParameterError(
+            f'unknown parameter {name!r}; known: {", ".join(sorted(SPECS))}')
+    spec = SPECS[name]
+    allowed = _describe_range(name, spec)
+    bad = ParameterError(f'parameter {name!r} = {value!r} is not allowed: must be {allowed}')
+    default = spec.default
+    if isinstance(default, bool):
+        if not isinstance(value, bool):
+            raise bad
+        return value
+    if isinstance(default, str):
+        if not isinstance(value, str) or (spec.choices and value not in spec.choices):
+            raise bad
+        return value
+    if isinstance(default, list):
+        if (not isinstance(value, (list, tuple)) or len(value) != 3
+                or not all(_is_finite_number(v) for v in value)):
+            raise bad
+        return [float(v) for v in value]
+    if isinstance(default, int):
+        if isinstance(value, bool) or not isinstance(value, int):
+            if not (_is_finite_number(value) and float(value).is_integer()):
+                raise bad
+        value = int(value)
+    elif not _is_finite_number(value):
+        raise bad
+    else:
+        value = float(value)
+    if spec.low is not None and (value < spec.low or (spec.low_open and value == spec.low)):
+        raise bad
+    if spec.high is not None and value > spec.high:
+        raise bad
+    return value
+
+
+def _is_finite_number(value: Any) -> bool:
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
+@dataclass(frozen=True)
+class LineParams:
+    """Validated values of every parameter in SPECS (see there for units and meaning)."""
+
+    material: str = SPECS['material'].default
+    diameter: float = SPECS['diameter'].default
+    length: float = SPECS['length'].default
+    segments: int = SPECS['segments'].default
+    mass_per_length: float = SPECS['mass_per_length'].default
+    axial_stiffness: float = SPECS['axial_stiffness'].default
+    axial_damping: float = SPECS['axial_damping'].default
+    damping_model: str = SPECS['damping_model'].default
+    bending_stiffness_ratio: float = SPECS['bending_stiffness_ratio'].default
+    bending_damping_ratio: float = SPECS['bending_damping_ratio'].default
+    air_drag_coefficient: float = SPECS['air_drag_coefficient'].default
+    gravity: list = field(default_factory=lambda: list(SPECS['gravity'].default))
+    max_strain: float = SPECS['max_strain'].default
+    superelastic_adjustment: bool = SPECS['superelastic_adjustment'].default
+    integrator: str = SPECS['integrator'].default
+    time_step: float = SPECS['time_step'].default
+    bollard_position: list = field(
+        default_factory=lambda: list(SPECS['bollard_position'].default))
+    fairlead_offset: list = field(default_factory=lambda: list(SPECS['fairlead_offset'].default))
+    bollard_offset: list = field(default_factory=lambda: list(SPECS['bollard_offset'].default))
+    frame_id: str = SPECS['frame_id'].default
+    publish_rate: float = SPECS['publish_rate'].default
+    teleport_distance: float = SPECS['teleport_distance'].default
+    record_path: str = SPECS['record_path'].default
+
+    def with_values(self, values: Mapping[str, Any]) -> 'LineParams':
+        """Return a copy with `values` validated and applied.
+
+        Raises:
+            ParameterError: the first bad value, named.
+        """
+        return replace(self, **{k: check(k, v) for k, v in values.items()})
+
+    def as_dict(self) -> dict:
+        """Plain {name: value} of every parameter."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def from_values(values: Mapping[str, Any]) -> LineParams:
+    """Validated parameters from a {name: value} map (defaults for the rest)."""
+    return LineParams().with_values(values)
+
+
+def read_params_file(path, node_name: str = NODE_NAME) -> dict:
+    """The `ros__parameters` of `node_name` in a ROS 2 parameter YAML file.
+
+    Accepts the node name with or without a namespace and the `/**` wildcard, as the ROS
+    parameter file format does.
+
+    Raises:
+        ParameterError: unreadable file or no parameters for the node.
+    """
+    try:
+        with open(path, encoding='utf-8') as f:
+            data = yaml.safe_load(f)
+    except OSError as e:
+        raise ParameterError(f'cannot read parameter file {path}: {e.strerror}') from None
+    except yaml.YAMLError as e:
+        raise ParameterError(f'parameter file {path} is not valid YAML: {e}') from None
+    if not isinstance(data, dict):
+        raise ParameterError(f'parameter file {path} has no "{node_name}:" section')
+    values = {}
+    for key, section in data.items():
+        short = str(key).rstrip('/').split('/')[-1]
+        if short in (node_name, '**') and isinstance(section, dict):
+            values.update(section.get('ros__parameters') or {})
+    if not values:
+        raise ParameterError(
+            f'parameter file {path} has no "{node_name}: ros__parameters:" section')
+    values.pop('use_sim_time', None)
+    return values
+
+
+def load_params(path, overrides: Optional[Mapping[str, Any]] = None) -> LineParams:
+    """Validated parameters from a parameter file, with optional overrides on top."""
+    values = read_params_file(path)
+    values.update(overrides or {})
+    return from_values(values)

@@ -1,0 +1,192 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""The rope: particles joined by structural (i, i+1) and bending (i, i+2) springs.
+
+Particle 0 is the bollard end and particle N the fairlead end; both are kinematic (moved by
+the inputs), the N-1 others are free. Forces follow the seed paper (Liang & Yin 2016):
+Hooke springs (eq. 2), spring damping (eq. 3), gravity (eq. 4) and quadratic air drag (eq. 5).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class RopeProperties:
+    """The physical numbers of one line, all resolved (no 'take from material' zeros).
+
+    Attributes:
+        segments: number of segments N.
+        length: unstretched length L [m].
+        mass_per_length: [kg/m].
+        axial_stiffness: EA [N].
+        axial_damping: BA [N s]: a segment's damping coefficient is BA / segment length.
+        bending_stiffness_ratio: bending spring stiffness / structural spring stiffness.
+        bending_damping_ratio: bending spring damping / structural spring damping.
+        damping_model: 'axial' (stretch rate only) or 'seed' (K_SD (V_A - V_B)).
+        air_drag_coefficient: K_A per metre [N s^2 / m^3].
+        gravity: gravity vector [m/s^2], shape (3,).
+        max_strain: super-elasticity threshold (strain).
+        superelastic_adjustment: apply the position/velocity adjustment.
+    """
+
+    segments: int
+    length: float
+    mass_per_length: float
+    axial_stiffness: float
+    axial_damping: float
+    bending_stiffness_ratio: float = 0.0
+    bending_damping_ratio: float = 0.0
+    damping_model: str = 'axial'
+    air_drag_coefficient: float = 0.0
+    gravity: tuple = (0.0, 0.0, -9.81)
+    max_strain: float = 0.25
+    superelastic_adjustment: bool = True
+
+    @property
+    def segment_length(self) -> float:
+        """Unstretched structural spring length l0 = L / N [m]."""
+        return self.length / self.segments
+
+    @property
+    def particle_mass(self) -> float:
+        """Mass of a free particle [kg]; each end carries half of it."""
+        return self.mass_per_length * self.segment_length
+
+    @property
+    def structural_stiffness(self) -> float:
+        """k = EA / l0 [N/m]."""
+        return self.axial_stiffness / self.segment_length
+
+    @property
+    def structural_damping(self) -> float:
+        """c = BA / l0 [N s/m]."""
+        return self.axial_damping / self.segment_length
+
+    @property
+    def bending_stiffness(self) -> float:
+        """Bending spring stiffness [N/m]."""
+        return self.bending_stiffness_ratio * self.structural_stiffness
+
+    @property
+    def bending_damping(self) -> float:
+        """Bending spring damping [N s/m]."""
+        return self.bending_damping_ratio * self.structural_damping
+
+    @property
+    def weight_per_length(self) -> float:
+        """w = mass per length * |g| [N/m]."""
+        return self.mass_per_length * float(np.linalg.norm(self.gravity))
+
+
+def critical_axial_damping(length: float, mass_per_length: float, axial_stiffness: float,
+                           ratio: float = 0.01) -> float:
+    """BA [N s] giving `ratio` of critical damping to the line's first axial mode.
+
+    The first axial mode of a line fixed at both ends has w1 = (pi / L) sqrt(EA / m); a
+    stiffness-proportional damper BA gives it the damping ratio BA w1 / (2 EA).
+    """
+    return 2.0 * ratio * length * np.sqrt(axial_stiffness * mass_per_length) / np.pi
+
+
+def _spring_forces(x, v, stride, rest, stiffness, damping, axial, tension_only, out):
+    """Add the forces of springs (i, i + stride) to `out`; return their axial force.
+
+    The axial force is positive in tension. A structural spring is a rope segment and carries
+    no compression; a bending spring pushes back when the rope folds (the seed's purpose).
+    """
+    d = x[stride:] - x[:-stride]
+    length = np.sqrt(np.einsum('ij,ij->i', d, d))
+    u = d / np.maximum(length, 1e-12)[:, None]
+    stretch = length - rest
+    if tension_only:
+        stretch = np.maximum(stretch, 0.0)
+    dv = v[stride:] - v[:-stride]
+    if axial:
+        tension = stiffness * stretch + damping * np.einsum('ij,ij->i', dv, u)
+        f = tension[:, None] * u
+    else:
+        tension = stiffness * stretch
+        f = tension[:, None] * u + damping * dv
+    out[:-stride] += f
+    out[stride:] -= f
+    return tension
+
+
+class Rope:
+    """State and forces of one line.
+
+    Attributes:
+        props: the line's RopeProperties.
+        x: particle positions, shape (N+1, 3) [m].
+        v: particle velocities, shape (N+1, 3) [m/s].
+    """
+
+    def __init__(self, props: RopeProperties, positions: np.ndarray):
+        """Place the rope at rest at `positions`, shape (N+1, 3)."""
+        self.props = props
+        self.x = np.array(positions, dtype=float)
+        if self.x.shape != (props.segments + 1, 3):
+            raise ValueError(
+                f'positions must have shape ({props.segments + 1}, 3), got {self.x.shape}')
+        self.v = np.zeros_like(self.x)
+        self._gravity = np.asarray(props.gravity, dtype=float)
+
+    @property
+    def count(self) -> int:
+        """Number of particles N + 1."""
+        return self.props.segments + 1
+
+    def line_forces(self, x: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """Spring and damper forces of the line on every particle, shape (N+1, 3)."""
+        p = self.props
+        axial = p.damping_model == 'axial'
+        f = np.zeros_like(x)
+        _spring_forces(x, v, 1, p.segment_length, p.structural_stiffness,
+                       p.structural_damping, axial, True, f)
+        if p.bending_stiffness > 0.0 or p.bending_damping > 0.0:
+            _spring_forces(x, v, 2, 2.0 * p.segment_length, p.bending_stiffness,
+                           p.bending_damping, axial, False, f)
+        return f
+
+    def accelerations(self, x: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """Accelerations of all particles (the two ends' rows are meaningless)."""
+        p = self.props
+        f = self.line_forces(x, v)
+        if p.air_drag_coefficient > 0.0:
+            speed = np.sqrt(np.einsum('ij,ij->i', v, v))
+            f -= (p.air_drag_coefficient * p.segment_length) * speed[:, None] * v
+        return f / p.particle_mass + self._gravity
+
+    def end_forces(self) -> tuple:
+        """Force of the line on the bollard (particle 0) and on the fairlead (particle N).
+
+        The attached springs and dampers plus the weight of the half segment lumped at the
+        end, as MoorDyn reports for a coupled point: it converges to the catenary's end
+        tension at second order in N.
+        """
+        f = self.line_forces(self.x, self.v)
+        half_weight = 0.5 * self.props.particle_mass * self._gravity
+        return f[0] + half_weight, f[-1] + half_weight
+
+    def strains(self) -> np.ndarray:
+        """Strain of every structural spring, shape (N,)."""
+        d = np.diff(self.x, axis=0)
+        return np.sqrt(np.einsum('ij,ij->i', d, d)) / self.props.segment_length - 1.0
+
+    def is_finite(self) -> bool:
+        """True when every position and velocity is a finite number."""
+        return bool(np.isfinite(self.x).all() and np.isfinite(self.v).all())

@@ -1,0 +1,272 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Drives a Rope through time from end trajectories: the one simulator of the node, the
+offline runner and the tests.
+
+Data flows one way: end samples -> trajectories -> fixed substeps -> rope state -> outputs.
+"""
+
+from dataclasses import dataclass
+import math
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+
+from .params import LineParams
+from .physics import catenary
+from .physics import kernels
+from .physics.integrators import automatic_time_step, improved_euler_step
+from .physics.materials import MaterialLibrary, MaterialProperties
+from .physics.rope import critical_axial_damping, Rope, RopeProperties
+from .physics.superelastic import adjust, MAX_SWEEPS
+from .trajectory import EndTrajectory, TrajectoryError
+
+CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
+STEPPERS = {'improved_euler': improved_euler_step}
+
+
+def default_config_dir() -> Path:
+    """config/ of the source tree, else the installed share/rope_sim_ros/config."""
+    if (CONFIG_DIR / 'materials.yaml').exists():
+        return CONFIG_DIR
+    import sys
+    for prefix in [sys.prefix, *_ament_prefixes()]:
+        candidate = Path(prefix) / 'share' / 'rope_sim_ros' / 'config'
+        if (candidate / 'materials.yaml').exists():
+            return candidate
+    return CONFIG_DIR
+
+
+def _ament_prefixes() -> list:
+    import os
+    return [p for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
+
+
+def load_materials() -> MaterialLibrary:
+    """The material presets of config/materials.yaml."""
+    return MaterialLibrary.from_file(default_config_dir() / 'materials.yaml')
+
+
+def rope_properties(params: LineParams, material: MaterialProperties) -> RopeProperties:
+    """Resolve the parameters into the physical numbers of the line."""
+    mass = params.mass_per_length or material.mass_per_length
+    ea = params.axial_stiffness or material.axial_stiffness
+    ba = params.axial_damping or critical_axial_damping(params.length, mass, ea)
+    return RopeProperties(
+        segments=params.segments, length=params.length, mass_per_length=mass,
+        axial_stiffness=ea, axial_damping=ba,
+        bending_stiffness_ratio=params.bending_stiffness_ratio,
+        bending_damping_ratio=params.bending_damping_ratio,
+        damping_model=params.damping_model,
+        air_drag_coefficient=params.air_drag_coefficient,
+        gravity=tuple(params.gravity), max_strain=params.max_strain,
+        superelastic_adjustment=params.superelastic_adjustment)
+
+
+@dataclass(frozen=True)
+class Output:
+    """What the line looks like at one instant.
+
+    Attributes:
+        t: state time [s].
+        positions: particles (N+1, 3) [m], bollard first.
+        fairlead_force: force of the line on the fairlead (3,) [N].
+        bollard_force: force of the line on the bollard (3,) [N].
+        max_strain: largest structural spring strain.
+    """
+
+    t: float
+    positions: np.ndarray
+    fairlead_force: np.ndarray
+    bollard_force: np.ndarray
+    max_strain: float
+
+    @property
+    def fairlead_tension(self) -> float:
+        """|fairlead_force| [N]."""
+        return float(np.linalg.norm(self.fairlead_force))
+
+    @property
+    def bollard_tension(self) -> float:
+        """|bollard_force| [N]."""
+        return float(np.linalg.norm(self.bollard_force))
+
+
+@dataclass(frozen=True)
+class Advance:
+    """What one advance_to call did.
+
+    Attributes:
+        steps: substeps taken.
+        lag: how far the state time is behind the requested time [s].
+        restarted: why the rope was restarted ('' when it was not).
+    """
+
+    steps: int
+    lag: float
+    restarted: str = ''
+
+
+class Simulator:
+    """One mooring line between a bollard (particle 0) and a fairlead (particle N)."""
+
+    def __init__(self, params: LineParams, materials: Optional[MaterialLibrary] = None,
+                 output_interval: float = 0.0, compiled: bool = True):
+        """Build the line; the rope is placed by start().
+
+        Args:
+            params: validated parameters.
+            materials: presets (default: config/materials.yaml).
+            output_interval: if > 0, the automatic step is shortened to divide it, so that
+                outputs fall on step times.
+            compiled: step with the numba kernels (False: the numpy reference path).
+
+        Raises:
+            ParameterError / MaterialError / ValueError: the line cannot be built; the
+                message says why.
+        """
+        self.params = params
+        self.material = (materials or load_materials()).properties(
+            params.material, params.diameter)
+        self.props = rope_properties(params, self.material)
+        self._output_interval = output_interval
+        self.time_step = self._choose_time_step()
+        self._step = STEPPERS[params.integrator]
+        self.compiled = compiled
+        self.fairlead = EndTrajectory()
+        self.bollard = EndTrajectory()
+        self.rope: Optional[Rope] = None
+        self.time = math.nan
+        self._inv_mass = np.ones(params.segments + 1)
+        self._inv_mass[[0, -1]] = 0.0
+
+    def _choose_time_step(self) -> float:
+        dt = self.params.time_step or automatic_time_step(self.props)
+        if self._output_interval > 0.0:
+            dt = self._output_interval / math.ceil(self._output_interval / dt - 1e-9)
+        return dt
+
+    @property
+    def started(self) -> bool:
+        """True once the rope has been placed."""
+        return self.rope is not None
+
+    def update(self, values: dict) -> None:
+        """Apply run-time parameter changes (damping, drag, max_strain, ...) at once."""
+        self.params = self.params.with_values(values)
+        self.props = rope_properties(self.params, self.material)
+        if self.rope is not None:
+            self.rope.props = self.props
+        self.time_step = self._choose_time_step()
+
+    # -- inputs -------------------------------------------------------------------------
+
+    def push_fairlead(self, t: float, position) -> str:
+        """Add a fairlead sample; return 'teleport' if it restarted the rope, else ''.
+
+        Raises:
+            TrajectoryError: non-finite or not newer than the last sample (state unchanged).
+        """
+        last = self.fairlead.last_position
+        self.fairlead.push(t, position)
+        jump = 0.0 if last is None else float(np.linalg.norm(np.asarray(position) - last))
+        if self.started and jump > self.params.teleport_distance:
+            self.fairlead.clear()
+            self.fairlead.push(t, position)
+            self.restart(max(t, self.time))
+            return 'teleport'
+        return ''
+
+    def push_bollard(self, t: float, position) -> None:
+        """Add a bollard sample (see push_fairlead)."""
+        self.bollard.push(t, position)
+
+    def ends_at(self, times: np.ndarray) -> tuple:
+        """End positions and velocities at `times`: arrays (n, 2, 3), bollard first."""
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        fp, fv = self.fairlead.sample(times)
+        if len(self.bollard):
+            bp, bv = self.bollard.sample(times)
+        else:
+            bp = np.repeat([self.params.bollard_position], len(times), axis=0)
+            bv = np.zeros_like(bp)
+        return np.stack([bp, fp], axis=1), np.stack([bv, fv], axis=1)
+
+    # -- time ---------------------------------------------------------------------------
+
+    def start(self, t: float) -> None:
+        """Place the rope at rest in equilibrium between the ends at time t.
+
+        Raises:
+            TrajectoryError: no fairlead sample yet.
+        """
+        if not len(self.fairlead):
+            raise TrajectoryError('cannot start the rope before the first fairlead sample')
+        self.restart(t)
+
+    def restart(self, t: Optional[float] = None) -> None:
+        """Put the rope back on the catenary between the ends (at its current time)."""
+        t = self.time if t is None else t
+        ends, _ = self.ends_at([t])
+        p = self.props
+        shape = catenary.initial_shape(
+            ends[0, 0], ends[0, 1], p.length, p.segments, p.weight_per_length,
+            p.axial_stiffness, np.asarray(p.gravity))
+        self.rope = Rope(p, shape)
+        self.time = t
+
+    def advance_to(self, t: float, max_steps: Optional[int] = None) -> Advance:
+        """Advance the rope in fixed substeps up to t (at most max_steps of them).
+
+        A state that turns non-finite is never kept: the rope restarts on the catenary.
+        """
+        dt = self.time_step
+        steps = max(0, int(math.floor((t - self.time) / dt + 1e-9)))
+        if max_steps is not None:
+            steps = min(steps, max_steps)
+        if steps == 0:
+            return Advance(0, t - self.time)
+        times = self.time + dt * np.arange(1, steps + 1)
+        ends, velocities = self.ends_at(times)
+        self._run(dt, ends, velocities)
+        self.time = float(times[-1])
+        rope = self.rope
+        if not rope.is_finite():
+            self.restart()
+            return Advance(steps, t - self.time, 'non-finite state')
+        return Advance(steps, t - self.time)
+
+    def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
+        rope, props = self.rope, self.props
+        if self.compiled:
+            kernels.improved_euler_run(
+                rope.x, rope.v, ends, velocities, dt, kernels.coefficients(props),
+                self._inv_mass, props.max_strain, props.superelastic_adjustment, MAX_SWEEPS)
+            return
+        for k in range(len(ends)):
+            self._step(rope, dt, ends[k], velocities[k])
+            if props.superelastic_adjustment:
+                adjust(rope.x, rope.v, self._inv_mass, props.segment_length, props.max_strain)
+
+    def skip_to(self, t: float) -> None:
+        """Move the state time to t without simulating (after falling far behind)."""
+        self.time = t
+
+    def output(self) -> Output:
+        """The current state: particles, end forces and the largest strain."""
+        bollard, fairlead = self.rope.end_forces()
+        return Output(self.time, self.rope.x.copy(), fairlead, bollard,
+                      float(self.rope.strains().max()))
