@@ -58,7 +58,7 @@ def check_values(records):
 
 @pytest.fixture(scope='module')
 def complete(tmp_path_factory):
-    """A closed bag of COUNT poses in 16 KiB chunks, and its chunk index."""
+    """Return a closed bag of COUNT poses in 16 KiB chunks, and its chunk index."""
     path = tmp_path_factory.mktemp('complete') / 'run'
     with BagWriter(path, chunk_size=16 * 1024) as bag:
         bag.add_topic(TOPIC, 'geometry_msgs/msg/PoseStamped')
@@ -82,7 +82,7 @@ def cut_copy(complete, tmp_path, offset):
 
 
 def whole_before(chunks, offset):
-    """Number of messages in the chunks that end at or before offset."""
+    """Return the number of messages in the chunks that end at or before offset."""
     ends = [c.message_end_time for c in chunks
             if c.chunk_start_offset + c.chunk_length <= offset]
     return 0 if not ends else (max(ends) - T0) // STEP + 1
