@@ -124,7 +124,8 @@ class Simulator:
     """One mooring line between a bollard (particle 0) and a fairlead (particle N)."""
 
     def __init__(self, params: LineParams, materials: Optional[MaterialLibrary] = None,
-                 output_interval: float = 0.0, compiled: bool = True):
+                 output_interval: float = 0.0, compiled: bool = True,
+                 history: float = 5.0):
         """Build the line; the rope is placed by start().
 
         Args:
@@ -133,6 +134,8 @@ class Simulator:
             output_interval: if > 0, the automatic step is shortened to divide it, so that
                 outputs fall on step times.
             compiled: step with the numba kernels (False: the numpy reference path).
+            history: seconds of end samples kept behind the newest (math.inf offline, where
+                a whole motion is pushed before the first step).
 
         Raises:
             ParameterError / MaterialError / ValueError: the line cannot be built; the
@@ -146,8 +149,8 @@ class Simulator:
         self.time_step = self._choose_time_step()
         self._step = STEPPERS[params.integrator]
         self.compiled = compiled
-        self.fairlead = EndTrajectory()
-        self.bollard = EndTrajectory()
+        self.fairlead = EndTrajectory(keep=history)
+        self.bollard = EndTrajectory(keep=history)
         self.rope: Optional[Rope] = None
         self.time = math.nan
         self._inv_mass = np.ones(params.segments + 1)
