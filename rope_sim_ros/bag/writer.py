@@ -38,7 +38,6 @@ from .errors import BagError
 _LOG = logging.getLogger(__name__)
 # Tells the thread that close() was called and everything before it is queued.
 _STOP = object()
-_Item = Tuple[str, bytes, int, int]
 
 
 class BagWriter:
