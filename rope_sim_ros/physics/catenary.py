@@ -1,0 +1,602 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Static shapes of a mooring line: Irvine's elastic catenary and the lumped-mass chain.
+
+Planar convention (shared/reference/README.md): end A at (0, 0), end B at (span, rise), x
+horizontal from A to B, z up. The line pulls A with (+H, V_A) and B with (-H, -V_B), so
+V_B - V_A = w L. The tension at unstretched arc length s from A is (H, V_A + w s), and a
+segment of unstretched length ds stretches to ds (1 + T / EA).
+
+The 3-D functions take world points and a gravity vector: 'up' is -gravity / |gravity| and the
+horizontal direction is the chord projected onto the plane normal to gravity. There,
+weight_per_length is the weight per unstretched metre at that gravity (mass_per_length *
+|gravity|), and a zero gravity vector or a zero weight means a weightless, straight line.
+
+Only numpy: the simulator seeds its particles from here, and the tests check the rope model
+against these equilibria.
+"""
+
+from collections.abc import Callable
+from dataclasses import dataclass
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+# Residual of the closure equations relative to the line's length at which Newton stops.
+_TOLERANCE = 1e-12
+# Where rounding keeps Newton from reaching _TOLERANCE, a residual this small is still exact
+# for any practical purpose; a larger one is a failure.
+_ROUNDING_TOLERANCE = 1e-10
+# Newton needs at most ~50 residual evaluations wherever an equilibrium exists (a sweep of
+# slack to taut, soft to stiff, vertical to level lines); where none does (a chain folded at
+# a vertical hang) it would crawl for thousands. The budget keeps a failure cheap for
+# initial_shape's fallbacks.
+_MAX_EVALUATIONS = 100
+_MAX_HALVINGS = 40
+# Below this fraction of L the span is treated as this fraction: H = 0 makes the catenary
+# equations singular (asinh(V / H)), while H from a tiny span is well defined and harmless.
+_MIN_SPAN_FRACTION = 1e-9
+# Newton may shrink H by at most this factor per step, keeping it positive.
+_MAX_H_SHRINK = 0.1
+
+
+class CatenaryError(ValueError):
+    """Invalid inputs to, or no convergence of, a catenary or chain solve."""
+
+
+@dataclass(frozen=True)
+class CatenarySolution:
+    """End forces of an elastic catenary, in the planar convention of the module docstring.
+
+    Attributes:
+        horizontal_tension: H [N], the horizontal force on A (and, reversed, on B); H >= 0.
+        vertical_a: V_A [N], the vertical force of the line on end A (+ up).
+        vertical_b: V_B [N]; the line pulls B with (-H, -V_B).
+        tension_a: |force on A| = hypot(H, V_A) [N].
+        tension_b: |force on B| = hypot(H, V_B) [N].
+    """
+
+    horizontal_tension: float
+    vertical_a: float
+    vertical_b: float
+    tension_a: float
+    tension_b: float
+
+
+# eq=False: comparing numpy arrays field by field has no single truth value.
+@dataclass(frozen=True, eq=False)
+class ChainEquilibrium:
+    """Static equilibrium of the N-segment lumped-mass chain between two fixed ends.
+
+    Attributes:
+        positions: (N + 1, 3) node positions [m], first = end A, last = end B.
+        force_a: (3,) total force of the line on end A [N]: the first segment's tension
+            (pointing into the line) plus the weight of the half segment lumped at A.
+        force_b: (3,) the same at end B.
+        segment_tension: (N,) tension of each segment [N], from A to B.
+        horizontal_tension: H [N], the horizontal component of every segment's tension
+            (of a weightless chain, where nothing is horizontal: its tension).
+    """
+
+    positions: np.ndarray
+    force_a: np.ndarray
+    force_b: np.ndarray
+    segment_tension: np.ndarray
+    horizontal_tension: float
+
+
+# ----------------------------------------------------------------------------- validation
+
+
+def _check_finite(name: str, value: float) -> float:
+    value = float(value)
+    if not math.isfinite(value):
+        raise CatenaryError(f'{name} must be finite, got {value}')
+    return value
+
+
+def _check_positive(name: str, value: float) -> float:
+    value = _check_finite(name, value)
+    if value <= 0.0:
+        raise CatenaryError(f'{name} must be > 0, got {value}')
+    return value
+
+
+def _check_non_negative(name: str, value: float) -> float:
+    value = _check_finite(name, value)
+    if value < 0.0:
+        raise CatenaryError(f'{name} must be >= 0, got {value}')
+    return value
+
+
+def _check_point(name: str, value: ArrayLike) -> np.ndarray:
+    point = np.asarray(value, dtype=float)
+    if point.shape != (3,):
+        raise CatenaryError(f'{name} must have shape (3,), got {point.shape}')
+    if not np.all(np.isfinite(point)):
+        raise CatenaryError(f'{name} must be finite, got {point}')
+    return point
+
+
+def _check_segments(segments: int) -> int:
+    if isinstance(segments, bool) or int(segments) != segments or segments < 1:
+        raise CatenaryError(f'segments must be an integer >= 1, got {segments}')
+    return int(segments)
+
+
+# ---------------------------------------------------------------------- catenary equations
+
+
+def _asinh_difference(v: ArrayLike, v_a: float, dv: ArrayLike, t: ArrayLike, t_a: float,
+                      h: float) -> np.ndarray:
+    """Return asinh(v / h) - asinh(v_a / h) without cancellation.
+
+    Where v and v_a share a sign the two terms nearly cancel on a taut or vertical line, so
+    use sinh(a - b) = (v - v_a)(v + v_a) / (v t_a + v_a t), which needs no h at all.
+
+    Args:
+        v: vertical tension component(s) at the far point [N].
+        v_a: vertical component at the near point [N].
+        dv: v - v_a, known exactly by the caller (w s) [N].
+        t: hypot(h, v) [N].
+        t_a: hypot(h, v_a) [N].
+        h: horizontal tension, > 0 unless v and v_a share a sign [N].
+
+    Returns:
+        The difference, shaped like v.
+    """
+    v = np.asarray(v, dtype=float)
+    same_sign = v * v_a > 0.0
+    with np.errstate(divide='ignore', invalid='ignore', over='ignore'):
+        stable = np.arcsinh(dv * (v + v_a) / (v * t_a + v_a * t))
+        direct = np.arcsinh(v / h) - np.arcsinh(v_a / h)
+    return np.where(same_sign, stable, direct)
+
+
+def _catenary_residual(x: np.ndarray, span: float, rise: float, length: float, w: float,
+                       ea: float) -> tuple[np.ndarray, np.ndarray]:
+    """Closure of the elastic catenary at B, and its Jacobian, for unknowns x = (H, V_B)."""
+    h, v_b = float(x[0]), float(x[1])
+    wl = w * length
+    v_a = v_b - wl
+    t_a = math.hypot(h, v_a)
+    t_b = math.hypot(h, v_b)
+    d_asinh = float(_asinh_difference(v_b, v_a, wl, t_b, t_a, h))
+    # T_B - T_A = (V_B - V_A)(V_B + V_A) / (T_B + T_A): no cancellation on a taut line.
+    f = np.array([
+        h * length / ea + h / w * d_asinh - span,
+        length * (v_a + v_b) * (0.5 / ea + 1.0 / (t_a + t_b)) - rise,
+    ])
+    # Symmetric: it is the compliance matrix of the line's end.
+    off = h / w * (1.0 / t_b - 1.0 / t_a)
+    jac = np.array([
+        [length / ea + (d_asinh - v_b / t_b + v_a / t_a) / w, off],
+        [off, length / ea + (v_b / t_b - v_a / t_a) / w],
+    ])
+    return f, jac
+
+
+def _catenary_guess(span: float, rise: float, length: float, w: float,
+                    ea: float) -> np.ndarray:
+    """Start (H, V_B) from MoorPy's lambda guess, raised to a taut chord's elastic stretch."""
+    chord = math.hypot(span, rise)
+    if span <= _MIN_SPAN_FRACTION * length:  # vertical: V_B = w (rise + L) / 2, H ~ 0
+        lam = 1e6
+    elif chord >= length:
+        lam = 0.2
+    else:
+        lam = math.sqrt(3.0 * ((length * length - rise * rise) / (span * span) - 1.0))
+        lam = max(lam, 1e-6)
+    h = max(abs(0.5 * w * span / lam), 1e-300)
+    v_b = 0.5 * w * (rise / math.tanh(lam) + length)
+    # A chord longer than L pulls at least the straight stretch tension: start above it.
+    stretch_tension = ea * (chord / length - 1.0)
+    if stretch_tension * span / chord > h:
+        h = stretch_tension * span / chord
+        v_b = stretch_tension * rise / chord + 0.5 * w * length
+    return np.array([h, v_b])
+
+
+# -------------------------------------------------------------------------------- Newton
+
+
+def _positive_fraction(h: float, dh: float) -> float:
+    """Largest step fraction <= 1 that shrinks H by no more than _MAX_H_SHRINK."""
+    floor = _MAX_H_SHRINK * h
+    if h + dh >= floor:
+        return 1.0
+    return (floor - h) / dh
+
+
+def _newton_step(f: np.ndarray, jac: np.ndarray) -> np.ndarray:
+    det = jac[0, 0] * jac[1, 1] - jac[0, 1] * jac[1, 0]
+    if det == 0.0 or not math.isfinite(det):
+        raise CatenaryError('singular Jacobian: the line has no unique equilibrium here')
+    return np.array([
+        (-f[0] * jac[1, 1] + f[1] * jac[0, 1]) / det,
+        (-f[1] * jac[0, 0] + f[0] * jac[1, 0]) / det,
+    ])
+
+
+def _newton(residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+            start: np.ndarray, scale: float, what: str) -> np.ndarray:
+    """Solve residual(x) = 0 for x = (H, V) with H > 0 by Newton with backtracking.
+
+    Args:
+        residual: returns (f (2,), Jacobian (2, 2)) at x; f in metres.
+        start: initial (H, V), H > 0.
+        scale: length the residual is measured against (the line's length) [m].
+        what: name of the problem, for the error message.
+
+    Returns:
+        The converged (H, V).
+
+    Raises:
+        CatenaryError: the residual did not fall below _ROUNDING_TOLERANCE * scale (Newton
+            aims at _TOLERANCE * scale and stops there).
+    """
+    x = np.array(start, dtype=float)
+    f, jac = residual(x)
+    norm = math.hypot(f[0], f[1])
+    evaluations = 1
+    while norm > _TOLERANCE * scale and evaluations < _MAX_EVALUATIONS:
+        step = _newton_step(f, jac)
+        alpha = _positive_fraction(x[0], step[0])
+        for _ in range(_MAX_HALVINGS):
+            trial = x + alpha * step
+            f_trial, jac_trial = residual(trial)
+            evaluations += 1
+            norm_trial = math.hypot(f_trial[0], f_trial[1])
+            if norm_trial <= (1.0 - 1e-4 * alpha) * norm:  # Armijo: a real decrease
+                break
+            alpha *= 0.5
+        else:
+            break  # no descent left: rounding, or no solution
+        x, f, jac, norm = trial, f_trial, jac_trial, norm_trial
+    if norm <= _ROUNDING_TOLERANCE * scale:
+        return x
+    raise CatenaryError(
+        f'{what} did not converge: closure residual {norm:.3g} m for a {scale:.6g} m line')
+
+
+# ---------------------------------------------------------------------- planar catenary
+
+
+def solve_catenary(span: float, rise: float, length: float, weight_per_length: float,
+                   axial_stiffness: float) -> CatenarySolution:
+    """Solve Irvine's elastic catenary between A = (0, 0) and B = (span, rise).
+
+    Handles slack, U-shaped, nearly taut and stretched (chord > L) lines, very soft lines,
+    B below A, and a vertical hang (a span below 1e-9 L is solved as 1e-9 L).
+
+    Args:
+        span: horizontal distance from A to B [m], >= 0.
+        rise: height of B above A [m], any sign.
+        length: unstretched length L [m], > 0.
+        weight_per_length: weight w per unstretched metre [N/m], > 0.
+        axial_stiffness: EA [N], > 0.
+
+    Returns:
+        The end forces.
+
+    Raises:
+        CatenaryError: an input is invalid, or Newton did not converge.
+    """
+    span = _check_non_negative('span', span)
+    rise = _check_finite('rise', rise)
+    length = _check_positive('length', length)
+    w = _check_positive('weight_per_length', weight_per_length)
+    ea = _check_positive('axial_stiffness', axial_stiffness)
+    span = max(span, _MIN_SPAN_FRACTION * length)
+    if rise > 0.0:
+        # Solve from B, so that the unknown is the lower end's V: it can be tiny (a line
+        # hanging almost straight up from A), and V_B - w L would lose it to rounding.
+        h, v_a, v_b = _solve_lower_end(span, -rise, length, w, ea)
+        v_a, v_b = -v_b, -v_a
+    else:
+        h, v_a, v_b = _solve_lower_end(span, rise, length, w, ea)
+    return CatenarySolution(h, v_a, v_b, math.hypot(h, v_a), math.hypot(h, v_b))
+
+
+def _solve_lower_end(span: float, rise: float, length: float, w: float,
+                     ea: float) -> tuple[float, float, float]:
+    """Return (H, V_A, V_B) of a catenary whose end B is not above A (rise <= 0)."""
+    starts = (
+        _catenary_guess(span, rise, length, w, ea),
+        # Nearly vertical lines whose lower end is almost unloaded defeat the first start
+        # (V changes sign within H of the solution): begin from the vertical hang there.
+        np.array([0.5 * w * span * 1e-6, 0.5 * w * (rise + length)]),
+    )
+    for start in starts:
+        try:
+            h, v_b = _newton(lambda x: _catenary_residual(x, span, rise, length, w, ea),
+                             start, length, 'elastic catenary')
+        except CatenaryError as error:
+            failure = error
+            continue
+        return float(h), float(v_b - w * length), float(v_b)
+    raise failure
+
+
+def catenary_profile(solution: CatenarySolution, length: float, weight_per_length: float,
+                     axial_stiffness: float, s: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Return the planar shape of a solved catenary.
+
+    Args:
+        solution: from solve_catenary with the same line properties.
+        length: unstretched length L [m], > 0.
+        weight_per_length: w [N/m], > 0.
+        axial_stiffness: EA [N], > 0.
+        s: unstretched arc lengths from A [m] (any shape).
+
+    Returns:
+        (x, z): horizontal and vertical positions relative to A [m], shaped like s.
+
+    Raises:
+        CatenaryError: an input is invalid.
+    """
+    _check_positive('length', length)
+    w = _check_positive('weight_per_length', weight_per_length)
+    ea = _check_positive('axial_stiffness', axial_stiffness)
+    s = np.asarray(s, dtype=float)
+    h = solution.horizontal_tension
+    v_a = solution.vertical_a
+    v = v_a + w * s
+    t = np.hypot(h, v)
+    t_a = math.hypot(h, v_a)
+    if h > 0.0:
+        x = h * s / ea + h / w * _asinh_difference(v, v_a, w * s, t, t_a, h)
+    else:  # a vertical hang: no horizontal force, no horizontal extent
+        x = np.zeros_like(s)
+    # z = (V^2 - V_A^2) / (2 w EA) + (T - T_A) / w, written without cancellation; the
+    # denominator is 0 only at a zero-tension point, where z is 0 too.
+    denominator = np.asarray(t + t_a)
+    inverse = np.divide(1.0, denominator, out=np.zeros_like(denominator),
+                        where=denominator > 0.0)
+    z = s * (v + v_a) * (0.5 / ea + inverse)
+    return x, z
+
+
+# ---------------------------------------------------------------------------- 3-D helpers
+
+
+def _is_weightless(weight_per_length: float, gravity: np.ndarray) -> bool:
+    return weight_per_length == 0.0 or not np.any(gravity)
+
+
+def _vertical_frame(end_a: np.ndarray, end_b: np.ndarray,
+                    gravity: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Return (up, horizontal unit vector, span, rise) of the chord A -> B under gravity."""
+    up = -gravity / np.linalg.norm(gravity)
+    chord = end_b - end_a
+    rise = float(chord @ up)
+    horizontal = chord - rise * up
+    span = float(np.linalg.norm(horizontal))
+    if span > 1e-12 * float(np.linalg.norm(chord)):
+        return up, horizontal / span, span, rise
+    # Vertical chord: any horizontal direction will do; take the world axis least along up.
+    axis = np.zeros(3)
+    axis[int(np.argmin(np.abs(up)))] = 1.0
+    horizontal = axis - (axis @ up) * up
+    return up, horizontal / np.linalg.norm(horizontal), 0.0, rise
+
+
+def _close_on_end(points: np.ndarray, fraction: np.ndarray, end_b: np.ndarray,
+                  reached_b: np.ndarray) -> np.ndarray:
+    """Spread the closure error (<= 1e-12 L, or the tiny span of a vertical hang) along s."""
+    return points + np.outer(fraction, end_b - reached_b)
+
+
+def _straight_line(end_a: np.ndarray, end_b: np.ndarray, segments: int) -> np.ndarray:
+    fraction = np.linspace(0.0, 1.0, segments + 1)
+    return end_a + np.outer(fraction, end_b - end_a)
+
+
+def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
+                    weight_per_length: float, axial_stiffness: float, gravity: ArrayLike,
+                    s: ArrayLike) -> np.ndarray:
+    """Return world points of the elastic catenary between two ends.
+
+    Args:
+        end_a: (3,) end A [m].
+        end_b: (3,) end B [m].
+        length: unstretched length L [m], > 0.
+        weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
+        axial_stiffness: EA [N], > 0.
+        gravity: (3,) gravity vector [m/s^2], any direction; zero means weightless.
+        s: (M,) unstretched arc lengths from A [m].
+
+    Returns:
+        (M, 3) points; s = 0 gives end A and s = L gives end B.
+
+    Raises:
+        CatenaryError: an input is invalid, or the catenary did not converge.
+    """
+    end_a = _check_point('end_a', end_a)
+    end_b = _check_point('end_b', end_b)
+    gravity = _check_point('gravity', gravity)
+    length = _check_positive('length', length)
+    w = _check_non_negative('weight_per_length', weight_per_length)
+    ea = _check_positive('axial_stiffness', axial_stiffness)
+    s = np.asarray(s, dtype=float).reshape(-1)
+    fraction = s / length
+    if _is_weightless(w, gravity):
+        # Straight; stretched evenly if the chord is longer than L, else spread evenly.
+        return end_a + np.outer(fraction, end_b - end_a)
+    up, horizontal, span, rise = _vertical_frame(end_a, end_b, gravity)
+    solution = solve_catenary(span, rise, length, w, ea)
+    x, z = catenary_profile(solution, length, w, ea, np.append(s, length))
+    points = end_a + np.outer(x, horizontal) + np.outer(z, up)
+    return _close_on_end(points[:-1], fraction, end_b, points[-1])
+
+
+# ------------------------------------------------------------------- lumped-mass chain
+
+
+def _chain_residual(x: np.ndarray, span: float, rise: float, segments: int, l0: float,
+                    wl0: float, ea: float) -> tuple[np.ndarray, np.ndarray]:
+    """Closure of the chain at B, and its Jacobian, for x = (H, V of the first segment)."""
+    h, v0 = float(x[0]), float(x[1])
+    # Each interior node adds its weight w l0 to the vertical component of the next segment.
+    v = v0 + wl0 * np.arange(segments)
+    t = np.hypot(h, v)
+    inv_t = 1.0 / t
+    inv_t3 = inv_t ** 3
+    f = np.array([
+        l0 * (h * np.sum(inv_t) + segments * h / ea) - span,
+        l0 * (np.sum(v * inv_t) + np.sum(v) / ea) - rise,
+    ])
+    off = -l0 * h * np.sum(v * inv_t3)
+    jac = np.array([
+        [l0 * (np.sum(v * v * inv_t3) + segments / ea), off],
+        [off, l0 * (h * h * np.sum(inv_t3) + segments / ea)],
+    ])
+    return f, jac
+
+
+def _chain_verticals(span: float, rise: float, length: float, segments: int, w: float,
+                     ea: float) -> tuple[float, np.ndarray]:
+    """Return H and the vertical components (N,) of the segments' tensions, from A to B."""
+    if rise < 0.0:
+        # Solve from B so that the unknown is the lower end's V (see solve_catenary).
+        h, v = _chain_verticals(span, -rise, length, segments, w, ea)
+        return h, -v[::-1]
+    l0 = length / segments
+    wl0 = w * l0
+    seed = solve_catenary(span, rise, length, w, ea)
+    # The catenary's V at the middle of the first segment is the chain's first segment's V.
+    start = np.array([seed.horizontal_tension, seed.vertical_a + 0.5 * wl0])
+    span = max(span, _MIN_SPAN_FRACTION * length)
+    h, v0 = _newton(lambda x: _chain_residual(x, span, rise, segments, l0, wl0, ea),
+                    start, length, 'lumped-mass chain')
+    return float(h), v0 + wl0 * np.arange(segments)
+
+
+def _weightless_chain(end_a: np.ndarray, end_b: np.ndarray, length: float, segments: int,
+                      ea: float) -> ChainEquilibrium:
+    chord = end_b - end_a
+    chord_length = float(np.linalg.norm(chord))
+    # A chain shorter than its chord stretches evenly; a longer one rests unloaded (any
+    # shape is an equilibrium; the chord is the obvious one).
+    tension = ea * max(chord_length / length - 1.0, 0.0)
+    direction = chord / chord_length if chord_length > 0.0 else np.zeros(3)
+    return ChainEquilibrium(
+        positions=_straight_line(end_a, end_b, segments),
+        force_a=tension * direction,
+        force_b=-tension * direction,
+        segment_tension=np.full(segments, tension),
+        horizontal_tension=tension,
+    )
+
+
+def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: int,
+                      weight_per_length: float, axial_stiffness: float,
+                      gravity: ArrayLike) -> ChainEquilibrium:
+    """Return the exact static equilibrium of the N-segment lumped-mass chain.
+
+    N equal linear springs of unstretched length l0 = L / N (length l0 (1 + T / EA)); the
+    interior nodes carry the weight w l0, the two fixed end nodes w l0 / 2 each. Newton on
+    the two closure equations, seeded by the elastic catenary. This is what a converged
+    simulation with the same lumping settles to (moordyn_static.csv's disc_* values).
+
+    Args:
+        end_a: (3,) end A [m].
+        end_b: (3,) end B [m].
+        length: unstretched length L [m], > 0.
+        segments: N >= 1.
+        weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
+        axial_stiffness: EA [N], > 0.
+        gravity: (3,) gravity vector [m/s^2]; zero means weightless (a straight chain).
+
+    Returns:
+        Positions, end forces and segment tensions.
+
+    Raises:
+        CatenaryError: an input is invalid, or there is no equilibrium Newton can reach
+            (for example a chain folded at a vertical hang, or too few segments to sag).
+    """
+    end_a = _check_point('end_a', end_a)
+    end_b = _check_point('end_b', end_b)
+    gravity = _check_point('gravity', gravity)
+    length = _check_positive('length', length)
+    segments = _check_segments(segments)
+    w = _check_non_negative('weight_per_length', weight_per_length)
+    ea = _check_positive('axial_stiffness', axial_stiffness)
+    if _is_weightless(w, gravity):
+        return _weightless_chain(end_a, end_b, length, segments, ea)
+    up, horizontal, span, rise = _vertical_frame(end_a, end_b, gravity)
+    l0 = length / segments
+    wl0 = w * l0
+    h, v = _chain_verticals(span, rise, length, segments, w, ea)
+    t = np.hypot(h, v)
+    stretched = l0 * (1.0 + t / ea)
+    steps = np.outer(stretched * h / t, horizontal) + np.outer(stretched * v / t, up)
+    positions = end_a + np.vstack([np.zeros(3), np.cumsum(steps, axis=0)])
+    fraction = np.linspace(0.0, 1.0, segments + 1)
+    positions = _close_on_end(positions, fraction, end_b, positions[-1])
+    half_weight = 0.5 * wl0 * up
+    return ChainEquilibrium(
+        positions=positions,
+        force_a=h * horizontal + v[0] * up - half_weight,
+        force_b=-h * horizontal - v[-1] * up - half_weight,
+        segment_tension=t,
+        horizontal_tension=float(h),
+    )
+
+
+def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: int,
+                  weight_per_length: float, axial_stiffness: float,
+                  gravity: ArrayLike) -> np.ndarray:
+    """Return node positions to start a simulation at rest.
+
+    The chain's exact equilibrium if Newton reaches it, else the elastic catenary sampled at
+    s = linspace(0, L, N + 1), else the straight line between the ends. Never non-finite.
+
+    Args:
+        end_a: (3,) end A [m].
+        end_b: (3,) end B [m].
+        length: unstretched length L [m], > 0.
+        segments: N >= 1.
+        weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
+        axial_stiffness: EA [N], > 0.
+        gravity: (3,) gravity vector [m/s^2].
+
+    Returns:
+        (N + 1, 3) positions, first = end A, last = end B.
+
+    Raises:
+        CatenaryError: an input is invalid (solver failures fall back instead).
+    """
+    end_a = _check_point('end_a', end_a)
+    end_b = _check_point('end_b', end_b)
+    gravity = _check_point('gravity', gravity)
+    length = _check_positive('length', length)
+    segments = _check_segments(segments)
+    w = _check_non_negative('weight_per_length', weight_per_length)
+    ea = _check_positive('axial_stiffness', axial_stiffness)
+    shapes = (
+        lambda: chain_equilibrium(end_a, end_b, length, segments, w, ea, gravity).positions,
+        lambda: catenary_points(end_a, end_b, length, w, ea, gravity,
+                                np.linspace(0.0, length, segments + 1)),
+    )
+    for shape in shapes:
+        try:
+            positions = shape()
+        except CatenaryError:
+            continue
+        if np.all(np.isfinite(positions)):
+            return positions
+    return _straight_line(end_a, end_b, segments)

@@ -1,0 +1,339 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Elastic catenary and lumped-chain statics against shared/reference (MoorPy, MoorDyn)."""
+
+import csv
+import math
+import os
+from pathlib import Path
+import time
+
+import numpy as np
+import pytest
+from rope_sim_ros.physics.catenary import (
+    catenary_points, catenary_profile, CatenaryError, chain_equilibrium, initial_shape,
+    solve_catenary)
+
+# The base case of shared/reference/README.md.
+END_A = np.zeros(3)
+END_B = np.array([36.0, 0.0, 8.0])
+LENGTH = 40.0
+GRAVITY = np.array([0.0, 0.0, -9.81])
+EA = {'polyester': 5e7, 'wire': 1e8}
+W_POLYESTER = 25.467341
+
+
+def _reference_dir() -> Path:
+    override = os.environ.get('ROPE_SIM_REFERENCE')
+    if override:
+        return Path(override)
+    # /work/main/test/this.py -> /work/shared/reference; CI clones keep shared/ beside main.
+    return Path(__file__).resolve().parents[2] / 'shared' / 'reference'
+
+
+def _rows(name: str) -> list:
+    path = _reference_dir() / name
+    if not path.is_file():
+        pytest.fail(f'reference data {path} not found: set ROPE_SIM_REFERENCE to its folder')
+    with open(path, newline='') as stream:
+        return list(csv.DictReader(stream))
+
+
+def _relative(got: float, want: float) -> float:
+    return abs(got - want) / abs(want)
+
+
+def _rotation(axis, angle: float) -> np.ndarray:
+    """Return the rotation matrix about axis by angle (Rodrigues)."""
+    k = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    cross = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * cross + (1.0 - math.cos(angle)) * cross @ cross
+
+
+def _material_weight(material: str) -> float:
+    row = next(r for r in _rows('moordyn_static.csv') if r['material'] == material)
+    return float(row['w_N_per_m'])
+
+
+# ------------------------------------------------------------------------ solve_catenary
+
+
+@pytest.mark.parametrize('row', _rows('catenary_vs_moorpy.csv'), ids=lambda row: row['case'])
+def test_solve_catenary_matches_reference(row):
+    solution = solve_catenary(float(row['h_m']), float(row['v_m']), float(row['L0_m']),
+                              float(row['w_N_per_m']), float(row['EA_N']))
+    got = {
+        'H_N': solution.horizontal_tension,
+        'V_A_N': solution.vertical_a,
+        'V_B_N': solution.vertical_b,
+        'T_A_N': solution.tension_a,
+        'T_B_N': solution.tension_b,
+    }
+    for key, value in got.items():
+        assert _relative(value, float(row[key])) < 1e-6, (key, value, row[key])
+
+
+def test_vertical_hang_is_symmetric_and_stretched():
+    w, ea = W_POLYESTER, 1e5
+    solution = solve_catenary(0.0, 0.0, LENGTH, w, ea)
+    # Both halves hang straight down, each carrying its own weight.
+    assert solution.horizontal_tension < 1e-9 * w * LENGTH
+    assert _relative(solution.vertical_b, 0.5 * w * LENGTH) < 1e-12
+    assert _relative(solution.vertical_a, -0.5 * w * LENGTH) < 1e-12
+    x, z = catenary_profile(solution, LENGTH, w, ea, [0.5 * LENGTH, LENGTH])
+    # A hanging half of length l stretches by w l^2 / (2 EA) under its own weight.
+    half = 0.5 * LENGTH
+    assert z[0] == pytest.approx(-(half + w * half ** 2 / (2 * ea)), abs=1e-9)
+    assert abs(z[1]) < 1e-9 and abs(x[1]) < 1e-7
+
+
+def test_taut_vertical_line_carries_stretch_and_weight():
+    w, ea, rise = W_POLYESTER, 1e6, 1.01 * LENGTH
+    solution = solve_catenary(0.0, rise, LENGTH, w, ea)
+    # Straight up: rise = L + (V_A L + w L^2 / 2) / EA, and V_A > 0 pulls A up.
+    v_a = ea * (rise - LENGTH) / LENGTH - 0.5 * w * LENGTH
+    assert _relative(solution.vertical_a, v_a) < 1e-9
+    assert _relative(solution.vertical_b, v_a + w * LENGTH) < 1e-9
+
+
+def test_b_below_a_mirrors_b_above_a():
+    up = solve_catenary(30.0, 12.0, LENGTH, W_POLYESTER, 5e7)
+    down = solve_catenary(30.0, -12.0, LENGTH, W_POLYESTER, 5e7)
+    assert _relative(down.horizontal_tension, up.horizontal_tension) < 1e-10
+    assert _relative(down.vertical_a, -up.vertical_b) < 1e-10
+    assert _relative(down.tension_b, up.tension_a) < 1e-10
+
+
+@pytest.mark.parametrize('span, rise', [
+    (0.0, 40.0), (1e-6, 40.0), (1e-6, -39.99), (39.999, 0.0), (200.0, 60.0), (0.4, -60.0)])
+@pytest.mark.parametrize('w, ea', [(0.01, 5e7), (25.0, 1e2), (1e4, 1e12)])
+def test_solve_catenary_closes_on_hard_geometries(span, rise, w, ea):
+    solution = solve_catenary(span, rise, LENGTH, w, ea)
+    x, z = catenary_profile(solution, LENGTH, w, ea, [LENGTH])
+    assert abs(x[0] - max(span, 1e-9 * LENGTH)) < 1e-10 * LENGTH
+    assert abs(z[0] - rise) < 1e-10 * max(LENGTH, abs(rise))
+
+
+# ---------------------------------------------------------------------- catenary_profile
+
+
+@pytest.mark.parametrize('material', ['polyester', 'wire'])
+def test_profile_matches_reference_shape(material):
+    rows = _rows(f'catenary_{material}_shape.csv')
+    w, ea = _material_weight(material), EA[material]
+    solution = solve_catenary(36.0, 8.0, LENGTH, w, ea)
+    s = np.array([float(r['s_m']) for r in rows])
+    x, z = catenary_profile(solution, LENGTH, w, ea, s)
+    assert np.max(np.abs(x - [float(r['x_m']) for r in rows])) < 1e-6
+    assert np.max(np.abs(z - [float(r['z_m']) for r in rows])) < 1e-6
+    assert _relative(solution.tension_a, float(rows[0]['T_N'])) < 1e-6
+    assert _relative(solution.tension_b, float(rows[-1]['T_N'])) < 1e-6
+
+
+# --------------------------------------------------------------------- chain_equilibrium
+
+
+@pytest.mark.parametrize('row', _rows('moordyn_static.csv'),
+                         ids=lambda row: f"{row['material']}-N{row['N']}")
+def test_chain_matches_moordyn_static_disc(row):
+    chain = chain_equilibrium(END_A, END_B, LENGTH, int(row['N']), float(row['w_N_per_m']),
+                              EA[row['material']], GRAVITY)
+    got = {
+        'disc_F_A_N': np.linalg.norm(chain.force_a),
+        'disc_F_B_N': np.linalg.norm(chain.force_b),
+        'disc_Tseg_A_N': chain.segment_tension[0],
+        'disc_Tseg_B_N': chain.segment_tension[-1],
+        'disc_H_N': chain.force_a[0],
+    }
+    for key, value in got.items():
+        assert _relative(value, float(row[key])) < 1e-6, (key, value, row[key])
+    assert chain.horizontal_tension == pytest.approx(-chain.force_b[0], rel=1e-12)
+
+
+@pytest.mark.parametrize('end_b, segments', [
+    ((36.0, 0.0, 8.0), 20), ((20.0, 5.0, -15.0), 7), ((41.0, 0.0, 2.0), 50),
+    ((5.0, 0.0, 0.0), 40)])
+def test_chain_nodes_are_in_equilibrium(end_b, segments):
+    w, ea = W_POLYESTER, 5e4
+    chain = chain_equilibrium(END_A, end_b, LENGTH, segments, w, ea, GRAVITY)
+    p = chain.positions
+    assert p.shape == (segments + 1, 3)
+    np.testing.assert_allclose(p[0], END_A, atol=1e-12)
+    np.testing.assert_allclose(p[-1], end_b, atol=1e-9)
+    # Spring forces from the positions alone: T = EA (l / l0 - 1) along each segment.
+    l0 = LENGTH / segments
+    delta = np.diff(p, axis=0)
+    lengths = np.linalg.norm(delta, axis=1)
+    tension = ea * (lengths / l0 - 1.0)
+    np.testing.assert_allclose(tension, chain.segment_tension, rtol=1e-6)
+    pull = tension[:, None] * delta / lengths[:, None]  # on each segment's first node
+    net = pull[1:] - pull[:-1] + w * l0 * GRAVITY / 9.81
+    assert np.max(np.abs(net)) < 1e-6 * np.max(tension)
+    # The end forces: the end segment's pull plus the half segment's weight.
+    half_weight = 0.5 * w * l0 * GRAVITY / 9.81
+    np.testing.assert_allclose(chain.force_a, pull[0] + half_weight, atol=1e-6 * tension[0])
+    np.testing.assert_allclose(chain.force_b, -pull[-1] + half_weight,
+                               atol=1e-6 * tension[-1])
+
+
+def test_chain_converges_to_catenary_end_tension():
+    w, ea = _material_weight('polyester'), EA['polyester']
+    exact = solve_catenary(36.0, 8.0, LENGTH, w, ea)
+    errors = [abs(np.linalg.norm(chain_equilibrium(END_A, END_B, LENGTH, n, w, ea,
+                                                   GRAVITY).force_b) - exact.tension_b)
+              for n in (20, 40)]
+    # Second order in N (DESIGN.md): halving the segment length quarters the error.
+    assert errors[1] == pytest.approx(errors[0] / 4.0, rel=0.05)
+
+
+def test_chain_weightless_is_straight():
+    chord = np.array([30.0, 20.0, 0.0])
+    taut = chain_equilibrium(END_A, chord * 1.5, LENGTH, 10, W_POLYESTER, 1e6, np.zeros(3))
+    stretch = 1e6 * (np.linalg.norm(chord * 1.5) / LENGTH - 1.0)
+    np.testing.assert_allclose(taut.segment_tension, stretch, rtol=1e-12)
+    np.testing.assert_allclose(taut.force_a, stretch * chord / np.linalg.norm(chord),
+                               rtol=1e-12)
+    np.testing.assert_allclose(taut.force_b, -taut.force_a, rtol=1e-12)
+    slack = chain_equilibrium(END_A, chord, LENGTH, 10, W_POLYESTER, 1e6, np.zeros(3))
+    np.testing.assert_array_equal(slack.segment_tension, 0.0)
+    np.testing.assert_allclose(np.diff(slack.positions, axis=0), np.tile(chord / 10, (10, 1)))
+
+
+# -------------------------------------------------------------------------------- 3-D
+
+
+def test_catenary_points_rotated_match_planar():
+    w, ea = W_POLYESTER, EA['polyester']
+    s = np.linspace(0.0, LENGTH, 41)
+    planar = catenary_points(END_A, END_B, LENGTH, w, ea, GRAVITY, s)
+    rotation = _rotation((1.0, -2.0, 0.5), 0.7)
+    offset = np.array([100.0, -50.0, 3.0])
+    a, b = rotation @ END_A + offset, rotation @ END_B + offset
+    gravity = rotation @ GRAVITY
+    rotated = catenary_points(a, b, LENGTH, w, ea, gravity, s)
+    np.testing.assert_allclose(rotated, planar @ rotation.T + offset, atol=1e-9)
+    np.testing.assert_allclose(rotated[0], a, atol=1e-9)
+    np.testing.assert_allclose(rotated[-1], b, atol=1e-9)
+    # The lowest point lies below both ends, along the rotated gravity.
+    heights = rotated @ (-gravity / np.linalg.norm(gravity))
+    assert heights.min() < heights[0] - 3.0
+    chain = chain_equilibrium(END_A, END_B, LENGTH, 20, w, ea, GRAVITY)
+    turned = chain_equilibrium(a, b, LENGTH, 20, w, ea, gravity)
+    np.testing.assert_allclose(turned.force_a, rotation @ chain.force_a, rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(turned.force_b, rotation @ chain.force_b, rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(turned.segment_tension, chain.segment_tension, rtol=1e-9)
+    np.testing.assert_allclose(turned.positions, chain.positions @ rotation.T + offset,
+                               atol=1e-9)
+
+
+@pytest.mark.parametrize('end_b', [(0.0, 0.0, 0.0), (0.0, 0.0, 10.0), (0.0, 0.0, -41.0),
+                                   (3.0, 4.0, -12.0), (38.0, 10.0, 5.0)])
+def test_catenary_points_reproduce_ends(end_b):
+    s = np.linspace(0.0, LENGTH, 17)
+    points = catenary_points(END_A, end_b, LENGTH, W_POLYESTER, 5e6, GRAVITY, s)
+    assert points.shape == (17, 3) and np.all(np.isfinite(points))
+    np.testing.assert_allclose(points[0], END_A, atol=1e-9)
+    np.testing.assert_allclose(points[-1], end_b, atol=1e-9)
+
+
+# ------------------------------------------------------------------------ initial_shape
+
+
+@pytest.mark.parametrize('end_b, gravity', [
+    ((0.0, 0.0, 0.0), GRAVITY),                      # slack vertical hang, span 0
+    ((0.0, 0.0, 8.0), GRAVITY),                      # vertical hang the chain cannot take
+    ((1.05 * LENGTH, 0.0, 0.0), GRAVITY),            # taut: chord 1.05 L
+    ((36.0, 0.0, 8.0), np.zeros(3)),                 # zero gravity, slack
+    ((0.0, 1.05 * LENGTH, 0.0), np.zeros(3)),        # zero gravity, stretched
+])
+def test_initial_shape_is_finite_and_fixed_at_the_ends(end_b, gravity):
+    positions = initial_shape(END_A, end_b, LENGTH, 20, W_POLYESTER, 5e7, gravity)
+    assert positions.shape == (21, 3)
+    assert np.all(np.isfinite(positions))
+    np.testing.assert_allclose(positions[0], END_A, atol=1e-9)
+    np.testing.assert_allclose(positions[-1], end_b, atol=1e-9)
+
+
+def test_initial_shape_is_the_chain_equilibrium():
+    positions = initial_shape(END_A, END_B, LENGTH, 20, W_POLYESTER, 5e7, GRAVITY)
+    chain = chain_equilibrium(END_A, END_B, LENGTH, 20, W_POLYESTER, 5e7, GRAVITY)
+    np.testing.assert_array_equal(positions, chain.positions)
+
+
+def test_initial_shape_falls_back_to_the_catenary():
+    # Folded at a vertical hang the chain has no equilibrium (a segment would have to lie
+    # flat); the sampled catenary is the start instead.
+    end_b = np.array([0.0, 0.0, 8.0])
+    with pytest.raises(CatenaryError):
+        chain_equilibrium(END_A, end_b, LENGTH, 20, W_POLYESTER, 5e7, GRAVITY)
+    positions = initial_shape(END_A, end_b, LENGTH, 20, W_POLYESTER, 5e7, GRAVITY)
+    expected = catenary_points(END_A, end_b, LENGTH, W_POLYESTER, 5e7, GRAVITY,
+                               np.linspace(0.0, LENGTH, 21))
+    np.testing.assert_array_equal(positions, expected)
+    assert positions[:, 2].min() == pytest.approx(-(LENGTH - 8.0) / 2.0, abs=1e-3)
+
+
+def test_initial_shape_is_fast():
+    timings = []
+    for _ in range(5):
+        start = time.perf_counter()
+        initial_shape(END_A, END_B, LENGTH, 200, W_POLYESTER, 5e7, GRAVITY)
+        timings.append(time.perf_counter() - start)
+    # ~0.3 ms here; the bound only catches a solver that crawls (it runs on node restarts).
+    assert min(timings) < 0.02
+
+
+# -------------------------------------------------------------------------------- errors
+
+
+@pytest.mark.parametrize('kwargs, name', [
+    ({'length': -1.0}, 'length'),
+    ({'length': 0.0}, 'length'),
+    ({'weight_per_length': 0.0}, 'weight_per_length'),
+    ({'weight_per_length': -3.0}, 'weight_per_length'),
+    ({'axial_stiffness': 0.0}, 'axial_stiffness'),
+    ({'axial_stiffness': -1e6}, 'axial_stiffness'),
+    ({'span': -1.0}, 'span'),
+    ({'rise': math.nan}, 'rise'),
+])
+def test_solve_catenary_rejects_bad_inputs(kwargs, name):
+    args = {'span': 36.0, 'rise': 8.0, 'length': LENGTH, 'weight_per_length': W_POLYESTER,
+            'axial_stiffness': 5e7}
+    args.update(kwargs)
+    with pytest.raises(CatenaryError, match=name):
+        solve_catenary(**args)
+
+
+@pytest.mark.parametrize('kwargs, name', [
+    ({'length': -40.0}, 'length'),
+    ({'segments': 0}, 'segments'),
+    ({'weight_per_length': -1.0}, 'weight_per_length'),
+    ({'axial_stiffness': 0.0}, 'axial_stiffness'),
+    ({'end_b': (1.0, 2.0)}, 'end_b'),
+    ({'end_a': (0.0, math.inf, 0.0)}, 'end_a'),
+    ({'gravity': (0.0, 0.0, math.nan)}, 'gravity'),
+])
+@pytest.mark.parametrize('function', [chain_equilibrium, initial_shape])
+def test_chain_functions_reject_bad_inputs(function, kwargs, name):
+    args = {'end_a': END_A, 'end_b': END_B, 'length': LENGTH, 'segments': 10,
+            'weight_per_length': W_POLYESTER, 'axial_stiffness': 5e7, 'gravity': GRAVITY}
+    args.update(kwargs)
+    with pytest.raises(CatenaryError, match=name):
+        function(**args)
+
+
+def test_catenary_error_is_a_value_error():
+    with pytest.raises(ValueError):
+        solve_catenary(36.0, 8.0, -LENGTH, W_POLYESTER, 5e7)
