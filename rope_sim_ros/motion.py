@@ -1,0 +1,227 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The offline runner's files: MOTION.csv in, OUT.csv out.
+
+MOTION.csv has a header naming its columns: ``t`` [s] and the world-frame fairlead point
+``fairlead_x, fairlead_y, fairlead_z`` [m], optionally the bollard point ``bollard_x,
+bollard_y, bollard_z`` (all three or none). Other columns are ignored. Every cell of those
+columns must be a finite number and ``t`` must increase strictly. Errors name the file, the
+data row (1-based, header excluded), the file line and the column.
+
+OUT.csv has one row per output time with the forces of the line on both ends (OUT_COLUMNS).
+"""
+
+import csv
+from dataclasses import dataclass
+import math
+import os
+from typing import Optional, TextIO
+
+import numpy as np
+
+TIME = 't'
+FAIRLEAD_COLUMNS = ('fairlead_x', 'fairlead_y', 'fairlead_z')
+BOLLARD_COLUMNS = ('bollard_x', 'bollard_y', 'bollard_z')
+OUT_COLUMNS = (
+    't', 'fairlead_fx', 'fairlead_fy', 'fairlead_fz', 'fairlead_tension',
+    'bollard_fx', 'bollard_fy', 'bollard_fz', 'bollard_tension', 'max_strain')
+
+
+class MotionError(ValueError):
+    """A motion file cannot be used; the message names the file, row and column."""
+
+
+@dataclass(frozen=True)
+class Motion:
+    """
+    End-point trajectories read from a motion file.
+
+    :param path: the file they were read from.
+    :param t: sample times [s], strictly increasing, shape (n,).
+    :param fairlead: fairlead points [m], shape (n, 3).
+    :param bollard: bollard points [m], shape (n, 3), or None when the file has none.
+    """
+
+    path: str
+    t: np.ndarray
+    fairlead: np.ndarray
+    bollard: Optional[np.ndarray] = None
+
+    def __len__(self) -> int:
+        """Return the number of samples."""
+        return len(self.t)
+
+
+def _where(path: str, row: int, line: int, column: Optional[str] = None) -> str:
+    place = f'{path}: data row {row} (file line {line})'
+    return place + (f', column {column!r}' if column else '')
+
+
+def _header(path: str, names: list) -> tuple:
+    """Return (column indices of t + fairlead, bollard indices or None)."""
+    names = [name.strip() for name in names]
+    seen = set()
+    for name in names:
+        if name and name in seen:
+            raise MotionError(f'{path}: file line 1 (header): column {name!r} appears twice')
+        seen.add(name)
+    wanted = (TIME,) + FAIRLEAD_COLUMNS
+    missing = [name for name in wanted if name not in seen]
+    if missing:
+        raise MotionError(
+            f'{path}: file line 1 (header): missing column(s) {", ".join(missing)}; the header '
+            f'must name {", ".join(wanted)} and optionally {", ".join(BOLLARD_COLUMNS)} '
+            f'(found: {", ".join(names) or "nothing"})')
+    present = [name for name in BOLLARD_COLUMNS if name in seen]
+    if present and len(present) < 3:
+        missing = [name for name in BOLLARD_COLUMNS if name not in seen]
+        raise MotionError(
+            f'{path}: file line 1 (header): has {", ".join(present)} but not '
+            f'{", ".join(missing)}; give all three bollard columns or none')
+    required = [names.index(name) for name in wanted]
+    bollard = [names.index(name) for name in BOLLARD_COLUMNS] if present else None
+    return names, required, bollard
+
+
+def _number(path: str, row: int, line: int, column: str, cell: str) -> float:
+    text = cell.strip()
+    try:
+        value = float(text)
+    except ValueError:
+        shown = repr(text) if text else 'an empty cell'
+        raise MotionError(
+            f'{_where(path, row, line, column)}: {shown} is not a number') from None
+    if not math.isfinite(value):
+        raise MotionError(
+            f'{_where(path, row, line, column)}: {text!r} is not a finite number')
+    return value
+
+
+def parse_motion(stream: TextIO, path: str) -> Motion:
+    """
+    Read a motion table from an open text stream.
+
+    :param stream: the CSV text, positioned at its header line.
+    :param path: the file name to put in error messages.
+    :returns: the validated Motion.
+    :raises MotionError: empty file, missing or duplicate columns, a row with too few or
+        too many cells, a non-numeric or non-finite cell, or t not strictly increasing.
+    """
+    reader = csv.reader(stream)
+    try:
+        header = next(reader, None)
+        while header is not None and not any(cell.strip() for cell in header):
+            header = next(reader, None)
+        if header is None:
+            raise MotionError(
+                f'{path}: the file is empty; expected a header line naming '
+                f'{TIME}, {", ".join(FAIRLEAD_COLUMNS)}')
+        names, required, bollard_index = _header(path, header)
+        columns = required + (bollard_index or [])
+        times, values = [], []
+        row = 0
+        for cells in reader:
+            line = reader.line_num
+            if not any(cell.strip() for cell in cells):
+                continue  # blank lines, e.g. at the end of the file
+            row += 1
+            if len(cells) != len(names):
+                raise MotionError(
+                    f'{_where(path, row, line)}: {len(cells)} cells, but the header has '
+                    f'{len(names)} columns')
+            numbers = [_number(path, row, line, names[i], cells[i]) for i in columns]
+            if times and numbers[0] <= times[-1]:
+                raise MotionError(
+                    f'{_where(path, row, line, TIME)}: {numbers[0]!r} is not after the '
+                    f"previous row's {times[-1]!r}; t must increase strictly")
+            times.append(numbers[0])
+            values.append(numbers[1:])
+    except csv.Error as e:
+        raise MotionError(f'{path}: file line {reader.line_num}: not valid CSV: {e}') from None
+    except UnicodeDecodeError as e:
+        raise MotionError(f'{path}: not a UTF-8 text file ({e.reason})') from None
+    if not times:
+        raise MotionError(f'{path}: the header has no data rows after it')
+    table = np.array(values, dtype=float)
+    return Motion(path, np.array(times), table[:, 0:3].copy(),
+                  table[:, 3:6].copy() if bollard_index else None)
+
+
+def read_motion(path) -> Motion:
+    """
+    Read and validate MOTION.csv.
+
+    :param path: the file.
+    :returns: the Motion.
+    :raises MotionError: the file cannot be read or is not a valid motion table.
+    """
+    name = os.fspath(path)
+    try:
+        with open(name, newline='', encoding='utf-8-sig') as stream:
+            return parse_motion(stream, name)
+    except OSError as e:
+        raise MotionError(f'cannot read motion file {name}: {e.strerror or e}') from None
+
+
+class OutWriter:
+    """
+    Writes OUT.csv row by row (a context manager).
+
+    Numbers are written with Python's shortest exact repr, so a row read back gives the
+    very floats that were computed.
+    """
+
+    def __init__(self, path) -> None:
+        """
+        Open (create or overwrite) the file and write the header.
+
+        :param path: the file.
+        :raises OSError: it cannot be written.
+        """
+        self.path = os.fspath(path)
+        self._file = open(self.path, 'w', newline='', encoding='utf-8')
+        self._writer = csv.writer(self._file, lineterminator='\n')
+        self._writer.writerow(OUT_COLUMNS)
+        self.rows = 0
+
+    def write(self, t: float, fairlead_force, fairlead_tension: float, bollard_force,
+              bollard_tension: float, max_strain: float) -> None:
+        """
+        Append one row.
+
+        :param t: output time [s].
+        :param fairlead_force: force of the line on the fairlead (3,) [N].
+        :param fairlead_tension: its magnitude [N].
+        :param bollard_force: force of the line on the bollard (3,) [N].
+        :param bollard_tension: its magnitude [N].
+        :param max_strain: largest structural strain.
+        """
+        numbers = [t, *fairlead_force, fairlead_tension, *bollard_force, bollard_tension,
+                   max_strain]
+        self._writer.writerow([repr(float(v)) for v in numbers])
+        self.rows += 1
+
+    def close(self) -> None:
+        """Close the file."""
+        self._file.close()
+
+    def __enter__(self) -> 'OutWriter':
+        """Return the open writer."""
+        return self
+
+    def __exit__(self, *exc) -> None:
+        """Close the file."""
+        self.close()
