@@ -291,25 +291,30 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     if not (math.isfinite(rate) and rate > 0.0):
         raise ParameterError(f'output rate {rate!r} Hz is not allowed: must be > 0')
     wall = time.monotonic()
-    sim = Simulator(params, materials, output_interval=1.0 / rate, history=math.inf)
+    sim = Simulator(params, materials, output_interval=1.0 / rate, history=HISTORY)
     # The simulator runs on times since the first sample: a large origin (e.g. epoch
     # stamps, resolved to 2e-7 s) would cost the step count its precision.
     origin = float(fairlead.t[0])
-    for t, p in zip((fairlead.t - origin).tolist(), fairlead.points):
-        sim.push_fairlead(t, p)
+    ends = [_Feed(sim.push_fairlead, fairlead, origin)]
     if bollard is not None:
-        for t, p in zip((bollard.t - origin).tolist(), bollard.points):
-            sim.push_bollard(t, p)
+        ends.append(_Feed(sim.push_bollard, bollard, origin))
+    # Every sample time is a stop, so no step lands on a sample time inside an advance.
+    stops = np.unique(np.concatenate([end.t for end in ends])).tolist()
     relative = output_times(0.0, float(fairlead.t[-1]) - origin, rate)
     times = (origin + relative).tolist() if origin else relative.tolist()
     summary = RunSummary(start=times[0], end=times[-1], time_step=sim.time_step)
+    for end in ends:
+        end.feed(0.0)
     sim.start(0.0)
     dt = sim.time_step
     total = len(times)
+    stop = 0
     for k, (t_sim, t) in enumerate(zip(relative.tolist(), times)):
-        advance = sim.advance_to(t_sim)
-        if advance.restarted:
-            summary.restarts.append(t)
+        while stop < len(stops) and stops[stop] <= t_sim:
+            if sim.time < stops[stop] < t_sim:
+                _advance(sim, ends, stops[stop], summary, t)
+            stop += 1
+        _advance(sim, ends, t_sim, summary, t)
         if abs(sim.time - t_sim) < 1e-6 * dt:
             # The state time is a running sum of steps; pin it to the exact output time
             # so rounding never accumulates into a missed step on long runs.
@@ -322,6 +327,43 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
             progress(k + 1, total, t)
     summary.wall = time.monotonic() - wall
     return summary
+
+
+# End samples the simulator keeps behind the newest [s]: samples are pushed as the state
+# reaches them, so a few seconds suffice (and keep pushing O(1) per sample).
+HISTORY = 10.0
+
+
+class _Feed:
+    """
+    Pushes one end's samples into the simulator as the state reaches them, as live.
+
+    The simulator's end velocity at a step that falls exactly on a sample time is the
+    secant of the interval after it when that sample is already known, of the interval
+    before it when not. A live node only ever knows the one before, so the offline loop
+    pushes a sample only once the state has reached the previous one: offline and live
+    runs then take the very same steps.
+    """
+
+    def __init__(self, push: Callable, samples: EndSamples, origin: float) -> None:
+        self.push = push
+        self.t = (samples.t - origin).tolist()
+        self.points = samples.points
+        self.next = 0
+
+    def feed(self, until: float) -> None:
+        """Push samples until one at or after `until` is known (or none is left)."""
+        while self.next < len(self.t) and (self.next == 0 or self.t[self.next - 1] < until):
+            self.push(self.t[self.next], self.points[self.next])
+            self.next += 1
+
+
+def _advance(sim: Simulator, ends: List[_Feed], target: float, summary: RunSummary,
+             t: float) -> None:
+    for end in ends:
+        end.feed(target)
+    if sim.advance_to(target).restarted:
+        summary.restarts.append(t)
 
 
 class BagSink:
