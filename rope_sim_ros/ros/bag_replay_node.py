@@ -24,8 +24,8 @@ re-runs the recording::
     ros2 run rope_sim_ros mooring_line --ros-args -p use_sim_time:=true
     ros2 run rope_sim_ros bag_replay run1 --rate 1.0
 
-Before playing it waits (at most ``--wait`` seconds) until every topic it plays has a
-subscriber, so the first poses are not lost to discovery. Remap topics with the usual
+Before playing it waits (at most ``--wait`` seconds) until every topic it plays and /clock
+have a subscriber, so the first poses are not lost to discovery. Remap topics with the usual
 ``--ros-args -r /fairlead/pose:=/ship/line1/fairlead/pose``.
 """
 
@@ -79,7 +79,8 @@ class BagReplay(Node):
         :param rate: playback speed: 2.0 plays twice as fast.
         :param loop: start again from the beginning after the end.
         :param clock_rate: /clock messages per wall second between bag messages.
-        :param wait: the longest wait [s] for subscribers before playing.
+        :param wait: the longest wait [s] for subscribers (played topics, /clock) before
+            playing.
         :param topics: topics to play; None = the input topics (fairlead/pose, bollard/pose).
         :raises BagError: unreadable bag, or nothing to play.
         :raises ValueError: a non-positive rate or clock rate.
@@ -127,7 +128,8 @@ class BagReplay(Node):
                 and time.monotonic() - self._done_at >= self.LINGER)
 
     def _subscribed(self) -> bool:
-        return all(p.get_subscription_count() > 0 for p in self._players.values())
+        publishers = [*self._players.values(), self._clock_publisher]
+        return all(p.get_subscription_count() > 0 for p in publishers)
 
     def _on_tick(self) -> None:
         now = time.monotonic()
@@ -138,7 +140,8 @@ class BagReplay(Node):
                 return
             if not self._subscribed():
                 self.get_logger().warning(
-                    f'no subscriber on every played topic after {self.wait:g} s: playing anyway')
+                    f'not every played topic and /clock has a subscriber after {self.wait:g} s: '
+                    'playing anyway')
             self._wall_start = now
             self._clock_publisher.publish(_ns_to_clock(self._start_ns))
         bag_now = self._start_ns + int((now - self._wall_start) * self.rate * 1e9)
