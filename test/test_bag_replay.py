@@ -1,0 +1,147 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+bag_replay + the installed mooring_line node (use_sim_time) re-run a recording.
+
+The recording is made offline with ``rope_sim run --bag`` on a smooth 10 s surge; the
+replayed fairlead tension, taken at the stamps of the node's rope/particles published with
+it, must match the recorded one within 2 % NRMSE (RMS difference / RMS of the recorded
+series minus its mean). Both sides use the same fixed time step: the offline runner
+shortens the automatic step to divide its output interval, the node does not.
+"""
+
+import csv
+import math
+import signal
+import subprocess
+import time
+
+from geometry_msgs.msg import PoseArray, Wrench
+import numpy as np
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.signals import SignalHandlerOptions
+
+NAMESPACE = '/replay_test'
+SECONDS = 10.0
+TIME_STEP = 1.0 / 3200.0  # divides 10 ms: the runner's and the node's steps coincide
+TIMEOUT = 60.0
+
+
+def write_inputs(base):
+    """Write a smooth surge along the chord (zero velocity at both ends) and its parameters."""
+    chord = np.array([36.0, 0.0, 8.0]) / math.hypot(36.0, 8.0)
+    lines = ['t,fairlead_x,fairlead_y,fairlead_z']
+    for k in range(int(SECONDS * 100) + 1):
+        t = k * 0.01
+        point = np.array([36.0, 0.0, 8.0]) + chord * (1.0 - math.cos(
+            2.0 * math.pi * t / SECONDS)) / 2.0
+        lines.append(f'{t:.2f},' + ','.join(repr(float(v)) for v in point))
+    (base / 'motion.csv').write_text('\n'.join(lines) + '\n')
+    (base / 'params.yaml').write_text(
+        f'mooring_line:\n  ros__parameters:\n    time_step: {TIME_STEP!r}\n')
+
+
+def run(command, env, log, **kwargs):
+    with open(log, 'w') as f:
+        return subprocess.Popen(command, env=env, stdin=subprocess.DEVNULL, stdout=f,
+                                stderr=subprocess.STDOUT, **kwargs)
+
+
+def stop(process, log):
+    """SIGINT (Ctrl-C) a child and return its exit code."""
+    if process.poll() is None:
+        process.send_signal(signal.SIGINT)
+    try:
+        return process.wait(15)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+        raise AssertionError(f'{process.args[0]} ignored SIGINT:\n{log.read_text()}')
+
+
+def test_replay_through_the_node_reproduces_the_recorded_tension(
+        colcon_install, colcon_env, tmp_path):
+    bin_dir = colcon_install / 'lib' / 'rope_sim_ros'
+    write_inputs(tmp_path)
+    params, bag = tmp_path / 'params.yaml', tmp_path / 'recorded'
+    result = subprocess.run(
+        [str(bin_dir / 'rope_sim'), 'run', '--params', str(params), '--motion',
+         str(tmp_path / 'motion.csv'), '--out', str(tmp_path / 'out.csv'), '--bag', str(bag)],
+        env=colcon_env, capture_output=True, text=True, timeout=TIMEOUT)
+    assert result.returncode == 0, result.stderr
+    with open(tmp_path / 'out.csv', newline='') as f:
+        rows = list(csv.DictReader(f))
+    t_ref = np.array([float(r['t']) for r in rows])
+    tension_ref = np.array([float(r['fairlead_tension']) for r in rows])
+
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    probe = rclpy.create_node('replay_probe', namespace=NAMESPACE, context=context)
+    executor = SingleThreadedExecutor(context=context)
+    executor.add_node(probe)
+    stamps, tensions = [], []
+    subscriptions = [
+        probe.create_subscription(
+            PoseArray, 'rope/particles',
+            lambda m: stamps.append(m.header.stamp.sec + m.header.stamp.nanosec * 1e-9), 1000),
+        probe.create_subscription(
+            Wrench, 'fairlead/tension',
+            lambda m: tensions.append(math.sqrt(m.force.x ** 2 + m.force.y ** 2
+                                                + m.force.z ** 2)), 1000),
+    ]
+    node_log, replay_log = tmp_path / 'node.log', tmp_path / 'replay.log'
+    node = run([str(bin_dir / 'mooring_line'), '--ros-args', '--params-file', str(params),
+                '-p', 'use_sim_time:=true', '-r', f'__ns:={NAMESPACE}'], colcon_env, node_log)
+    replay = None
+    try:
+        end = time.monotonic() + TIMEOUT
+        while not all(s.get_publisher_count() for s in subscriptions):
+            assert node.poll() is None, node_log.read_text()
+            assert time.monotonic() < end, 'the node did not come up:\n' + node_log.read_text()
+            executor.spin_once(timeout_sec=0.05)
+        replay = run([str(bin_dir / 'bag_replay'), str(bag), '--wait', '30', '--ros-args',
+                      '-r', f'/fairlead/pose:={NAMESPACE}/fairlead/pose'], colcon_env,
+                     replay_log)
+        end = time.monotonic() + SECONDS + TIMEOUT
+        while replay.poll() is None:
+            assert time.monotonic() < end, 'bag_replay did not finish:\n' + replay_log.read_text()
+            executor.spin_once(timeout_sec=0.05)
+        settle = time.monotonic() + 1.0
+        while time.monotonic() < settle:
+            executor.spin_once(timeout_sec=0.05)
+        assert replay.returncode == 0, replay_log.read_text()
+    finally:
+        node_code = stop(node, node_log)
+        if replay is not None and replay.poll() is None:
+            stop(replay, replay_log)
+        executor.shutdown()
+        probe.destroy_node()
+        rclpy.try_shutdown(context=context)
+    assert node_code == 0, node_log.read_text()
+    assert 'end of bag' in replay_log.read_text()
+
+    # One particles and one tension message per publish, in the same order.
+    assert len(stamps) == len(tensions) >= 0.8 * SECONDS * 50, (len(stamps), len(tensions))
+    t_node, tension_node = np.array(stamps), np.array(tensions)
+    assert np.all(np.diff(t_node) > 0)
+    assert t_node[0] < 0.5 and t_node[-1] > SECONDS - 0.5
+    assert np.isfinite(tension_node).all()
+    inside = (t_node >= t_ref[0]) & (t_node <= t_ref[-1])
+    recorded = np.interp(t_node[inside], t_ref, tension_ref)
+    rms_difference = np.sqrt(np.mean((tension_node[inside] - recorded) ** 2))
+    nrmse = rms_difference / np.sqrt(np.mean((recorded - recorded.mean()) ** 2))
+    print(f'replayed fairlead tension: NRMSE {nrmse:.5f} over {inside.sum()} samples')
+    assert nrmse < 0.02, f'NRMSE {nrmse:.4f}'
