@@ -1,0 +1,159 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Pure conversions between geometry_msgs and the simulator's numpy arrays.
+
+Conventions: quaternions as numpy arrays are (x, y, z, w), as in geometry_msgs; positions
+and forces are in frame_id axes; time stamps are integer nanoseconds.
+"""
+
+from typing import NamedTuple
+
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import Pose, PoseArray, Vector3, Wrench
+import numpy as np
+
+NANOSECONDS = 1_000_000_000
+# A quaternion shorter than this cannot be normalised into a meaningful rotation.
+MIN_QUATERNION_NORM = 1e-6
+
+
+class PoseError(ValueError):
+    """A pose message cannot be used (non-finite numbers, zero quaternion)."""
+
+
+class PosePoint(NamedTuple):
+    """A rope end computed from a pose message.
+
+    Attributes:
+        point: pose position ⊕ offset: the end point in frame_id [m], shape (3,).
+        lever: the offset rotated into frame_id: point minus the pose origin [m], shape (3,).
+        quaternion_norm: |q| of the message before normalisation (1 for a clean message).
+    """
+
+    point: np.ndarray
+    lever: np.ndarray
+    quaternion_norm: float
+
+
+def unit_quaternion(q) -> tuple:
+    """Return (q normalised as an (x, y, z, w) array, |q| before) of a Quaternion message.
+
+    Raises:
+        PoseError: a component is NaN or infinite, or |q| is (nearly) zero.
+    """
+    array = np.array([q.x, q.y, q.z, q.w], dtype=float)
+    if not np.isfinite(array).all():
+        raise PoseError(f'non-finite orientation {array.tolist()}')
+    norm = float(np.linalg.norm(array))
+    if norm < MIN_QUATERNION_NORM:
+        raise PoseError(f'zero quaternion {array.tolist()}')
+    return array / norm, norm
+
+
+def rotate(q: np.ndarray, v) -> np.ndarray:
+    """Rotate vector(s) v, shape (3,) or (n, 3), by the unit quaternion q = (x, y, z, w)."""
+    u, w = np.asarray(q[:3], dtype=float), float(q[3])
+    v = np.asarray(v, dtype=float)
+    uv = np.cross(u, v)
+    return v + 2.0 * w * uv + 2.0 * np.cross(u, uv)
+
+
+def pose_point(pose: Pose, offset) -> PosePoint:
+    """Return the point pose ⊕ offset: the offset (body frame) rotated and added.
+
+    Raises:
+        PoseError: non-finite position or orientation, or a zero quaternion.
+    """
+    p = pose.position
+    position = np.array([p.x, p.y, p.z], dtype=float)
+    if not np.isfinite(position).all():
+        raise PoseError(f'non-finite position {position.tolist()}')
+    q, norm = unit_quaternion(pose.orientation)
+    lever = rotate(q, offset)
+    return PosePoint(position + lever, lever, norm)
+
+
+def stamp_to_ns(stamp: Time) -> int:
+    """Return a builtin_interfaces/Time as integer nanoseconds."""
+    return int(stamp.sec) * NANOSECONDS + int(stamp.nanosec)
+
+
+def ns_to_stamp(ns: int) -> Time:
+    """Return integer nanoseconds as a builtin_interfaces/Time."""
+    sec, nanosec = divmod(int(ns), NANOSECONDS)
+    return Time(sec=sec, nanosec=nanosec)
+
+
+def tangent_quaternions(positions: np.ndarray) -> np.ndarray:
+    """Orientations (n, 4) whose x axis points along the rope, from the bollard onwards.
+
+    The tangent at an inner particle is the central difference of its neighbours, at an end
+    the adjacent segment; the rotation is the shortest arc from +x to it (so the roll about
+    the rope is fixed, not physical). A zero tangent gives the identity.
+    """
+    x = np.asarray(positions, dtype=float)
+    tangent = np.empty_like(x)
+    tangent[1:-1] = x[2:] - x[:-2]
+    tangent[0] = x[1] - x[0]
+    tangent[-1] = x[-1] - x[-2]
+    length = np.linalg.norm(tangent, axis=1)
+    degenerate = length < 1e-12
+    t = tangent / np.where(degenerate, 1.0, length)[:, None]
+    # shortest arc from e_x to t: (e_x × t, 1 + e_x · t), normalised
+    q = np.stack([np.zeros(len(t)), -t[:, 2], t[:, 1], 1.0 + t[:, 0]], axis=1)
+    opposite = q[:, 3] < 1e-9
+    q[opposite] = (0.0, 0.0, 1.0, 0.0)  # half turn about z
+    q[degenerate] = (0.0, 0.0, 0.0, 1.0)
+    return q / np.linalg.norm(q, axis=1)[:, None]
+
+
+def pose_array(positions: np.ndarray, frame_id: str, stamp_ns: int) -> PoseArray:
+    """Return the particles as a PoseArray, each pose oriented along the local tangent."""
+    msg = PoseArray()
+    msg.header.frame_id = frame_id
+    msg.header.stamp = ns_to_stamp(stamp_ns)
+    quaternions = tangent_quaternions(positions)
+    poses = []
+    for (px, py, pz), (qx, qy, qz, qw) in zip(np.asarray(positions, dtype=float).tolist(),
+                                              quaternions.tolist()):
+        pose = Pose()
+        pose.position.x, pose.position.y, pose.position.z = px, py, pz
+        pose.orientation.x, pose.orientation.y = qx, qy
+        pose.orientation.z, pose.orientation.w = qz, qw
+        poses.append(pose)
+    msg.poses = poses
+    return msg
+
+
+def wrench(force, lever) -> Wrench:
+    """Return a Wrench: the force and its moment lever × force about the pose origin.
+
+    Args:
+        force: force of the line on the end point [N], shape (3,).
+        lever: end point minus the pose origin [m], shape (3,).
+    """
+    force = np.asarray(force, dtype=float)
+    torque = np.cross(np.asarray(lever, dtype=float), force)
+    return Wrench(force=_vector3(force), torque=_vector3(torque))
+
+
+def _vector3(v: np.ndarray) -> Vector3:
+    x, y, z = (float(c) for c in v)
+    return Vector3(x=x, y=y, z=z)
+
+
+def all_finite(*arrays) -> bool:
+    """Return True when every number in every array is finite."""
+    return all(bool(np.isfinite(np.asarray(a, dtype=float)).all()) for a in arrays)

@@ -1,0 +1,452 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""The mooring_line node: one simulated mooring line between a bollard and a fairlead.
+
+ROS glue only. Parameters (params.SPECS) become ParameterDescriptors and then a Simulator;
+pose messages become end samples; a timer advances the simulator and publishes its output.
+
+Time: the rope follows the node clock, so use_sim_time and /clock work. Each tick advances
+it to now, but never past the newest sample of an end whose pose stream is live: the end is
+then interpolated between stamped samples exactly as the offline runner does, instead of
+extrapolated and pulled back when the next sample arrives (on a stiff line that jerk costs
+as much tension noise as the motion itself). When a stream falls silent for LIVE_INPUT
+seconds the end holds (after a short extrapolation) and the rope goes on to now.
+"""
+
+import array
+import math
+from typing import Any, Dict, List, Optional
+
+from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
+import numpy as np
+from rcl_interfaces.msg import (
+    FloatingPointRange, IntegerRange, ParameterDescriptor, SetParametersResult)
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import QoSProfile
+from std_srvs.srv import Trigger
+
+from . import conversions
+from .. import params
+from ..simulator import Simulator
+from ..trajectory import TrajectoryError
+
+NODE_NAME = params.NODE_NAME
+# Parameters rclpy itself declares or reads; not ours to warn about.
+ROS_PARAMETERS = ('use_sim_time', 'start_type_description_service')
+
+
+class StartupError(Exception):
+    """The node cannot start with these parameters; the message names the culprit."""
+
+
+def describe(name: str, spec: params.Spec) -> ParameterDescriptor:
+    """Return the ParameterDescriptor of one parameter of params.SPECS."""
+    unit = f' [{spec.unit}]' if spec.unit else ''
+    descriptor = ParameterDescriptor(
+        name=name,
+        type=Parameter.Type.from_parameter_value(spec.default).value,
+        description=spec.description + unit,
+        additional_constraints=allowed_values(spec),
+        read_only=spec.read_only)
+    if _is_number(spec.default) and spec.low is not None and spec.high is not None:
+        if isinstance(spec.default, int):
+            descriptor.integer_range = [
+                IntegerRange(from_value=int(spec.low), to_value=int(spec.high), step=1)]
+        else:
+            descriptor.floating_point_range = [
+                FloatingPointRange(from_value=float(spec.low), to_value=float(spec.high))]
+    return descriptor
+
+
+def allowed_values(spec: params.Spec) -> str:
+    """Return what a parameter accepts, in words (ParameterDescriptor.additional_constraints)."""
+    if spec.choices:
+        return 'one of: ' + ', '.join(spec.choices)
+    if isinstance(spec.default, bool):
+        return 'true or false'
+    if isinstance(spec.default, list):
+        return '[x, y, z]: three finite numbers' + (f' [{spec.unit}]' if spec.unit else '')
+    if isinstance(spec.default, str):
+        return 'any string'
+    bounds = []
+    if spec.low is not None:
+        bounds.append(f'{">" if spec.low_open else ">="} {spec.low:g}')
+    if spec.high is not None:
+        bounds.append(f'<= {spec.high:g}')
+    unit = f' {spec.unit}' if spec.unit else ''
+    return (' and '.join(bounds) or 'any finite number') + unit
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _plain(value: Any) -> Any:
+    """Return a parameter value as params.check expects it (arrays as lists)."""
+    if isinstance(value, (array.array, np.ndarray, tuple)):
+        return list(value)
+    return value
+
+
+def _as_declared(name: str, value: Any) -> Any:
+    """Return integers given for a double (array) parameter as doubles; else the value."""
+    default = params.SPECS[name].default
+    value = _plain(value)
+    if isinstance(default, float) and _is_number(value):
+        return float(value)
+    if isinstance(default, list) and isinstance(value, list) and all(map(_is_number, value)):
+        return [float(v) for v in value]
+    return value
+
+
+class MooringLineNode(Node):
+    """One simulated mooring line; see the module docstring and DESIGN.md section 3."""
+
+    # A pose stream whose newest stamp is at most this old [s] is live: the rope waits for
+    # its next sample instead of guessing.
+    LIVE_INPUT = 0.25
+    # Falling further behind than this [s] restarts the rope at now instead of catching up.
+    MAX_LAG = 1.0
+    # A tick simulates at most this many publish periods.
+    PERIODS_PER_TICK = 2.0
+    # Pose stamps further than this from the node clock [s] are worth a warning.
+    STAMP_SKEW_WARNING = 1.0
+    THROTTLE = 5.0  # seconds between repeated warnings of one kind
+
+    def __init__(self, **kwargs):
+        """Declare the parameters, build the simulator, then create the ROS interfaces.
+
+        Raises:
+            StartupError: a parameter value is not allowed or the line cannot be built.
+        """
+        super().__init__(NODE_NAME, **kwargs)
+        self._last_log: Dict[str, float] = {}
+        self.dropped: Dict[str, int] = {}
+        self.recorder = None  # set by recording (record_path): gets every message via record()
+        self.simulator: Optional[Simulator] = None
+        self.add_pre_set_parameters_callback(self._coerce_parameters)
+        self.add_on_set_parameters_callback(self._validate_parameters)
+        self.add_post_set_parameters_callback(self._apply_parameters)
+        values = self._declare_parameters()
+        try:
+            line = params.from_values(values)
+            self.simulator = Simulator(line)
+            _warm_up(line)
+        except ValueError as e:  # ParameterError, MaterialError, an unstable line
+            raise StartupError(str(e)) from None
+        self._epoch_ns: Optional[int] = None  # whole seconds of the first pose stamp
+        self._levers = {'fairlead': np.zeros(3), 'bollard': np.zeros(3)}
+        self._fresh = False  # publish the next state even if time did not advance
+
+        qos = QoSProfile(depth=50)
+        self._outputs = {
+            'rope/particles': self.create_publisher(PoseArray, 'rope/particles', 10),
+            'fairlead/tension': self.create_publisher(Wrench, 'fairlead/tension', 10),
+            'bollard/tension': self.create_publisher(Wrench, 'bollard/tension', 10),
+        }
+        self._fairlead_sub = self.create_subscription(
+            PoseStamped, 'fairlead/pose', self._on_fairlead_pose, qos)
+        self._bollard_sub = self.create_subscription(
+            PoseStamped, 'bollard/pose', self._on_bollard_pose, qos)
+        self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
+        self._timer = self.create_timer(1.0 / line.publish_rate, self._on_tick)
+        if line.record_path:
+            self.get_logger().warning(
+                f'record_path {line.record_path!r} is set, but recording is not available in '
+                'this build: nothing is recorded')
+        props = self.simulator.props
+        self.get_logger().info(
+            f'{line.material} line, {line.diameter * 1e3:g} mm, {props.length:g} m, '
+            f'{props.segments} segments, MBL {self.simulator.material.mbl / 1e3:.0f} kN, '
+            f'time step {self.simulator.time_step * 1e3:.4f} ms; waiting for the first pose '
+            f'on {self._fairlead_sub.topic_name}')
+
+    # -- parameters ---------------------------------------------------------------------
+
+    def _declare_parameters(self) -> dict:
+        """Declare every parameter of params.SPECS; return their validated start values."""
+        given = self._start_values()
+        values = {}
+        for name, spec in params.SPECS.items():
+            value = given.get(name, spec.default)
+            self.declare_parameter(name, value, describe(name, spec), ignore_override=True)
+            values[name] = value
+        return values
+
+    def _start_values(self) -> dict:
+        """Return the values of --params-file / -p, validated (doubles may be integers).
+
+        rclpy would refuse `length: 40` for a double; the offline runner reading the same
+        file accepts it, so the node does too. rclpy keeps these values in
+        Node._parameter_overrides, which has no public accessor.
+
+        Raises:
+            StartupError: the first value that is not allowed, named.
+        """
+        values = {}
+        for name, parameter in getattr(self, '_parameter_overrides', {}).items():
+            if name in params.SPECS:
+                try:
+                    values[name] = params.check(name, _as_declared(name, parameter.value))
+                except params.ParameterError as e:
+                    raise StartupError(str(e)) from None
+            elif name not in ROS_PARAMETERS and not name.startswith('qos_overrides.'):
+                self.get_logger().warning(f'ignoring unknown parameter {name!r}')
+        return values
+
+    def _coerce_parameters(self, parameters: List[Parameter]) -> List[Parameter]:
+        """Pre-set callback: integers given for double parameters become doubles."""
+        out = []
+        for p in parameters:
+            default = params.SPECS[p.name].default if p.name in params.SPECS else None
+            if ((isinstance(default, float) and p.type_ == Parameter.Type.INTEGER)
+                    or (isinstance(default, list) and p.type_ == Parameter.Type.INTEGER_ARRAY)):
+                p = Parameter(p.name, value=_as_declared(p.name, p.value))
+            out.append(p)
+        return out
+
+    def _validate_parameters(self, parameters: List[Parameter]) -> SetParametersResult:
+        """On-set callback: refuse a value outside its range, with the reason."""
+        for p in parameters:
+            if p.name in params.SPECS:
+                try:
+                    params.check(p.name, _plain(p.value))
+                except params.ParameterError as e:
+                    return SetParametersResult(successful=False, reason=str(e))
+        return SetParametersResult(successful=True)
+
+    def _apply_parameters(self, parameters: List[Parameter]) -> None:
+        """Post-set callback: hand run-time changes to the simulator at once."""
+        if self.simulator is None:  # still declaring
+            return
+        values = {p.name: _plain(p.value) for p in parameters if p.name in params.SPECS}
+        if not values:
+            return
+        self.simulator.update(values)
+        if 'publish_rate' in values:
+            self._timer.timer_period_ns = int(1e9 / self.simulator.params.publish_rate)
+        self.get_logger().info('set ' + ', '.join(f'{k} = {v}' for k, v in values.items()))
+
+    # -- inputs -------------------------------------------------------------------------
+
+    def _on_fairlead_pose(self, msg: PoseStamped) -> None:
+        self.record('fairlead/pose', msg)
+        sample = self._sample('fairlead/pose', msg, self.simulator.params.fairlead_offset)
+        if sample is None:
+            return
+        t, end = sample
+        try:
+            event = self.simulator.push_fairlead(t, end.point)
+        except TrajectoryError as e:
+            self._drop('fairlead/pose', e)
+            return
+        self._levers['fairlead'] = end.lever
+        if not self.simulator.started:
+            self.simulator.start(t)
+            self._fresh = True
+            self.get_logger().info(
+                f'first fairlead pose: rope started on the catenary to {_fmt(end.point)}')
+        elif event == 'teleport':
+            self._fresh = True
+            self.get_logger().info(
+                f'fairlead jumped more than teleport_distance '
+                f'({self.simulator.params.teleport_distance:g} m) to {_fmt(end.point)}: '
+                'rope restarted on the catenary there')
+
+    def _on_bollard_pose(self, msg: PoseStamped) -> None:
+        self.record('bollard/pose', msg)
+        sample = self._sample('bollard/pose', msg, self.simulator.params.bollard_offset)
+        if sample is None:
+            return
+        t, end = sample
+        try:
+            self.simulator.push_bollard(t, end.point)
+        except TrajectoryError as e:
+            self._drop('bollard/pose', e)
+            return
+        self._levers['bollard'] = end.lever
+
+    def _sample(self, topic: str, msg: PoseStamped, offset) -> Optional[tuple]:
+        """Return (time [s], PosePoint) of a pose message, or None if it was dropped."""
+        stamp_ns = conversions.stamp_to_ns(msg.header.stamp)
+        now_ns = self.get_clock().now().nanoseconds
+        if stamp_ns == 0:
+            stamp_ns = now_ns
+            self._warn(f'{topic}: unstamped', f'{topic}: header.stamp is zero: using the '
+                       'receive time as the sample time')
+        try:
+            end = conversions.pose_point(msg.pose, offset)
+        except conversions.PoseError as e:
+            self._drop(topic, e)
+            return None
+        if abs(end.quaternion_norm - 1.0) > 1e-3:
+            self._warn(f'{topic}: norm', f'{topic}: normalised a non-unit quaternion '
+                       f'(|q| = {end.quaternion_norm:.4g})')
+        if now_ns and abs(stamp_ns - now_ns) > self.STAMP_SKEW_WARNING * 1e9:
+            self._warn(f'{topic}: skew', f'{topic}: stamps are {(now_ns - stamp_ns) * 1e-9:+.3f}'
+                       ' s behind the node clock: are the clocks in sync (use_sim_time)?')
+        if self._epoch_ns is None:
+            self._epoch_ns = stamp_ns - stamp_ns % conversions.NANOSECONDS
+        return self._seconds(stamp_ns), end
+
+    def _drop(self, topic: str, reason: Exception) -> None:
+        count = self.dropped[topic] = self.dropped.get(topic, 0) + 1
+        kind = ' '.join(str(reason).split()[:2])  # e.g. 'zero quaternion'
+        self._warn(f'{topic}: {kind}', f'{topic}: dropped a message: {reason} '
+                   f'({count} dropped on {topic} so far)')
+
+    # -- time ---------------------------------------------------------------------------
+
+    def _seconds(self, ns: int) -> float:
+        """Return the simulator time [s] of a ROS time [ns] (relative to the first stamp)."""
+        return (ns - self._epoch_ns) * 1e-9
+
+    def _target_time(self, now: float) -> float:
+        """Now, but not past the newest sample of a live pose stream (module docstring)."""
+        target = now
+        for end in (self.simulator.fairlead, self.simulator.bollard):
+            if len(end) and now - end.last_time <= self.LIVE_INPUT:
+                target = min(target, end.last_time)
+        return target
+
+    def _on_tick(self) -> None:
+        sim = self.simulator
+        if not sim.started:
+            return
+        now = self._seconds(self.get_clock().now().nanoseconds)
+        if now < sim.time - self.MAX_LAG:
+            self._clock_jumped_back(now)
+            return
+        max_steps = max(1, math.ceil(
+            self.PERIODS_PER_TICK / (sim.params.publish_rate * sim.time_step)))
+        advance = sim.advance_to(self._target_time(now), max_steps)
+        if advance.restarted:
+            self.get_logger().error(
+                f'rope state turned {advance.restarted.split()[0]} at t = {sim.time:.3f} s: '
+                'restarted it on the catenary')
+        if advance.lag > self.MAX_LAG:
+            self._warn('lag', f'simulation fell {advance.lag:.2f} s behind the clock: '
+                       'skipped ahead and restarted the rope on the catenary')
+            sim.skip_to(sim.time + advance.lag)
+            sim.restart()
+            self._fresh = True
+        if advance.steps or self._fresh:
+            self._publish()
+
+    def _clock_jumped_back(self, now: float) -> None:
+        """Start from scratch after the clock went back (a bag looped, a simulator reset)."""
+        self.get_logger().warning(
+            f'clock jumped back by {self.simulator.time - now:.2f} s: waiting for the next '
+            'fairlead pose to restart the rope')
+        self.simulator = Simulator(self.simulator.params)
+        self._epoch_ns = None
+
+    def _on_reset(self, request: Trigger.Request, response: Trigger.Response):
+        if not self.simulator.started:
+            response.success = False
+            response.message = 'no fairlead pose received yet: nothing to reset'
+            return response
+        self.simulator.restart()
+        self._fresh = True
+        response.success = True
+        response.message = (
+            f'rope restarted on the catenary at t = {self.simulator.time:.3f} s')
+        self.get_logger().info(response.message)
+        return response
+
+    # -- outputs ------------------------------------------------------------------------
+
+    def _publish(self) -> None:
+        out = self.simulator.output()
+        fairlead_lever, bollard_lever = self._levers['fairlead'], self._levers['bollard']
+        if not conversions.all_finite(out.positions, out.fairlead_force, out.bollard_force,
+                                      fairlead_lever, bollard_lever, [out.t]):
+            self.get_logger().error(
+                f'non-finite output at t = {out.t:.3f} s: not published; rope restarted')
+            self.simulator.restart()
+            return
+        self._fresh = False
+        stamp_ns = self._epoch_ns + round(out.t * 1e9)
+        messages = {
+            'rope/particles': conversions.pose_array(
+                out.positions, self.simulator.params.frame_id, stamp_ns),
+            'fairlead/tension': conversions.wrench(out.fairlead_force, fairlead_lever),
+            'bollard/tension': conversions.wrench(out.bollard_force, bollard_lever),
+        }
+        for topic, msg in messages.items():
+            self._outputs[topic].publish(msg)
+            self.record(topic, msg)
+
+    def record(self, topic: str, msg: Any) -> None:
+        """Pass a received or published message to the recorder (the recording hook).
+
+        Args:
+            topic: the topic name relative to the node's namespace.
+            msg: the message.
+        """
+        if self.recorder is not None:
+            self.recorder.write(topic, msg, self.get_clock().now().nanoseconds)
+
+    # -- logging ------------------------------------------------------------------------
+
+    def _warn(self, key: str, text: str) -> None:
+        """Log a warning, at most once per THROTTLE seconds per key."""
+        now = self.get_clock().now().nanoseconds * 1e-9
+        last = self._last_log.get(key)
+        if last is None or not 0.0 <= now - last < self.THROTTLE:
+            self._last_log[key] = now
+            self.get_logger().warning(text)
+
+
+def _warm_up(line: params.LineParams) -> None:
+    """Run a few steps of a throw-away line, so the compiled kernels load before spinning."""
+    sim = Simulator(line)
+    sim.push_fairlead(0.0, np.add(line.bollard_position, [0.9 * line.length, 0.0, 0.0]))
+    sim.start(0.0)
+    sim.advance_to(3.0 * sim.time_step)
+    sim.output()
+
+
+def _fmt(point) -> str:
+    return '(' + ', '.join(f'{c:.2f}' for c in point) + ')'
+
+
+def main(args=None) -> int:
+    """Run the node until Ctrl-C; exit code 2 when a parameter is not allowed."""
+    rclpy.init(args=args)
+    try:
+        node = MooringLineNode()
+    except StartupError as e:
+        rclpy.logging.get_logger(NODE_NAME).error(str(e))
+        rclpy.try_shutdown()
+        return 2
+    except KeyboardInterrupt:
+        rclpy.try_shutdown()
+        return 0
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

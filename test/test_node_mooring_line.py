@@ -1,0 +1,495 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""The mooring_line node over real DDS: started from the colcon install, as `ros2 run` would.
+
+One node process serves the topic, parameter, reset and bad-input tests (in that order, in
+namespace /line); the moving-fairlead comparison gets a fresh node (its start must be known
+exactly), and start-up / shutdown tests start short-lived ones. The domain is the test run's
+own (test/conftest.py), discovery is localhost only.
+"""
+
+import math
+from pathlib import Path
+import signal
+import subprocess
+import time
+
+from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
+import numpy as np
+import pytest
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.parameter import Parameter
+from rclpy.parameter_client import AsyncParameterClient
+from rclpy.signals import SignalHandlerOptions
+from rope_sim_ros import params
+from rope_sim_ros.physics import catenary
+from rope_sim_ros.simulator import Simulator
+from std_srvs.srv import Trigger
+
+FAIRLEAD = np.array([36.0, 0.0, 8.0])
+CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
+START_TIMEOUT = 60.0  # the first node of a fresh install compiles the kernels (~10 s)
+
+
+# ------------------------------------------------------------------------------ helpers
+
+
+class NodeProcess:
+    """The installed mooring_line executable as a child process, its log in a file."""
+
+    def __init__(self, install: Path, env: dict, log: Path, namespace: str, *ros_args: str):
+        self.log = log
+        self.namespace = namespace
+        command = [
+            str(install / 'lib' / 'rope_sim_ros' / 'mooring_line'), '--ros-args',
+            '--params-file', str(install / 'share' / 'rope_sim_ros' / 'config' /
+                                 'mooring_line.yaml'),
+            '-r', f'__ns:={namespace}', *ros_args]
+        with open(log, 'w') as f:
+            self.process = subprocess.Popen(
+                command, env=env, stdin=subprocess.DEVNULL, stdout=f, stderr=subprocess.STDOUT)
+
+    def text(self) -> str:
+        """Return the node's output so far."""
+        return self.log.read_text(errors='replace')
+
+    def interrupt(self, timeout: float = 15.0) -> int:
+        """Send SIGINT (Ctrl-C) and return the exit code."""
+        if self.process.poll() is None:
+            self.process.send_signal(signal.SIGINT)
+        try:
+            return self.process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+            raise AssertionError(f'node ignored SIGINT for {timeout} s:\n{self.text()}')
+
+
+class Client:
+    """A test node: publishes poses, records the node's outputs, calls its services."""
+
+    def __init__(self, namespace: str):
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context, signal_handler_options=SignalHandlerOptions.NO)
+        self.node = rclpy.create_node('test_client', namespace=namespace, context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.fairlead_pub = self.node.create_publisher(PoseStamped, 'fairlead/pose', 10)
+        self.bollard_pub = self.node.create_publisher(PoseStamped, 'bollard/pose', 10)
+        self.particles, self.fairlead, self.bollard = [], [], []
+        self.subscriptions = [
+            self.node.create_subscription(PoseArray, 'rope/particles',
+                                          self._keep(self.particles), 100),
+            self.node.create_subscription(Wrench, 'fairlead/tension',
+                                          self._keep(self.fairlead), 100),
+            self.node.create_subscription(Wrench, 'bollard/tension',
+                                          self._keep(self.bollard), 100),
+        ]
+        self.reset = self.node.create_client(Trigger, 'mooring_line/reset')
+        self.parameters = AsyncParameterClient(self.node, 'mooring_line')
+
+    @staticmethod
+    def _keep(store: list):
+        return lambda msg: store.append((time.monotonic(), msg))
+
+    def close(self) -> None:
+        self.executor.shutdown()
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+
+    def clear(self) -> None:
+        """Forget what was received so far."""
+        for store in (self.particles, self.fairlead, self.bollard):
+            store.clear()
+
+    def spin(self, seconds: float) -> None:
+        """Process callbacks for `seconds`."""
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.executor.spin_once(timeout_sec=min(0.01, max(0.0, end - time.monotonic())))
+
+    def wait_for(self, condition, timeout: float, what: str) -> None:
+        """Spin until condition() holds."""
+        end = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > end:
+                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+            self.executor.spin_once(timeout_sec=0.01)
+
+    def wait_for_node(self, node: NodeProcess, timeout: float = START_TIMEOUT) -> None:
+        """Wait until the node serves ~/reset and every topic is matched both ways."""
+        def ready():
+            if node.process.poll() is not None:
+                raise AssertionError(f'node exited with {node.process.returncode}:\n'
+                                     f'{node.text()}')
+            return (self.reset.service_is_ready()
+                    and self.fairlead_pub.get_subscription_count() > 0
+                    and self.bollard_pub.get_subscription_count() > 0
+                    and all(s.get_publisher_count() > 0 for s in self.subscriptions))
+        self.wait_for(ready, timeout, f'the node in {node.namespace}')
+
+    def call(self, future, timeout: float = 10.0):
+        """Spin until the future completes; return its result."""
+        self.wait_for(future.done, timeout, 'a service response')
+        return future.result()
+
+    def publish_pose(self, position, stamp_ns: int = None, orientation=(0.0, 0.0, 0.0, 1.0),
+                     publisher=None) -> int:
+        """Publish a PoseStamped (stamp = wall clock unless given); return the stamp."""
+        stamp_ns = time.time_ns() if stamp_ns is None else stamp_ns
+        msg = PoseStamped()
+        msg.header.frame_id = 'world'
+        msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
+        msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = (
+            float(c) for c in position)
+        (msg.pose.orientation.x, msg.pose.orientation.y, msg.pose.orientation.z,
+         msg.pose.orientation.w) = (float(c) for c in orientation)
+        (publisher or self.fairlead_pub).publish(msg)
+        return stamp_ns
+
+    def drive(self, seconds: float, position, rate: float = 50.0) -> list:
+        """Publish position(t) at `rate` for `seconds` (t from 0) while spinning.
+
+        Returns:
+            [(stamp_ns, position)] of every published pose.
+        """
+        sent = []
+        start, start_ns = time.monotonic(), time.time_ns()
+        k = 0
+        while True:
+            due = start + k / rate
+            if due - start > seconds:
+                break
+            while time.monotonic() < due:
+                self.executor.spin_once(timeout_sec=max(0.0, min(0.005,
+                                                                 due - time.monotonic())))
+            stamp_ns = time.time_ns()  # the pose at its stamp, as a ship simulator sends it
+            p = np.asarray(position((stamp_ns - start_ns) * 1e-9), dtype=float)
+            sent.append((self.publish_pose(p, stamp_ns), p))
+            k += 1
+        return sent
+
+
+def fairlead_tension(wrench: Wrench) -> float:
+    f = wrench.force
+    return math.sqrt(f.x * f.x + f.y * f.y + f.z * f.z)
+
+
+def wrench_numbers(wrench: Wrench) -> list:
+    return [wrench.force.x, wrench.force.y, wrench.force.z,
+            wrench.torque.x, wrench.torque.y, wrench.torque.z]
+
+
+def particle_array(msg: PoseArray) -> np.ndarray:
+    return np.array([[p.position.x, p.position.y, p.position.z] for p in msg.poses])
+
+
+def all_finite(client: Client) -> bool:
+    numbers = [n for _, w in client.fairlead + client.bollard for n in wrench_numbers(w)]
+    for _, msg in client.particles:
+        for p in msg.poses:
+            numbers += [p.position.x, p.position.y, p.position.z, p.orientation.x,
+                        p.orientation.y, p.orientation.z, p.orientation.w]
+    return bool(np.isfinite(numbers).all())
+
+
+def default_line() -> params.LineParams:
+    return params.load_params(Path(__file__).resolve().parent.parent / 'config' /
+                              'mooring_line.yaml')
+
+
+def chain_at(fairlead) -> catenary.ChainEquilibrium:
+    """Exact static equilibrium of the default line between the origin and `fairlead`."""
+    sim = Simulator(default_line())
+    p = sim.props
+    return catenary.chain_equilibrium([0.0, 0.0, 0.0], fairlead, p.length, p.segments,
+                                      p.weight_per_length, p.axial_stiffness, p.gravity)
+
+
+def smooth_step(t: float, start: float, duration: float) -> float:
+    """0 before start, 1 after start + duration, a half cosine in between."""
+    s = min(max((t - start) / duration, 0.0), 1.0)
+    return 0.5 * (1.0 - math.cos(math.pi * s))
+
+
+def log_lines(node: NodeProcess, word: str) -> list:
+    return [line for line in node.text().splitlines() if word in line]
+
+
+# ------------------------------------------------------------------------------ fixtures
+
+
+@pytest.fixture(scope='module')
+def line_node(colcon_install, colcon_env, tmp_path_factory):
+    node = NodeProcess(colcon_install, colcon_env,
+                       tmp_path_factory.mktemp('node') / 'line.log', '/line')
+    client = Client('/line')
+    try:
+        client.wait_for_node(node)
+        yield node, client
+    finally:
+        client.close()
+        node.interrupt()
+
+
+# --------------------------------------------------------------------------------- tests
+
+
+def test_static_fairlead_gives_catenary_tension(line_node):
+    node, client = line_node
+    # no pose yet: nothing published, and the node says what it waits for
+    client.spin(0.3)
+    assert client.particles == [] and client.fairlead == []
+    assert len(log_lines(node, 'waiting for the first pose on /line/fairlead/pose')) == 1
+
+    client.drive(4.0, lambda t: FAIRLEAD, rate=20.0)
+    line = Simulator(default_line())
+    expected = catenary.solve_catenary(
+        math.hypot(FAIRLEAD[0], FAIRLEAD[1]), FAIRLEAD[2], line.props.length,
+        line.material.mass_per_length * 9.81, line.material.axial_stiffness)
+    start = client.fairlead[0][0]
+    tensions = [fairlead_tension(w) for t, w in client.fairlead if t > start + 0.5]
+    assert len(tensions) > 100, f'{len(tensions)} fairlead/tension messages in 3.5 s'
+    mean = float(np.mean(tensions))
+    assert abs(mean - expected.tension_b) < 0.01 * expected.tension_b, \
+        f'mean fairlead tension {mean:.1f} N, catenary {expected.tension_b:.1f} N'
+
+    msg = client.particles[-1][1]
+    x = particle_array(msg)
+    assert x.shape == (line.props.segments + 1, 3)
+    assert msg.header.frame_id == 'world'
+    assert np.allclose(x[0], 0.0, atol=1e-9) and np.allclose(x[-1], FAIRLEAD, atol=1e-9)
+    # orientation: x axis along the local tangent (here: the middle particle's neighbours)
+    q = msg.poses[10].orientation
+    x_axis = np.array([1 - 2 * (q.y ** 2 + q.z ** 2), 2 * (q.x * q.y + q.z * q.w),
+                       2 * (q.x * q.z - q.y * q.w)])
+    tangent = (x[11] - x[9]) / np.linalg.norm(x[11] - x[9])
+    assert np.dot(x_axis, tangent) > 0.9999
+    # the stamp is the state time: within a few publish periods of the wall clock
+    stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+    assert abs(stamp - time.time()) < 0.5
+    # torque about the pose origin: zero offset, so zero torque
+    assert np.allclose(wrench_numbers(client.fairlead[-1][1])[3:], 0.0)
+
+
+def test_reset_restarts_the_rope_at_rest(line_node):
+    node, client = line_node
+    # shake the line (0.4 m along the chord and back), then hold the fairlead still
+    client.drive(1.5, lambda t: FAIRLEAD + 0.4 * CHORD * (
+        smooth_step(t, 0.0, 0.3) - smooth_step(t, 0.3, 0.3)))
+    chain = chain_at(FAIRLEAD)
+    before = np.abs(particle_array(client.particles[-1][1]) - chain.positions).max()
+    assert before > 0.01, f'the shake left the rope within {before} m of equilibrium'
+
+    future = client.reset.call_async(Trigger.Request())
+    response = client.call(future)
+    assert response.success, response.message
+    asked = time.monotonic()
+    client.clear()
+    sent = client.drive(0.2, lambda t: FAIRLEAD)
+    assert sent
+    after = [(t, msg) for t, msg in client.particles if t > asked]
+    assert after, 'no rope/particles after the reset'
+    deviation = np.abs(particle_array(after[0][1]) - chain.positions).max()
+    assert deviation < 0.003, f'first state after reset is {deviation} m off the catenary'
+    assert len(log_lines(node, 'rope restarted on the catenary')) >= 1
+
+
+def _ringing(client: Client) -> float:
+    """Reset, then pull the fairlead 0.3 m out in 0.4 s; std of the tension afterwards [N]."""
+    response = client.call(client.reset.call_async(Trigger.Request()))
+    assert response.success
+    client.clear()
+    client.drive(2.4, lambda t: FAIRLEAD + 0.3 * CHORD * smooth_step(t, 0.5, 0.4))
+    start = client.fairlead[0][0]
+    window = [fairlead_tension(w) for t, w in client.fairlead if start + 1.1 < t < start + 2.3]
+    assert len(window) > 30
+    client.drive(0.3, lambda t: FAIRLEAD + 0.3 * CHORD * (1.0 - smooth_step(t, 0.0, 0.3)))
+    return float(np.std(window))
+
+
+def test_parameters(line_node):
+    node, client = line_node
+    names = client.call(client.parameters.list_parameters()).result.names
+    assert set(params.SPECS) <= set(names)
+    descriptors = {d.name: d for d in client.call(
+        client.parameters.describe_parameters(list(params.SPECS))).descriptors}
+    for name, spec in params.SPECS.items():
+        assert descriptors[name].read_only == spec.read_only, name
+        assert spec.unit in descriptors[name].description
+    assert descriptors['max_strain'].floating_point_range[0].to_value == 10.0
+    assert descriptors['segments'].integer_range[0].from_value == 2
+    assert 'polyester' in descriptors['material'].additional_constraints
+
+    def set_(name, value):
+        return client.call(client.parameters.set_parameters(
+            [Parameter(name, value=value)])).results[0]
+
+    refused = set_('max_strain', -1.0)
+    assert not refused.successful and 'max_strain' in refused.reason
+    refused = set_('publish_rate', 0.0)  # the range allows 0, the rate must be > 0
+    assert not refused.successful and '> 0' in refused.reason, refused.reason
+    refused = set_('segments', 40)
+    assert not refused.successful and 'read-only' in refused.reason
+    refused = set_('material', 'nylon')
+    assert not refused.successful
+
+    default_ringing = _ringing(client)
+    accepted = set_('axial_damping', 20000)  # an integer for a double: taken as 20000.0
+    assert accepted.successful, accepted.reason
+    value = client.call(client.parameters.get_parameters(['axial_damping'])).values[0]
+    assert value.double_value == 20000.0
+    damped_ringing = _ringing(client)
+    assert set_('axial_damping', 0.0).successful
+    assert damped_ringing < 0.5 * default_ringing, \
+        f'tension std after the pull: {default_ringing:.1f} N at the default damping, ' \
+        f'{damped_ringing:.1f} N at 20000 N s'
+
+
+def test_bad_input_is_dropped_and_output_stays_finite(line_node):
+    node, client = line_node
+    client.drive(0.3, lambda t: FAIRLEAD)
+    client.clear()
+    now = time.time_ns
+    nan, inf = float('nan'), float('inf')
+    client.publish_pose([nan, 0.0, 8.0])
+    client.spin(0.05)
+    client.publish_pose(FAIRLEAD, orientation=(0.0, inf, 0.0, 1.0))
+    client.spin(0.05)
+    client.publish_pose(FAIRLEAD, orientation=(0.0, 0.0, 0.0, 0.0))
+    client.spin(0.05)
+    client.publish_pose(FAIRLEAD, stamp_ns=now() - 2_000_000_000)  # older than the last
+    client.spin(0.05)
+    client.publish_pose([0.0, 0.0, nan], publisher=client.bollard_pub)
+    client.spin(0.05)
+    client.publish_pose(FAIRLEAD, orientation=(0.0, 0.0, 0.0, 2.0))  # not unit: normalised
+    client.spin(0.05)
+    client.publish_pose(FAIRLEAD + [0.0, 0.0, 6.0])  # a teleport: restart there
+    client.spin(0.3)
+    client.drive(1.0, lambda t: FAIRLEAD)  # and back (another teleport)
+    assert len(client.fairlead) > 40, 'the node stopped publishing'
+    assert all_finite(client)
+    # back on the catenary at the fairlead (mean over the restart's ringing)
+    mean = np.mean([fairlead_tension(w) for _, w in client.fairlead[-40:]])
+    assert abs(mean - 993.0) < 100.0, mean
+    dropped = log_lines(node, 'dropped a message')
+    assert len(dropped) == 5, '\n'.join(dropped)
+    assert '(4 dropped on fairlead/pose so far)' in dropped[3]
+    assert '(1 dropped on bollard/pose so far)' in dropped[4]
+    assert len(log_lines(node, 'normalised a non-unit quaternion')) == 1
+    assert len(log_lines(node, 'rope restarted on the catenary there')) >= 2
+
+
+def _stamp_ns(msg: PoseArray) -> int:
+    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+
+
+def _first_sample(sent: list, first_output_ns: int, line: params.LineParams) -> tuple:
+    """Return (index, time origin) of the pose the node started the rope with.
+
+    DDS may lose the first samples of a fresh connection even after both ends matched. The
+    node starts on the first pose it gets, stamps its state on a grid of time steps from
+    there, and takes the whole second of that stamp as its time origin: the first output
+    lies a whole number of steps after that pose.
+    """
+    dt = Simulator(line).time_step
+    for index, (ns, _) in enumerate(sent):
+        if ns > first_output_ns:
+            break
+        steps = (first_output_ns - ns) * 1e-9 / dt
+        if abs(steps - round(steps)) < 1e-4:
+            return index, ns - ns % 1_000_000_000
+    raise AssertionError('no published pose lies a whole number of steps before the first '
+                         'output: the node did not start on one of them')
+
+
+def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_env, tmp_path):
+    # 0.2 m at 0.5 Hz along the chord after a 2 s ramp, 50 Hz stamped poses, 10 s; the
+    # offline Simulator gets the same stamped samples (later: `rope_sim run` on them).
+    def motion(t):
+        return FAIRLEAD + 0.2 * math.sin(math.pi * t) * smooth_step(t, 0.0, 2.0) * CHORD
+
+    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'motion.log', '/motion')
+    client = Client('/motion')
+    try:
+        client.wait_for_node(node)
+        client.spin(0.5)  # let discovery settle both ways: the first pose must not be lost
+        sent = client.drive(10.0, motion)
+        assert node.interrupt() == 0
+        client.spin(0.3)  # everything the node published has arrived
+    finally:
+        client.close()
+        node.interrupt()
+    # the node publishes particles and both tensions once per tick: pair them in order
+    assert len(client.particles) == len(client.fairlead)
+    pairs = list(zip(client.particles, client.fairlead))
+    assert len(pairs) > 400, f'{len(pairs)} outputs in 10 s at 50 Hz'
+
+    first, epoch = _first_sample(sent, _stamp_ns(pairs[0][0][1]), default_line())
+    sim = Simulator(default_line(), history=math.inf)
+    for ns, p in sent[first:]:
+        sim.push_fairlead((ns - epoch) * 1e-9, p)
+    sim.start((sent[first][0] - epoch) * 1e-9)
+    live, offline = [], []
+    for (_, particles), (_, wrench) in pairs:
+        t = (_stamp_ns(particles) - epoch) * 1e-9
+        sim.advance_to(t + 0.5 * sim.time_step)
+        assert abs(sim.time - t) < 1e-6
+        live.append(fairlead_tension(wrench))
+        offline.append(sim.output().fairlead_tension)
+    live, offline = np.array(live), np.array(offline)
+    assert first < 25, f'the node missed the first {first} poses'
+
+    nrmse = np.sqrt(np.mean((live - offline) ** 2)) / np.std(offline)
+    print(f'node vs offline fairlead tension: NRMSE {nrmse:.2e} over {len(live)} outputs, '
+          f'tension std {np.std(offline):.0f} N; the node started on pose {first}')
+    assert np.std(offline) > 50.0, 'the motion hardly changed the tension'
+    assert nrmse < 0.02, f'NRMSE {nrmse:.4f} between node and offline tension series'
+    assert 'dropped' not in node.text() and 'behind' not in node.text(), node.text()
+
+
+def test_sigint_ends_the_node_cleanly(colcon_install, colcon_env, tmp_path):
+    # an integer for a double parameter (length) is accepted, as the offline runner does
+    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'sigint.log', '/sigint',
+                       '-p', 'length:=40')
+    client = Client('/sigint')
+    try:
+        client.wait_for_node(node)
+        client.drive(0.3, lambda t: FAIRLEAD)
+        assert client.fairlead
+    finally:
+        client.close()
+        code = node.interrupt()
+    assert code == 0, node.text()
+    assert 'Traceback' not in node.text(), node.text()
+    assert '40 m, 20 segments' in node.text()
+
+
+@pytest.mark.parametrize('value', ['segments:=1', 'material:=kevlar', 'max_strain:=0.0'])
+def test_bad_start_value_exits_with_code_2(colcon_install, colcon_env, tmp_path, value):
+    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'bad.log', '/bad', '-p', value)
+    try:
+        code = node.process.wait(START_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        node.interrupt()
+        raise AssertionError(f'node started with {value}:\n{node.text()}')
+    text = node.text()
+    assert code == 2, text
+    assert 'Traceback' not in text, text
+    errors = [line for line in text.splitlines() if '[ERROR]' in line]
+    name = value.split(':=')[0]
+    assert len(errors) == 1 and f"parameter '{name}'" in errors[0] and 'must be' in errors[0], \
+        text
