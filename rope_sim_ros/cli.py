@@ -175,14 +175,14 @@ def _cmd_run(args) -> int:
         if progress is not None:
             progress.finish()
     for t in summary.restarts:
-        print(f'{PROG}: warning: the state turned non-finite at t = {t:.3f} s; the rope was '
-              'restarted on the catenary', file=sys.stderr)
+        print(f'{PROG}: warning: the state turned non-finite {t:.3f} s into the run; the '
+              'rope was restarted on the catenary', file=sys.stderr)
     if summary.dropped:
         print(f'{PROG}: warning: {summary.dropped} bag messages were not recorded',
               file=sys.stderr)
     if not args.quiet:
         targets = ' and '.join(t for t in (args.out, args.bag) if t)
-        print(f'{summary.rows} outputs, t = {summary.start:g} .. {summary.end:g} s every '
+        print(f'{summary.rows} outputs, t = {summary.start:.3f} .. {summary.end:.3f} s every '
               f'{1 / args.rate:g} s (step {summary.time_step * 1e3:.4g} ms) -> {targets} '
               f'in {summary.wall:.1f} s')
     return 0

@@ -26,6 +26,7 @@ OUT.csv has one row per output time with the forces of the line on both ends (OU
 
 import csv
 from dataclasses import dataclass
+import decimal
 import math
 import os
 from typing import Optional, TextIO
@@ -53,12 +54,20 @@ class Motion:
     :param t: sample times [s], strictly increasing, shape (n,).
     :param fairlead: fairlead points [m], shape (n, 3).
     :param bollard: bollard points [m], shape (n, 3), or None when the file has none.
+    :param t_ns: the sample times as written, rounded to integer nanoseconds (exact even
+        where a float is not, e.g. for epoch times), shape (n,); None = from t.
     """
 
     path: str
     t: np.ndarray
     fairlead: np.ndarray
     bollard: Optional[np.ndarray] = None
+    t_ns: Optional[np.ndarray] = None
+
+    def __post_init__(self) -> None:
+        """Fill t_ns from t when not given."""
+        if self.t_ns is None:
+            object.__setattr__(self, 't_ns', np.round(np.asarray(self.t) * 1e9).astype(np.int64))
 
     def __len__(self) -> int:
         """Return the number of samples."""
@@ -110,6 +119,12 @@ def _number(path: str, row: int, line: int, column: str, cell: str) -> float:
     return value
 
 
+def _nanoseconds(cell: str) -> int:
+    """Return a (valid, finite) time cell in integer nanoseconds, rounded half to even."""
+    value = decimal.Decimal(cell.strip()) * 1_000_000_000
+    return int(value.to_integral_value(rounding=decimal.ROUND_HALF_EVEN))
+
+
 def parse_motion(stream: TextIO, path: str) -> Motion:
     """
     Read a motion table from an open text stream.
@@ -131,7 +146,7 @@ def parse_motion(stream: TextIO, path: str) -> Motion:
                 f'{TIME}, {", ".join(FAIRLEAD_COLUMNS)}')
         names, required, bollard_index = _header(path, header)
         columns = required + (bollard_index or [])
-        times, values = [], []
+        times, stamps, values = [], [], []
         row = 0
         for cells in reader:
             line = reader.line_num
@@ -143,11 +158,14 @@ def parse_motion(stream: TextIO, path: str) -> Motion:
                     f'{_where(path, row, line)}: {len(cells)} cells, but the header has '
                     f'{len(names)} columns')
             numbers = [_number(path, row, line, names[i], cells[i]) for i in columns]
-            if times and numbers[0] <= times[-1]:
+            ns = _nanoseconds(cells[columns[0]])
+            if stamps and ns <= stamps[-1]:
                 raise MotionError(
-                    f'{_where(path, row, line, TIME)}: {numbers[0]!r} is not after the '
-                    f"previous row's {times[-1]!r}; t must increase strictly")
+                    f'{_where(path, row, line, TIME)}: {cells[columns[0]].strip()} is not after '
+                    f"the previous row's {times[-1]!r}; t must increase strictly (by 1 ns at "
+                    'least)')
             times.append(numbers[0])
+            stamps.append(ns)
             values.append(numbers[1:])
     except csv.Error as e:
         raise MotionError(f'{path}: file line {reader.line_num}: not valid CSV: {e}') from None
@@ -157,7 +175,8 @@ def parse_motion(stream: TextIO, path: str) -> Motion:
         raise MotionError(f'{path}: the header has no data rows after it')
     table = np.array(values, dtype=float)
     return Motion(path, np.array(times), table[:, 0:3].copy(),
-                  table[:, 3:6].copy() if bollard_index else None)
+                  table[:, 3:6].copy() if bollard_index else None,
+                  np.array(stamps, dtype=np.int64))
 
 
 def read_motion(path) -> Motion:

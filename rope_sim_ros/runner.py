@@ -193,7 +193,7 @@ class RunSummary:
     :param start: first output time [s].
     :param end: last output time [s].
     :param time_step: integration step [s].
-    :param restarts: output times at which a non-finite state restarted the rope.
+    :param restarts: simulated times at which a non-finite state restarted the rope.
     :param dropped: bag messages not recorded.
     :param wall: wall-clock seconds.
     """
@@ -275,7 +275,10 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
 
     Outputs fall every 1/rate s from the first fairlead sample time to the last; the rope
     starts at rest on the catenary between the end points at the first time. Without
-    bollard samples the bollard stays at params.bollard_position.
+    bollard samples the bollard stays at params.bollard_position. Give times relative to
+    the start (0 = first sample): a large origin such as an epoch stamp, resolved to
+    2e-7 s in a float, would cost the steps their precision. Sinks, the summary and the
+    progress see the same times.
 
     :param params: validated parameters.
     :param fairlead: fairlead samples (at least one).
@@ -292,33 +295,29 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
         raise ParameterError(f'output rate {rate!r} Hz is not allowed: must be > 0')
     wall = time.monotonic()
     sim = Simulator(params, materials, output_interval=1.0 / rate, history=HISTORY)
-    # The simulator runs on times since the first sample: a large origin (e.g. epoch
-    # stamps, resolved to 2e-7 s) would cost the step count its precision.
-    origin = float(fairlead.t[0])
-    ends = [_Feed(sim.push_fairlead, fairlead, origin)]
+    ends = [_Feed(sim.push_fairlead, fairlead)]
     if bollard is not None:
-        ends.append(_Feed(sim.push_bollard, bollard, origin))
+        ends.append(_Feed(sim.push_bollard, bollard))
     # Every sample time is a stop, so no step lands on a sample time inside an advance.
     stops = np.unique(np.concatenate([end.t for end in ends])).tolist()
-    relative = output_times(0.0, float(fairlead.t[-1]) - origin, rate)
-    times = (origin + relative).tolist() if origin else relative.tolist()
+    times = output_times(float(fairlead.t[0]), float(fairlead.t[-1]), rate).tolist()
     summary = RunSummary(start=times[0], end=times[-1], time_step=sim.time_step)
     for end in ends:
-        end.feed(0.0)
-    sim.start(0.0)
+        end.feed(times[0])
+    sim.start(times[0])
     dt = sim.time_step
     total = len(times)
     stop = 0
-    for k, (t_sim, t) in enumerate(zip(relative.tolist(), times)):
-        while stop < len(stops) and stops[stop] <= t_sim:
-            if sim.time < stops[stop] < t_sim:
-                _advance(sim, ends, stops[stop], summary, t)
+    for k, t in enumerate(times):
+        while stop < len(stops) and stops[stop] <= t:
+            if sim.time < stops[stop] < t:
+                _advance(sim, ends, stops[stop], summary)
             stop += 1
-        _advance(sim, ends, t_sim, summary, t)
-        if abs(sim.time - t_sim) < 1e-6 * dt:
+        _advance(sim, ends, t, summary)
+        if abs(sim.time - t) < 1e-6 * dt:
             # The state time is a running sum of steps; pin it to the exact output time
             # so rounding never accumulates into a missed step on long runs.
-            sim.skip_to(t_sim)
+            sim.skip_to(t)
         out = sim.output()
         for sink in sinks:
             sink(t, out)
@@ -345,9 +344,9 @@ class _Feed:
     runs then take the very same steps.
     """
 
-    def __init__(self, push: Callable, samples: EndSamples, origin: float) -> None:
+    def __init__(self, push: Callable, samples: EndSamples) -> None:
         self.push = push
-        self.t = (samples.t - origin).tolist()
+        self.t = samples.t.tolist()
         self.points = samples.points
         self.next = 0
 
@@ -358,12 +357,11 @@ class _Feed:
             self.next += 1
 
 
-def _advance(sim: Simulator, ends: List[_Feed], target: float, summary: RunSummary,
-             t: float) -> None:
+def _advance(sim: Simulator, ends: List[_Feed], target: float, summary: RunSummary) -> None:
     for end in ends:
         end.feed(target)
     if sim.advance_to(target).restarted:
-        summary.restarts.append(t)
+        summary.restarts.append(target)
 
 
 class BagSink:
@@ -487,39 +485,42 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
     from .motion import MotionError, OutWriter
     fairlead_offset = np.asarray(params.fairlead_offset, dtype=float)
     bollard_offset = np.asarray(params.bollard_offset, dtype=float)
-    fairlead = EndSamples(motion.t, motion.fairlead,
+    # Simulated time runs from 0 at the first row; the rows' exact nanoseconds give the
+    # stamps, so a bag of epoch-stamped rows re-simulates to the same numbers.
+    base_ns = int(motion.t_ns[0])
+    origin = float(motion.t[0])
+    relative = (motion.t_ns - base_ns) / 1e9
+    fairlead = EndSamples(relative, motion.fairlead,
                           np.repeat([fairlead_offset], len(motion), axis=0))
     bollard = None
     if motion.bollard is not None:
-        bollard = EndSamples(motion.t, motion.bollard,
+        bollard = EndSamples(relative, motion.bollard,
                              np.repeat([bollard_offset], len(motion), axis=0))
     sinks = []
     bag = None
     if bag_path is not None:
-        if motion.t[0] < 0.0:
+        if base_ns < 0:
             raise MotionError(
                 f'{motion.path}: data row 1, column {"t"!r}: {motion.t[0]!r} is negative; '
                 'a bag stamps messages with the simulated time, which must be >= 0')
-        fairlead_pose = topic_name('', FAIRLEAD_POSE)
-        bollard_pose = topic_name('', BOLLARD_POSE)
-        topics = {fairlead_pose: POSE_TYPE}
-        inputs = [(stamp_ns(t), fairlead_pose, pose_stamped(stamp_ns(t), params.frame_id,
-                                                            p - fairlead_offset))
-                  for t, p in zip(motion.t.tolist(), motion.fairlead)]
-        if bollard is not None:
-            topics[bollard_pose] = POSE_TYPE
-            inputs += [(stamp_ns(t), bollard_pose, pose_stamped(stamp_ns(t), params.frame_id,
-                                                                p - bollard_offset))
-                       for t, p in zip(motion.t.tolist(), motion.bollard)]
-        bag = BagSink(bag_path, params, inputs, topics, '', fairlead, bollard)
+        inputs, topics = [], {}
+        ends = [(FAIRLEAD_POSE, motion.fairlead, fairlead_offset)]
+        if motion.bollard is not None:
+            ends.append((BOLLARD_POSE, motion.bollard, bollard_offset))
+        for relative_name, points, offset in ends:
+            topic = topic_name('', relative_name)
+            topics[topic] = POSE_TYPE
+            inputs += [(ns, topic, pose_stamped(ns, params.frame_id, p - offset))
+                       for ns, p in zip(motion.t_ns.tolist(), points)]
+        bag = BagSink(bag_path, params, inputs, topics, '', fairlead, bollard, base_ns)
         sinks.append(bag)
     writer = None
     try:
         if out_path is not None:
             writer = OutWriter(out_path)
             sinks.insert(0, lambda t, o: writer.write(
-                t, o.fairlead_force, o.fairlead_tension, o.bollard_force, o.bollard_tension,
-                o.max_strain))
+                origin + t if origin else t, o.fairlead_force, o.fairlead_tension,
+                o.bollard_force, o.bollard_tension, o.max_strain))
         summary = simulate(params, fairlead, bollard, rate, sinks, progress)
     except BaseException:
         # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
@@ -529,6 +530,8 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
         writer.close()
     if bag is not None:
         summary.dropped = bag.close()
+    summary.start += origin
+    summary.end += origin
     return summary
 
 

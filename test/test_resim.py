@@ -129,3 +129,19 @@ def test_bad_input_is_one_line_and_exit_2(recorded, tmp_path, capsys):
         assert cli.main(argv) == 2, argv
         err = capsys.readouterr().err
         assert words in err and err.count('\n') == 1, err
+
+
+def test_epoch_stamped_rows_resimulate_exactly(tmp_path):
+    """Times like 1767225600.01 s are not floats; their nanoseconds are kept exactly."""
+    lines = ['t,fairlead_x,fairlead_y,fairlead_z']
+    for k in range(101):
+        lines.append(f'{1767225600 + k / 100:.2f},{36.0 + 0.2 * math.sin(k / 50):.9f},0,8')
+    (tmp_path / 'motion.csv').write_text('\n'.join(lines) + '\n')
+    bag, again = tmp_path / 'epoch', tmp_path / 'again'
+    assert cli.main(['run', '--motion', str(tmp_path / 'motion.csv'), '--bag', str(bag),
+                     '--quiet', '--set', 'segments=8']) == 0
+    assert cli.main(['resim', str(bag), '--out', str(again), '--quiet']) == 0
+    original = payloads(bag)
+    assert [t for t, _ in original['/fairlead/tension']] == [
+        1767225600 * 10**9 + k * 10**7 for k in range(101)]
+    assert payloads(again) == original
