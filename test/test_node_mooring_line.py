@@ -397,21 +397,25 @@ def _stamp_ns(msg: PoseArray) -> int:
     return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
 
 
+def offline_simulator(line: params.LineParams) -> Simulator:
+    """Return the Simulator the node runs: its step divides the publish period."""
+    return Simulator(line, output_interval=1.0 / line.publish_rate, history=math.inf)
+
+
 def _first_sample(sent: list, first_output_ns: int, line: params.LineParams) -> tuple:
     """Return (index, time origin) of the pose the node started the rope with.
 
     DDS may lose the first samples of a fresh connection even after both ends matched. The
-    node starts on the first pose it gets, stamps its state on a grid of time steps from
-    there, and takes the whole second of that stamp as its time origin: the first output
-    lies a whole number of steps after that pose.
+    node starts on the first pose it gets, takes its stamp as time 0 and steps from there:
+    the first output lies a whole number of steps after that pose.
     """
-    dt = Simulator(line).time_step
+    dt = offline_simulator(line).time_step
     for index, (ns, _) in enumerate(sent):
         if ns > first_output_ns:
             break
         steps = (first_output_ns - ns) * 1e-9 / dt
         if abs(steps - round(steps)) < 1e-4:
-            return index, ns - ns % 1_000_000_000
+            return index, ns
     raise AssertionError('no published pose lies a whole number of steps before the first '
                          'output: the node did not start on one of them')
 
@@ -439,7 +443,7 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
     assert len(pairs) > 400, f'{len(pairs)} outputs in 10 s at 50 Hz'
 
     first, epoch = _first_sample(sent, _stamp_ns(pairs[0][0][1]), default_line())
-    sim = Simulator(default_line(), history=math.inf)
+    sim = offline_simulator(default_line())
     for ns, p in sent[first:]:
         sim.push_fairlead((ns - epoch) * 1e-9, p)
     sim.start((sent[first][0] - epoch) * 1e-9)

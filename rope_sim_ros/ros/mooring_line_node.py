@@ -145,11 +145,11 @@ class MooringLineNode(Node):
         values = self._declare_parameters()
         try:
             line = params.from_values(values)
-            self.simulator = Simulator(line)
+            self.simulator = self._new_simulator(line)
             _warm_up(line)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise StartupError(str(e)) from None
-        self._epoch_ns: Optional[int] = None  # whole seconds of the first pose stamp
+        self._epoch_ns: Optional[int] = None  # stamp of the first pose: simulator time 0
         self._levers = {'fairlead': np.zeros(3), 'bollard': np.zeros(3)}
         self._fresh = False  # publish the next state even if time did not advance
 
@@ -301,7 +301,7 @@ class MooringLineNode(Node):
             self._warn(f'{topic}: skew', f'{topic}: stamps are {(now_ns - stamp_ns) * 1e-9:+.3f}'
                        ' s behind the node clock: are the clocks in sync (use_sim_time)?')
         if self._epoch_ns is None:
-            self._epoch_ns = stamp_ns - stamp_ns % conversions.NANOSECONDS
+            self._epoch_ns = stamp_ns
         return self._seconds(stamp_ns), end
 
     def _drop(self, topic: str, reason: Exception) -> None:
@@ -312,8 +312,17 @@ class MooringLineNode(Node):
 
     # -- time ---------------------------------------------------------------------------
 
+    @staticmethod
+    def _new_simulator(line: params.LineParams) -> Simulator:
+        """Return a Simulator whose step divides the publish period, as `rope_sim run` does.
+
+        With the same step and the same time origin (the first pose = 0) the node and the
+        offline runner step at the same times, so they give the same numbers.
+        """
+        return Simulator(line, output_interval=1.0 / line.publish_rate)
+
     def _seconds(self, ns: int) -> float:
-        """Return the simulator time [s] of a ROS time [ns] (relative to the first stamp)."""
+        """Return the simulator time [s] of a ROS time [ns] (0 = the first pose's stamp)."""
         return (ns - self._epoch_ns) * 1e-9
 
     def _target_time(self, now: float) -> float:
@@ -353,7 +362,7 @@ class MooringLineNode(Node):
         self.get_logger().warning(
             f'clock jumped back by {self.simulator.time - now:.2f} s: waiting for the next '
             'fairlead pose to restart the rope')
-        self.simulator = Simulator(self.simulator.params)
+        self.simulator = self._new_simulator(self.simulator.params)
         self._epoch_ns = None
 
     def _on_reset(self, request: Trigger.Request, response: Trigger.Response):
