@@ -277,7 +277,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         print(f'{PROG} {args.command}: error: {where}{e.strerror or e}', file=sys.stderr)
         return EXIT_OUTPUT
     except KeyboardInterrupt:
-        print(f'\n{PROG} {args.command}: interrupted; files hold what was done so far',
+        print(f'{PROG} {args.command}: interrupted; files hold what was done so far',
               file=sys.stderr)
         return EXIT_INTERRUPTED
 

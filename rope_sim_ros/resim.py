@@ -216,7 +216,7 @@ def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
         summary = simulate(params, fairlead_samples, bollard_samples, rate, [sink], progress)
     except BaseException:
         try:
-            sink.close()
+            sink.close(complete=False)
         except BagError:
             pass
         raise

@@ -15,8 +15,9 @@
 """
 The offline loop shared by ``rope_sim run`` and ``rope_sim resim``.
 
-End samples are pushed into one Simulator before the first step (its history is unbounded),
-the rope starts on the catenary between the first samples' end points, and the state is
+End samples go into one Simulator as a live node receives them: a sample is pushed once the
+state has reached the one before (see _Feed), so an offline run takes the node's very steps.
+The rope starts on the catenary between the first samples' end points, and the state is
 advanced from output time to output time (every 1/rate s from the first sample time to the
 last). Each output goes to sinks: OUT.csv rows (motion.OutWriter) and/or a bag (BagSink)
 with the same topics, types and stamps the node records, log time = publish time =
@@ -26,6 +27,7 @@ simulated time.
 from dataclasses import dataclass, field
 import math
 import os
+import struct
 import sys
 import time
 from typing import Any, Callable, List, Mapping, Optional, Sequence, Tuple
@@ -139,6 +141,54 @@ def particles_message(ns: int, frame_id: str, positions: np.ndarray):
     """Return the PoseArray of the particles, each oriented along the rope tangent."""
     from .ros.conversions import pose_array
     return pose_array(positions, frame_id, ns)
+
+
+# CDR (XCDR1, little endian) encapsulation header, as rclpy's serialize_message writes it.
+_CDR_LE = b'\x00\x01\x00\x00'
+
+
+def _header_cdr(ns: int, frame_id: str) -> bytes:
+    """Return a std_msgs/Header in CDR (after the encapsulation header), unpadded."""
+    sec, nanosec = divmod(int(ns), 1_000_000_000)
+    name = frame_id.encode('utf-8') + b'\x00'
+    return struct.pack('<iII', sec, nanosec, len(name)) + name
+
+
+def _pad(body: bytes, alignment: int) -> bytes:
+    # CDR alignment counts from the end of the encapsulation header; padding is zeros.
+    return body + bytes(-len(body) % alignment)
+
+
+def pose_stamped_cdr(ns: int, frame_id: str, position: Sequence[float]) -> bytes:
+    """
+    Return a PoseStamped at position, identity orientation, as CDR bytes.
+
+    The same bytes as serialize_message(pose_stamped(...)) except that padding is zero:
+    rclpy leaves padding bytes uninitialised, so equal messages could differ in bytes.
+    """
+    body = _pad(_header_cdr(ns, frame_id), 8)
+    pose = [float(v) for v in position] + [0.0, 0.0, 0.0, 1.0]
+    return _CDR_LE + body + struct.pack('<7d', *pose)
+
+
+def particles_cdr(ns: int, frame_id: str, positions: np.ndarray) -> bytes:
+    """
+    Return particles_message(...) as CDR bytes, built with numpy.
+
+    The same bytes as serialize_message(particles_message(...)) except that padding is zero
+    (see pose_stamped_cdr), and much faster: building N+1 Pose objects and serialising them
+    costs more than the simulation steps of a short rope.
+
+    :param ns: header stamp [ns].
+    :param frame_id: header frame.
+    :param positions: particles (N+1, 3).
+    :returns: the CDR message.
+    """
+    from .ros.conversions import tangent_quaternions
+    points = np.asarray(positions, dtype=float)
+    body = _pad(_pad(_header_cdr(ns, frame_id), 4) + struct.pack('<I', len(points)), 8)
+    poses = np.concatenate([points, tangent_quaternions(points)], axis=1)
+    return _CDR_LE + body + np.ascontiguousarray(poses, dtype='<f8').tobytes()
 
 
 def wrench_message(force: Sequence[float], lever: Sequence[float] = (0.0, 0.0, 0.0)):
@@ -294,7 +344,9 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     if not (math.isfinite(rate) and rate > 0.0):
         raise ParameterError(f'output rate {rate!r} Hz is not allowed: must be > 0')
     wall = time.monotonic()
-    sim = Simulator(params, materials, output_interval=1.0 / rate, history=HISTORY)
+    # Samples are pushed as the state reaches them (_Feed), so the node's default history
+    # of end samples serves here too, and interpolates exactly as the node does.
+    sim = Simulator(params, materials, output_interval=1.0 / rate)
     ends = [_Feed(sim.push_fairlead, fairlead)]
     if bollard is not None:
         ends.append(_Feed(sim.push_bollard, bollard))
@@ -328,20 +380,16 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     return summary
 
 
-# End samples the simulator keeps behind the newest [s]: samples are pushed as the state
-# reaches them, so a few seconds suffice (and keep pushing O(1) per sample).
-HISTORY = 10.0
-
-
 class _Feed:
     """
     Pushes one end's samples into the simulator as the state reaches them, as live.
 
-    The simulator's end velocity at a step that falls exactly on a sample time is the
-    secant of the interval after it when that sample is already known, of the interval
-    before it when not. A live node only ever knows the one before, so the offline loop
-    pushes a sample only once the state has reached the previous one: offline and live
-    runs then take the very same steps.
+    How an end moves near its newest sample depends on what comes after it: with linear
+    interpolation the velocity at a step that falls exactly on a sample time is the secant
+    of the interval after it if that sample is known, of the one before if not; a spline's
+    tangent at a sample uses the next sample. A live node never knows the next one while
+    its state approaches a sample, so the offline loop pushes a sample only once the state
+    has reached the previous one: offline and live runs then take the very same steps.
     """
 
     def __init__(self, push: Callable, samples: EndSamples) -> None:
@@ -441,19 +489,22 @@ class BagSink:
         self._write_inputs(ns)
         fairlead_lever = self._fairlead.lever_at(t) if self._fairlead else np.zeros(3)
         bollard_lever = self._bollard.lever_at(t) if self._bollard else np.zeros(3)
-        self._write(self.particles, particles_message(ns, self.frame_id, out.positions), ns)
+        self._write(self.particles, particles_cdr(ns, self.frame_id, out.positions), ns)
         self._write(self.fairlead_tension, wrench_message(out.fairlead_force, fairlead_lever),
                     ns)
         self._write(self.bollard_tension, wrench_message(out.bollard_force, bollard_lever), ns)
 
-    def close(self) -> int:
+    def close(self, complete: bool = True) -> int:
         """
-        Record the remaining inputs, complete the bag and return its dropped count.
+        Record the remaining inputs (if complete), complete the bag, return its dropped count.
 
+        :param complete: False after an interruption: inputs stamped after the last output
+            are left out, as a recorder stopped there would have left them.
         :raises BagError: recording failed.
         """
         try:
-            self._write_inputs(math.inf)
+            if complete:
+                self._write_inputs(math.inf)
         finally:
             self.writer.close()
         return self.writer.dropped - self._retries
@@ -510,7 +561,7 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
         for relative_name, points, offset in ends:
             topic = topic_name('', relative_name)
             topics[topic] = POSE_TYPE
-            inputs += [(ns, topic, pose_stamped(ns, params.frame_id, p - offset))
+            inputs += [(ns, topic, pose_stamped_cdr(ns, params.frame_id, p - offset))
                        for ns, p in zip(motion.t_ns.tolist(), points)]
         bag = BagSink(bag_path, params, inputs, topics, '', fairlead, bollard, base_ns)
         sinks.append(bag)
@@ -535,12 +586,15 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
     return summary
 
 
-def _close_quietly(*sinks) -> None:
+def _close_quietly(writer, bag) -> None:
     from .bag import BagError
-    for sink in sinks:
-        if sink is None:
-            continue
-        try:
-            sink.close()
-        except (BagError, OSError):
-            pass
+    try:
+        if writer is not None:
+            writer.close()
+    except OSError:
+        pass
+    try:
+        if bag is not None:
+            bag.close(complete=False)
+    except BagError:
+        pass
