@@ -28,7 +28,7 @@ import yaml
 
 NODE_NAME = 'mooring_line'
 MATERIALS = ('nylon', 'polyester', 'hmpe', 'steel_wire', 'manila')
-INTEGRATORS = ('improved_euler',)
+INTEGRATORS = ('improved_euler', 'implicit_euler')
 DAMPING_MODELS = ('axial', 'seed')
 
 
@@ -93,6 +93,10 @@ SPECS: Mapping[str, Spec] = {
     'integrator': Spec('improved_euler', '', 'time integration scheme', choices=INTEGRATORS),
     'time_step': Spec(
         0.0, 's', 'integration step; 0 = automatic from the stability limit', 0.0, 0.1),
+    'end_interpolation': Spec(
+        'cubic', '', 'end motion between samples: linear (secant velocity, which jumps at '
+        'every sample) or cubic (Catmull-Rom: continuous velocity, far smaller tension ripple '
+        'on stiff lines)', choices=('linear', 'cubic')),
     'bollard_position': Spec(
         [0.0, 0.0, 0.0], 'm', 'bollard point in frame_id while no bollard/pose arrives'),
     'fairlead_offset': Spec(
@@ -191,6 +195,7 @@ class LineParams:
     superelastic_adjustment: bool = SPECS['superelastic_adjustment'].default
     integrator: str = SPECS['integrator'].default
     time_step: float = SPECS['time_step'].default
+    end_interpolation: str = SPECS['end_interpolation'].default
     bollard_position: list = field(
         default_factory=lambda: list(SPECS['bollard_position'].default))
     fairlead_offset: list = field(default_factory=lambda: list(SPECS['fairlead_offset'].default))

@@ -28,14 +28,13 @@ import numpy as np
 from .params import LineParams
 from .physics import catenary
 from .physics import kernels
-from .physics.integrators import automatic_time_step, improved_euler_step
+from .physics.integrators import automatic_time_step, implicit_bending, improved_euler_step
 from .physics.materials import MaterialLibrary, MaterialProperties
 from .physics.rope import critical_axial_damping, Rope, RopeProperties
 from .physics.superelastic import adjust, MAX_SWEEPS
 from .trajectory import EndTrajectory, TrajectoryError
 
 CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
-STEPPERS = {'improved_euler': improved_euler_step}
 
 
 def default_config_dir() -> Path:
@@ -145,19 +144,19 @@ class Simulator:
         self.material = (materials or load_materials()).properties(
             params.material, params.diameter)
         self.props = rope_properties(params, self.material)
+        self._coefficients = kernels.coefficients(self.props)
         self._output_interval = output_interval
         self.time_step = self._choose_time_step()
-        self._step = STEPPERS[params.integrator]
         self.compiled = compiled
-        self.fairlead = EndTrajectory(keep=history)
-        self.bollard = EndTrajectory(keep=history)
+        self.fairlead = EndTrajectory(keep=history, method=params.end_interpolation)
+        self.bollard = EndTrajectory(keep=history, method=params.end_interpolation)
         self.rope: Optional[Rope] = None
         self.time = math.nan
         self._inv_mass = np.ones(params.segments + 1)
         self._inv_mass[[0, -1]] = 0.0
 
     def _choose_time_step(self) -> float:
-        dt = self.params.time_step or automatic_time_step(self.props)
+        dt = self.params.time_step or automatic_time_step(self.props, self.params.integrator)
         if self._output_interval > 0.0:
             dt = self._output_interval / math.ceil(self._output_interval / dt - 1e-9)
         return dt
@@ -171,6 +170,7 @@ class Simulator:
         """Apply run-time parameter changes (damping, drag, max_strain, ...) at once."""
         self.params = self.params.with_values(values)
         self.props = rope_properties(self.params, self.material)
+        self._coefficients = kernels.coefficients(self.props)
         if self.rope is not None:
             self.rope.props = self.props
         self.time_step = self._choose_time_step()
@@ -254,13 +254,19 @@ class Simulator:
 
     def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
         rope, props = self.rope, self.props
+        args = (rope.x, rope.v, ends, velocities, dt, self._coefficients, self._inv_mass,
+                props.max_strain, props.superelastic_adjustment, MAX_SWEEPS)
+        if self.params.integrator == 'implicit_euler':
+            run = kernels.implicit_euler_run
+            if not self.compiled:
+                run = run.py_func  # the same code, interpreted: for tests
+            run(*args, implicit_bending(props, dt))
+            return
         if self.compiled:
-            kernels.improved_euler_run(
-                rope.x, rope.v, ends, velocities, dt, kernels.coefficients(props),
-                self._inv_mass, props.max_strain, props.superelastic_adjustment, MAX_SWEEPS)
+            kernels.improved_euler_run(*args)
             return
         for k in range(len(ends)):
-            self._step(rope, dt, ends[k], velocities[k])
+            improved_euler_step(rope, dt, ends[k], velocities[k])
             if props.superelastic_adjustment:
                 adjust(rope.x, rope.v, self._inv_mass, props.segment_length, props.max_strain)
 
@@ -270,6 +276,13 @@ class Simulator:
 
     def output(self) -> Output:
         """The current state: particles, end forces and the largest strain."""
-        bollard, fairlead = self.rope.end_forces()
-        return Output(self.time, self.rope.x.copy(), fairlead, bollard,
-                      float(self.rope.strains().max()))
+        rope = self.rope
+        if self.compiled:
+            forces = np.empty((2, 3))
+            kernels.end_forces(rope.x, rope.v, self._coefficients, forces)
+            bollard, fairlead = forces
+            strain = kernels.max_strain(rope.x, self.props.segment_length)
+        else:
+            bollard, fairlead = rope.end_forces()
+            strain = float(rope.strains().max())
+        return Output(self.time, rope.x.copy(), fairlead, bollard, strain)

@@ -14,14 +14,17 @@
 
 """Timestamped positions of one rope end, interpolated between samples.
 
-Positions are interpolated linearly between samples, with the secant of the interval as the
-velocity: holding a pose until the next one (zero-order hold) jerks a stiff line at every
-message. Past the newest sample the end moves on with the last secant velocity for at most
-`extrapolation` seconds, then holds: a live node would otherwise see a stair-case.
+'linear' interpolation moves the end on the secant of each interval (the velocity jumps at
+every sample); 'cubic' uses a Catmull-Rom Hermite spline, whose velocity is continuous.
+Holding a pose until the next one (zero-order hold) would jerk a stiff line at every
+message, and so does a velocity step, more gently: a velocity jump dv launches an axial wave
+of dv sqrt(EA m) newtons. Past the newest sample the end moves on with its last velocity for
+at most `extrapolation` seconds, then holds.
 """
 
 import math
 
+import numba
 import numpy as np
 
 
@@ -32,15 +35,18 @@ class TrajectoryError(ValueError):
 class EndTrajectory:
     """A bounded buffer of (t, position) samples of one end."""
 
-    def __init__(self, extrapolation: float = 0.1, keep: float = 5.0):
+    def __init__(self, extrapolation: float = 0.1, keep: float = 5.0,
+                 method: str = 'linear'):
         """Create an empty trajectory.
 
         Args:
             extrapolation: how long [s] to move on with the last velocity past the newest
                 sample before holding.
             keep: how much history [s] to keep behind the newest sample.
+            method: 'linear' or 'cubic'.
         """
         self.extrapolation = extrapolation
+        self.method = method
         self.keep = keep
         self._t = np.empty(0)
         self._p = np.empty((0, 3))
@@ -84,18 +90,51 @@ class EndTrajectory:
     def sample(self, times: np.ndarray) -> tuple:
         """Positions and velocities at `times`, shapes (n, 3) each.
 
-        Before the first sample the end rests there; between samples it moves on the secant;
-        after the last one it extrapolates, then holds.
+        Before the first sample the end rests there; between samples it follows the chosen
+        interpolation; after the last one it extrapolates, then holds.
         """
-        times = np.asarray(times, dtype=float)
-        t, p = self._t, self._p
-        if len(t) == 1:
-            return np.repeat(p[:1], len(times), axis=0), np.zeros((len(times), 3))
-        # interval index: i such that t[i] <= time < t[i+1], clipped to the ends
-        i = np.clip(np.searchsorted(t, times, side='right') - 1, 0, len(t) - 2)
-        secant = (p[i + 1] - p[i]) / (t[i + 1] - t[i])[:, None]
-        start = np.maximum(times, t[0])
-        past = np.minimum(start, t[-1] + self.extrapolation)
-        positions = p[i] + secant * (past - t[i])[:, None]
-        moving = (times >= t[0]) & (times < t[-1] + self.extrapolation)
-        return positions, np.where(moving[:, None], secant, 0.0)
+        times = np.ascontiguousarray(times, dtype=float)
+        return _sample(self._t, self._p, times, self.extrapolation, self.method == 'cubic')
+
+
+@numba.njit(cache=True)
+def _tangent(t, p, k):
+    """Catmull-Rom tangent at sample k: central difference, one-sided at the two ends."""
+    lo, hi = max(k - 1, 0), min(k + 1, len(t) - 1)
+    return (p[hi] - p[lo]) / (t[hi] - t[lo])
+
+
+@numba.njit(cache=True)
+def _sample(t, p, times, extrapolation, cubic):
+    positions = np.empty((len(times), 3))
+    velocities = np.zeros((len(times), 3))
+    last = len(t) - 1
+    for n in range(len(times)):
+        tau = min(max(times[n], t[0]), t[last] + extrapolation)
+        moving = t[0] <= times[n] < t[last] + extrapolation and last > 0
+        if last == 0:
+            positions[n] = p[0]
+            continue
+        if tau >= t[last]:  # past the newest sample: straight on with its velocity
+            m = _tangent(t, p, last) if cubic else (p[last] - p[last - 1]) / (t[last] - t[last - 1])
+            positions[n] = p[last] + m * (tau - t[last])
+            if moving:
+                velocities[n] = m
+            continue
+        i = min(max(np.searchsorted(t, tau, side='right') - 1, 0), last - 1)
+        h = t[i + 1] - t[i]
+        s = (tau - t[i]) / h
+        if not cubic:
+            secant = (p[i + 1] - p[i]) / h
+            positions[n] = p[i] + secant * (tau - t[i])
+            if moving:
+                velocities[n] = secant
+            continue
+        m0, m1 = _tangent(t, p, i) * h, _tangent(t, p, i + 1) * h
+        s2, s3 = s * s, s * s * s
+        positions[n] = ((2 * s3 - 3 * s2 + 1) * p[i] + (s3 - 2 * s2 + s) * m0
+                        + (3 * s2 - 2 * s3) * p[i + 1] + (s3 - s2) * m1)
+        if moving:
+            velocities[n] = ((6 * s2 - 6 * s) * p[i] + (3 * s2 - 4 * s + 1) * m0
+                             + (6 * s - 6 * s2) * p[i + 1] + (3 * s2 - 2 * s) * m1) / h
+    return positions, velocities

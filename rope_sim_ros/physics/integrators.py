@@ -95,14 +95,36 @@ def wave_time_step(props: RopeProperties) -> float:
     return props.segment_length * np.sqrt(props.mass_per_length / props.axial_stiffness)
 
 
-def automatic_time_step(props: RopeProperties) -> float:
+IMPLICIT_STEPS_PER_AXIAL_PERIOD = 4.0
+IMPLICIT_MAX_STEP = 0.005
+# Bending springs go into the implicit matrix once an explicit treatment would need a step
+# below this fraction of their own stability limit (h^2 k_b / m > this).
+IMPLICIT_BENDING_THRESHOLD = 0.1
+
+
+def first_axial_period(props: RopeProperties) -> float:
+    """Period of the line's first axial mode with both ends held, 2 L sqrt(m / EA) [s]."""
+    return 2.0 * props.length * np.sqrt(props.mass_per_length / props.axial_stiffness)
+
+
+def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler') -> float:
     """The step used when the user sets time_step 0 [s].
+
+    improved_euler: the stability limit times a safety factor. implicit_euler (stable for any
+    step): a step that still sees the first axial mode, at most IMPLICIT_MAX_STEP.
 
     Raises:
         ValueError: the line has no damping, so the improved Euler step is never stable.
     """
+    if integrator == 'implicit_euler':
+        return min(IMPLICIT_MAX_STEP, first_axial_period(props) / IMPLICIT_STEPS_PER_AXIAL_PERIOD)
     limit = min(stability_limit(props), wave_time_step(props))
     if limit <= 0.0:
         raise ValueError(
             'improved_euler is unstable on an undamped line: set axial_damping > 0')
     return SAFETY_FACTOR * limit
+
+
+def implicit_bending(props: RopeProperties, dt: float) -> bool:
+    """Whether the implicit step must include the bending springs in its matrix."""
+    return dt * dt * props.bending_stiffness / props.particle_mass > IMPLICIT_BENDING_THRESHOLD

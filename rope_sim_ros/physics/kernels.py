@@ -82,6 +82,28 @@ def line_forces(x, v, out, coef):
 
 
 @numba.njit(cache=True)
+def end_forces(x, v, coef, out):
+    """Force of the line on particle 0 and on particle N into out (2, 3) (see Rope)."""
+    f = np.empty_like(x)
+    line_forces(x, v, f, coef)
+    half = 0.5 * coef[7]
+    for p in range(3):
+        out[0, p] = f[0, p] + half * coef[8 + p]
+        out[1, p] = f[-1, p] + half * coef[8 + p]
+
+
+@numba.njit(cache=True)
+def max_strain(x, segment_length):
+    """Largest strain of the structural springs."""
+    worst = -1.0
+    for i in range(x.shape[0] - 1):
+        d = np.sqrt((x[i + 1, 0] - x[i, 0]) ** 2 + (x[i + 1, 1] - x[i, 1]) ** 2
+                    + (x[i + 1, 2] - x[i, 2]) ** 2)
+        worst = max(worst, d / segment_length - 1.0)
+    return worst
+
+
+@numba.njit(cache=True)
 def _accelerations(x, v, out, coef):
     line_forces(x, v, out, coef)
     drag, mass = coef[6], coef[7]
@@ -167,3 +189,144 @@ def improved_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strai
             v[0, d], v[last, d] = end_velocities[k, 0, d], end_velocities[k, 1, d]
         if adjusting:
             adjust(x, v, inv_mass, coef[0], max_strain, max_sweeps)
+
+
+# -- implicit Euler: the seed's scheme made implicit -----------------------------------------
+#
+# Backward Euler on the velocity, trapezoid on the position (Newmark gamma = 1, beta = 1/2):
+#     v1 = v0 + h a1,   x1 = x0 + h (v0 + v1) / 2,   M a1 = f(x1, v1),
+# linearised once per step about the predictor x^ = x0 + h v0, v0 (the ends already at their
+# new places), as Baraff & Witkin (1998) do:
+#     (M + h C + h^2/2 S) a1 = f(x^, v0),
+# with S and C the stiffness and damping matrices of the springs (minus the force Jacobians).
+# Unconditionally stable, first order, and it damps the fastest axial waves; predictors that
+# extrapolate the acceleration (Newmark gamma < 1) blew up on slack-taut snaps. A rope couples
+# particle i to i+1 and i+2 only, so the system is banded (half bandwidth 5 scalars, 8 with
+# the bending springs) and symmetric positive definite: a banded Cholesky solves it in O(N).
+
+@numba.njit(cache=True)
+def _add_block(band, a, b, block, sign):
+    """Add sign * block into the band at particle rows a, columns b (free numbering)."""
+    if a < 0 or b < 0:
+        return
+    width = band.shape[1] - 1
+    for p in range(3):
+        for q in range(3):
+            i, j = 3 * a + p, 3 * b + q
+            if j <= i and i - j <= width:
+                band[i, i - j] += sign * block[p, q]
+
+
+@numba.njit(cache=True)
+def _spring_jacobians(x, band, block, stride, rest, k, c, axial):
+    """Add S + C of the springs (i, i + stride) to the band (k, c already scaled by the step).
+
+    S = k u u^T + (T / l)(I - u u^T), C = c u u^T (axial) or c I (seed form).
+    """
+    n = x.shape[0]
+    for i in range(n - stride):
+        j = i + stride
+        dx = x[j, 0] - x[i, 0]
+        dy = x[j, 1] - x[i, 1]
+        dz = x[j, 2] - x[i, 2]
+        length = max(np.sqrt(dx * dx + dy * dy + dz * dz), 1e-12)
+        u0, u1, u2 = dx / length, dy / length, dz / length
+        # The full axial stiffness even where a segment is slack: a single linearised step
+        # that expects no resistance overshoots when the segment snaps taut within the step
+        # (and then blows up); overestimating it only damps that step a little.
+        k_axial = k
+        # the geometric term only where the spring pulls: keeps the matrix positive definite
+        g = max(k * (length - rest), 0.0) / length
+        c_axial = c if axial else 0.0
+        c_iso = 0.0 if axial else c
+        diag = g + c_iso
+        along = k_axial - g + c_axial
+        block[0, 0] = along * u0 * u0 + diag
+        block[1, 1] = along * u1 * u1 + diag
+        block[2, 2] = along * u2 * u2 + diag
+        block[0, 1] = block[1, 0] = along * u0 * u1
+        block[0, 2] = block[2, 0] = along * u0 * u2
+        block[1, 2] = block[2, 1] = along * u1 * u2
+        # free-particle numbering: particle 1 -> 0; the ends are not unknowns
+        a = i - 1 if 0 < i < n - 1 else -1
+        b = j - 1 if 0 < j < n - 1 else -1
+        _add_block(band, a, a, block, 1.0)
+        _add_block(band, b, b, block, 1.0)
+        _add_block(band, b, a, block, -1.0)
+
+
+@numba.njit(cache=True)
+def _cholesky_solve(band, rhs):
+    """Solve the banded SPD system in place (band[i, i - j] = A[i, j]); return rhs."""
+    n = band.shape[0]
+    width = band.shape[1] - 1
+    for i in range(n):
+        for j in range(max(0, i - width), i + 1):
+            s = band[i, i - j]
+            for p in range(max(0, i - width, j - width), j):
+                s -= band[i, i - p] * band[j, j - p]
+            if i == j:
+                band[i, 0] = np.sqrt(max(s, 1e-300))
+            else:
+                band[i, i - j] = s / band[j, 0]
+    for i in range(n):
+        s = rhs[i]
+        for p in range(max(0, i - width), i):
+            s -= band[i, i - p] * rhs[p]
+        rhs[i] = s / band[i, 0]
+    for i in range(n - 1, -1, -1):
+        s = rhs[i]
+        for p in range(i + 1, min(n, i + width + 1)):
+            s -= band[p, p - i] * rhs[p]
+        rhs[i] = s / band[i, 0]
+    return rhs
+
+
+@numba.njit(cache=True)
+def implicit_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strain,
+                       adjusting, max_sweeps, implicit_bending):
+    """Take len(ends) implicit Euler steps in place (arguments as improved_euler_run).
+
+    implicit_bending: put the bending springs in the matrix too (needed only when they are
+    stiff enough to limit an explicit step; it widens the band from 5 to 8).
+    """
+    n = x.shape[0]
+    last = n - 1
+    l0, ks, cs, kb, cb, axial = coef[0], coef[1], coef[2], coef[3], coef[4], coef[5] > 0.5
+    drag, mass = coef[6], coef[7]
+    half_h2 = 0.5 * dt * dt
+    f = np.empty_like(x)
+    block = np.empty((3, 3))
+    band = np.empty((3 * (n - 2), 9 if implicit_bending else 6))
+    rhs = np.empty(3 * (n - 2))
+    for k in range(ends.shape[0]):
+        for i in range(1, last):
+            for p in range(3):
+                x[i, p] += dt * v[i, p]
+        for p in range(3):
+            x[0, p], x[last, p] = ends[k, 0, p], ends[k, 1, p]
+            v[0, p], v[last, p] = end_velocities[k, 0, p], end_velocities[k, 1, p]
+        line_forces(x, v, f, coef)
+        band[:] = 0.0
+        _spring_jacobians(x, band, block, 1, l0, ks * half_h2, cs * dt, axial)
+        if implicit_bending:
+            _spring_jacobians(x, band, block, 2, 2.0 * l0, kb * half_h2, cb * dt, axial)
+        for i in range(1, last):
+            speed = np.sqrt(v[i, 0] ** 2 + v[i, 1] ** 2 + v[i, 2] ** 2)
+            r0 = 3 * (i - 1)
+            for p in range(3):
+                rhs[r0 + p] = f[i, p] - drag * speed * v[i, p] + mass * coef[8 + p]
+                # mass, and the drag Jacobian kappa (|v| I + v v^T / |v|)
+                for q in range(p + 1):
+                    jac = dt * drag * v[i, p] * v[i, q] / max(speed, 1e-12)
+                    if p == q:
+                        jac += dt * drag * speed + mass
+                    band[r0 + p, p - q] += jac
+        _cholesky_solve(band, rhs)
+        for i in range(1, last):
+            for p in range(3):
+                a1 = rhs[3 * (i - 1) + p]
+                x[i, p] += half_h2 * a1
+                v[i, p] += dt * a1
+        if adjusting:
+            adjust(x, v, inv_mass, l0, max_strain, max_sweeps)
