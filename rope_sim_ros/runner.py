@@ -15,8 +15,8 @@
 """
 The offline loop shared by ``rope_sim run`` and ``rope_sim resim``.
 
-End samples go into one Simulator as a live node receives them: a sample is pushed once the
-state has reached the one before (see _Feed), so an offline run takes the node's very steps.
+End samples go into one Simulator a sample ahead of the state (see _Feed), which moves the
+ends exactly as if the whole motion were known.
 The rope starts on the catenary between the first samples' end points, and the state is
 advanced from output time to output time (every 1/rate s from the first sample time to the
 last). Each output goes to sinks: OUT.csv rows (motion.OutWriter) and/or a bag (BagSink)
@@ -344,14 +344,12 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     if not (math.isfinite(rate) and rate > 0.0):
         raise ParameterError(f'output rate {rate!r} Hz is not allowed: must be > 0')
     wall = time.monotonic()
-    # Samples are pushed as the state reaches them (_Feed), so the node's default history
-    # of end samples serves here too, and interpolates exactly as the node does.
+    # Samples are pushed as the state approaches them (_Feed): the default history of end
+    # samples suffices.
     sim = Simulator(params, materials, output_interval=1.0 / rate)
     ends = [_Feed(sim.push_fairlead, fairlead)]
     if bollard is not None:
         ends.append(_Feed(sim.push_bollard, bollard))
-    # Every sample time is a stop, so no step lands on a sample time inside an advance.
-    stops = np.unique(np.concatenate([end.t for end in ends])).tolist()
     times = output_times(float(fairlead.t[0]), float(fairlead.t[-1]), rate).tolist()
     summary = RunSummary(start=times[0], end=times[-1], time_step=sim.time_step)
     for end in ends:
@@ -359,13 +357,11 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     sim.start(times[0])
     dt = sim.time_step
     total = len(times)
-    stop = 0
     for k, t in enumerate(times):
-        while stop < len(stops) and stops[stop] <= t:
-            if sim.time < stops[stop] < t:
-                _advance(sim, ends, stops[stop], summary)
-            stop += 1
-        _advance(sim, ends, t, summary)
+        for end in ends:
+            end.feed(t)
+        if sim.advance_to(t).restarted:
+            summary.restarts.append(t)
         if abs(sim.time - t) < 1e-6 * dt:
             # The state time is a running sum of steps; pin it to the exact output time
             # so rounding never accumulates into a missed step on long runs.
@@ -382,14 +378,13 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
 
 class _Feed:
     """
-    Pushes one end's samples into the simulator as the state reaches them, as live.
+    Pushes one end's samples into the simulator one sample ahead of the state.
 
-    How an end moves near its newest sample depends on what comes after it: with linear
-    interpolation the velocity at a step that falls exactly on a sample time is the secant
-    of the interval after it if that sample is known, of the one before if not; a spline's
-    tangent at a sample uses the next sample. A live node never knows the next one while
-    its state approaches a sample, so the offline loop pushes a sample only once the state
-    has reached the previous one: offline and live runs then take the very same steps.
+    How an end moves up to a sample depends on the sample after it (the secant's side at
+    the sample instant, a spline's tangent there). Knowing one sample beyond the state is
+    as good as knowing them all, keeps the simulator's sample buffer short (pushing stays
+    O(1) per sample) and gives the same steps as a live node that stays one sample behind
+    its newest pose.
     """
 
     def __init__(self, push: Callable, samples: EndSamples) -> None:
@@ -399,17 +394,10 @@ class _Feed:
         self.next = 0
 
     def feed(self, until: float) -> None:
-        """Push samples until one at or after `until` is known (or none is left)."""
-        while self.next < len(self.t) and (self.next == 0 or self.t[self.next - 1] < until):
+        """Push samples until one after the first sample at or after `until` is known."""
+        while self.next < len(self.t) and (self.next < 2 or self.t[self.next - 2] < until):
             self.push(self.t[self.next], self.points[self.next])
             self.next += 1
-
-
-def _advance(sim: Simulator, ends: List[_Feed], target: float, summary: RunSummary) -> None:
-    for end in ends:
-        end.feed(target)
-    if sim.advance_to(target).restarted:
-        summary.restarts.append(target)
 
 
 class BagSink:

@@ -16,7 +16,7 @@
 ``rope_sim run``: MOTION.csv in, OUT.csv out, bad input as one line and exit code 2.
 
 The good run drives the fairlead with the first 12 s of the MoorDyn reference motion and
-checks every row against the Simulator fed one pose per motion row, as a live node is.
+checks every row against the Simulator given the whole motion.
 """
 
 import csv
@@ -57,16 +57,15 @@ def read_out(path: Path) -> tuple:
         return header, np.array([[float(v) for v in row] for row in reader])
 
 
-def live_simulation(params, motion, rate: float) -> np.ndarray:
-    """Rows of the Simulator given one motion row at a time and advanced to it."""
+def simulation(params, motion, rate: float) -> np.ndarray:
+    """Rows of the Simulator given the whole motion, then advanced to each row's time."""
     sim = Simulator(params, output_interval=1.0 / rate, history=math.inf)
-    rows = []
-    for k, (t, point) in enumerate(zip(motion.t.tolist(), motion.fairlead)):
+    for t, point in zip(motion.t.tolist(), motion.fairlead):
         sim.push_fairlead(t, point)
-        if k == 0:
-            sim.start(t)
-        else:
-            sim.advance_to(t)
+    sim.start(float(motion.t[0]))
+    rows = []
+    for t in motion.t.tolist():
+        sim.advance_to(t)
         out = sim.output()
         rows.append([t, *out.fairlead_force, out.fairlead_tension, *out.bollard_force,
                      out.bollard_tension, out.max_strain])
@@ -94,11 +93,11 @@ def test_rows_every_step_from_first_to_last_time(good_run):
     assert np.isfinite(rows).all()
 
 
-def test_rows_equal_the_simulator_fed_live(good_run):
+def test_rows_equal_the_simulator(good_run):
     motion_path, out = good_run
     _, rows = read_out(out)
     motion = read_motion(motion_path)
-    expected = live_simulation(resolve_params(), motion, 100.0)
+    expected = simulation(resolve_params(), motion, 100.0)
     assert rows.shape == expected.shape
     np.testing.assert_allclose(rows[:, 0], expected[:, 0], rtol=0, atol=1e-12)
     # Same steps, same numbers: only the state time's rounding differs.
