@@ -76,10 +76,10 @@ SPECS: Mapping[str, Spec] = {
         'axial', '', 'axial: damp the stretch rate only; seed: K_SD (V_A - V_B), which also '
         'damps rigid rotation of a segment', choices=DAMPING_MODELS),
     'bending_stiffness_ratio': Spec(
-        0.01, '', 'bending spring (i, i+2) stiffness relative to a structural spring',
+        1.0e-4, '', 'bending spring (i, i+2) stiffness relative to a structural spring',
         0.0, 10.0),
     'bending_damping_ratio': Spec(
-        0.01, '', 'bending spring damping relative to a structural spring', 0.0, 10.0,
+        1.0e-4, '', 'bending spring damping relative to a structural spring', 0.0, 10.0,
         read_only=False),
     'air_drag_coefficient': Spec(
         0.0, 'N*s^2/m^3', 'quadratic air drag K_A per metre of rope: f = -K_A |v| v '

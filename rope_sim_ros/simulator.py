@@ -31,7 +31,7 @@ from .physics import kernels
 from .physics.integrators import automatic_time_step, implicit_bending, improved_euler_step
 from .physics.materials import MaterialLibrary, MaterialProperties
 from .physics.rope import critical_axial_damping, Rope, RopeProperties
-from .physics.superelastic import adjust, MAX_SWEEPS
+from .physics.superelastic import adjust, MAX_ITERATIONS
 from .trajectory import EndTrajectory, TrajectoryError
 
 CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
@@ -210,8 +210,8 @@ class Simulator:
 
     # -- time ---------------------------------------------------------------------------
 
-    def start(self, t: float) -> None:
-        """Place the rope at rest in equilibrium between the ends at time t.
+    def start(self, t: float, shape: Optional[np.ndarray] = None) -> None:
+        """Place the rope at rest at time t: in equilibrium between the ends, or at `shape`.
 
         Raises:
             TrajectoryError: no fairlead sample yet.
@@ -219,6 +219,8 @@ class Simulator:
         if not len(self.fairlead):
             raise TrajectoryError('cannot start the rope before the first fairlead sample')
         self.restart(t)
+        if shape is not None:
+            self.rope = Rope(self.props, shape)
 
     def restart(self, t: Optional[float] = None) -> None:
         """Put the rope back on the catenary between the ends (at its current time)."""
@@ -255,7 +257,7 @@ class Simulator:
     def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
         rope, props = self.rope, self.props
         args = (rope.x, rope.v, ends, velocities, dt, self._coefficients, self._inv_mass,
-                props.max_strain, props.superelastic_adjustment, MAX_SWEEPS)
+                props.max_strain, props.superelastic_adjustment, MAX_ITERATIONS)
         if self.params.integrator == 'implicit_euler':
             run = kernels.implicit_euler_run
             if not self.compiled:
@@ -268,7 +270,8 @@ class Simulator:
         for k in range(len(ends)):
             improved_euler_step(rope, dt, ends[k], velocities[k])
             if props.superelastic_adjustment:
-                adjust(rope.x, rope.v, self._inv_mass, props.segment_length, props.max_strain)
+                adjust(rope.x, rope.v, self._inv_mass, props.segment_length, props.max_strain,
+                       MAX_ITERATIONS)
 
     def skip_to(self, t: float) -> None:
         """Move the state time to t without simulating (after falling far behind)."""

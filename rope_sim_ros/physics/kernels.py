@@ -23,7 +23,7 @@ import numba
 import numpy as np
 
 from .rope import RopeProperties
-from .superelastic import TOLERANCE as _TOLERANCE
+from .superelastic import adjust
 
 
 def coefficients(props: RopeProperties) -> np.ndarray:
@@ -114,56 +114,8 @@ def _accelerations(x, v, out, coef):
 
 
 @numba.njit(cache=True)
-def _project(x, v, inv_mass, stride, limit, colour):
-    worst = 0.0
-    for i in range(x.shape[0] - stride):
-        if (i // stride) % 2 != colour:
-            continue
-        j = i + stride
-        total = inv_mass[i] + inv_mass[j]
-        if total <= 0.0:
-            continue
-        dx = x[j, 0] - x[i, 0]
-        dy = x[j, 1] - x[i, 1]
-        dz = x[j, 2] - x[i, 2]
-        length = np.sqrt(dx * dx + dy * dy + dz * dz)
-        if length <= limit * (1.0 + _TOLERANCE):
-            continue
-        worst = max(worst, length / limit - 1.0)
-        ux, uy, uz = dx / length, dy / length, dz / length
-        wa, wb = inv_mass[i] / total, inv_mass[j] / total
-        excess = length - limit
-        closing = ((v[j, 0] - v[i, 0]) * ux + (v[j, 1] - v[i, 1]) * uy
-                   + (v[j, 2] - v[i, 2]) * uz)
-        for d, u in ((0, ux), (1, uy), (2, uz)):
-            x[i, d] += wa * excess * u
-            x[j, d] -= wb * excess * u
-            v[i, d] += wa * closing * u
-            v[j, d] -= wb * closing * u
-    return worst
-
-
-@numba.njit(cache=True)
-def adjust(x, v, inv_mass, segment_length, max_strain, max_sweeps):
-    """Position and velocity adjustment, as superelastic.adjust (same colour order)."""
-    sweeps = 0
-    n = x.shape[0] - 1
-    for stride in (1, 2):
-        if n < stride:
-            continue
-        limit = stride * segment_length * (1.0 + max_strain)
-        for _ in range(max_sweeps):
-            worst = max(_project(x, v, inv_mass, stride, limit, 0),
-                        _project(x, v, inv_mass, stride, limit, 1))
-            if worst <= 0.0:
-                break
-            sweeps += 1
-    return sweeps
-
-
-@numba.njit(cache=True)
 def improved_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strain,
-                       adjusting, max_sweeps):
+                       adjusting, max_iterations):
     """Take len(ends) improved Euler steps in place; ends[k] holds particles 0 and N."""
     a1 = np.empty_like(x)
     a2 = np.empty_like(x)
@@ -188,7 +140,7 @@ def improved_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strai
             x[0, d], x[last, d] = ends[k, 0, d], ends[k, 1, d]
             v[0, d], v[last, d] = end_velocities[k, 0, d], end_velocities[k, 1, d]
         if adjusting:
-            adjust(x, v, inv_mass, coef[0], max_strain, max_sweeps)
+            adjust(x, v, inv_mass, coef[0], max_strain, max_iterations)
 
 
 # -- implicit Euler: the seed's scheme made implicit -----------------------------------------
@@ -284,7 +236,7 @@ def _cholesky_solve(band, rhs):
 
 @numba.njit(cache=True)
 def implicit_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strain,
-                       adjusting, max_sweeps, implicit_bending):
+                       adjusting, max_iterations, implicit_bending):
     """Take len(ends) implicit Euler steps in place (arguments as improved_euler_run).
 
     implicit_bending: put the bending springs in the matrix too (needed only when they are
@@ -329,4 +281,4 @@ def implicit_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strai
                 x[i, p] += half_h2 * a1
                 v[i, p] += dt * a1
         if adjusting:
-            adjust(x, v, inv_mass, l0, max_strain, max_sweeps)
+            adjust(x, v, inv_mass, l0, max_strain, max_iterations)

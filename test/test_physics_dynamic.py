@@ -1,0 +1,80 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Fairlead force under the reference motion against MoorDyn, and fast path vs reference."""
+
+import numpy as np
+import pytest
+
+from physics_cases import nrmse, read_rows, reference_params, run_motion
+
+
+def _reference_run(reference_dir, segments):
+    rows = read_rows(reference_dir / f'dynamic_polyester_N{segments}.csv')
+    nodes = read_rows(reference_dir / f'dynamic_polyester_N{segments}_initial_nodes.csv')
+    t = np.array([r['t_s'] for r in rows])
+    fairlead = np.array([[r['xB_m'], r['yB_m'], r['zB_m']] for r in rows])
+    shape = np.array([[n['x_m'], n['y_m'], n['z_m']] for n in nodes])
+    moordyn = np.array([r['F_B_N'] for r in rows])
+    return t, fairlead, shape, moordyn
+
+
+@pytest.mark.parametrize('integrator, interpolation', [
+    ('improved_euler', 'cubic'), ('implicit_euler', 'cubic'),
+    # the seed's scheme on the issue's literal secant interpolation; the implicit step on
+    # secant velocity steps is 13 % off (README: use cubic with implicit_euler)
+    ('improved_euler', 'linear')])
+@pytest.mark.parametrize('segments', [20, 50])
+def test_fairlead_force_matches_moordyn(reference_dir, segments, integrator, interpolation):
+    t, fairlead, shape, moordyn = _reference_run(reference_dir, segments)
+    params = reference_params('polyester', segments, integrator=integrator,
+                              end_interpolation=interpolation)
+    outputs = run_motion(params, t, fairlead, t, shape)
+    force = np.array([o.fairlead_tension for o in outputs])
+    window = (t >= 10.0) & (t <= 60.0)
+    error = nrmse(force[window], moordyn[window])
+    # cubic measured 1.2 % (N=20) and 1.8 % (N=50); linear 3.4 % and 3.8 % (its velocity
+    # steps every 10 ms ring the stiff line, where MoorDyn was driven every 1 ms)
+    assert error <= (0.025 if interpolation == 'cubic' else 0.05)
+    assert np.isfinite(force).all()
+
+
+def test_compiled_kernel_gives_the_numpy_numbers(reference_dir):
+    """The numba improved Euler repeats the numpy reference path to rounding."""
+    t, fairlead, shape, _ = _reference_run(reference_dir, 20)
+    params = reference_params('polyester', 20, bending_stiffness_ratio=1e-3,
+                              bending_damping_ratio=1e-3, air_drag_coefficient=0.05)
+    window = slice(0, 201)  # 2 s: the numpy path is slow
+    numpy_path = run_motion(params, t[window], fairlead[window], t[window], shape, False)
+    compiled = run_motion(params, t[window], fairlead[window], t[window], shape, True)
+    assert np.array([o.fairlead_force for o in compiled]) == pytest.approx(
+        np.array([o.fairlead_force for o in numpy_path]), rel=1e-9, abs=1e-6)
+    assert compiled[-1].positions == pytest.approx(numpy_path[-1].positions, abs=1e-9)
+
+
+@pytest.mark.parametrize('material', ['polyester', 'wire'])
+def test_implicit_step_agrees_with_converged_explicit(material):
+    """The fast path at its 10x larger automatic step against improved Euler: NRMSE < 3 %."""
+    t = np.arange(0.0, 30.0, 0.02)
+    chord = np.array([36.0, 0.0, 8.0])
+    ramp = np.where(t < 10.0, 0.5 * (1.0 - np.cos(np.pi * t / 10.0)), 1.0)
+    fairlead = chord + (2.0 * np.sin(2 * np.pi * t / 10.0) * ramp)[:, None] * chord / 36.878
+    out_t = np.arange(0.01, 29.9, 0.01)
+    series = {}
+    for integrator in ('improved_euler', 'implicit_euler'):
+        params = reference_params(material, 20, integrator=integrator)
+        outputs = run_motion(params, t, fairlead, out_t)
+        series[integrator] = np.array([o.fairlead_tension for o in outputs])
+    window = out_t >= 10.0
+    assert nrmse(series['implicit_euler'][window], series['improved_euler'][window]) < 0.03
