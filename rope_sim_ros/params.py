@@ -90,7 +90,9 @@ SPECS: Mapping[str, Spec] = {
         'this strain', 0.0, 10.0, low_open=True, read_only=False),
     'superelastic_adjustment': Spec(
         True, '', 'apply the position and velocity adjustment at max_strain', read_only=False),
-    'integrator': Spec('improved_euler', '', 'time integration scheme', choices=INTEGRATORS),
+    'integrator': Spec(
+        'implicit_euler', '', 'implicit_euler: stable at any step, fastest for stiff lines; '
+        'improved_euler: the explicit scheme of the seed paper', choices=INTEGRATORS),
     'time_step': Spec(
         0.0, 's', 'integration step; 0 = automatic from the stability limit', 0.0, 0.1),
     'end_interpolation': Spec(

@@ -1,0 +1,112 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Every preset survives a long surge at every resolution; bad end samples change nothing."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rope_sim_ros.params import from_values, MATERIALS
+from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.trajectory import TrajectoryError
+
+
+def _surge(material, segments, integrator, duration):
+    """A 40 m line of the preset at 64 mm; the fairlead surges 2 m with an 8 s period."""
+    params = from_values(dict(material=material, segments=segments, integrator=integrator))
+    sim = Simulator(params, history=math.inf, output_interval=0.1)
+    times = np.arange(0.0, duration + 0.05, 0.05)
+    for t in times:
+        surge = 2.0 * math.sin(2.0 * math.pi * t / 8.0) * min(t / 8.0, 1.0)
+        sim.push_fairlead(float(t), [36.0 + surge, 0.0, 8.0])
+    sim.start(0.0)
+    peak = 0.0
+    for t in np.arange(0.1, duration + 1e-9, 0.1):
+        advance = sim.advance_to(float(t))
+        assert advance.restarted == '', f'{material} N={segments} restarted at t={t:.1f}'
+        out = sim.output()
+        assert np.isfinite(out.positions).all()
+        assert np.isfinite(out.fairlead_force).all() and np.isfinite(out.bollard_force).all()
+        peak = max(peak, out.fairlead_tension)
+    return sim, peak
+
+
+@pytest.mark.parametrize('segments', [10, 50, 200])
+@pytest.mark.parametrize('material', MATERIALS)
+def test_default_integrator_survives_60_s(material, segments):
+    sim, peak = _surge(material, segments, 'implicit_euler', 60.0)
+    assert sim.time == pytest.approx(60.0)
+    # the line stays a mooring line: tension well below breaking, strain small
+    assert 0.0 < peak < sim.material.mbl
+    assert sim.output().max_strain < 0.05
+
+
+@pytest.mark.parametrize('segments', [10, 50])
+@pytest.mark.parametrize('material', MATERIALS)
+def test_improved_euler_automatic_step_survives_60_s(material, segments):
+    sim, peak = _surge(material, segments, 'improved_euler', 60.0)
+    assert 0.0 < peak < sim.material.mbl
+
+
+@pytest.mark.parametrize('material', MATERIALS)
+def test_improved_euler_automatic_step_is_stable_at_200_segments(material):
+    # one surge period is 1e5 to 9e5 explicit steps: an unstable step would have grown from
+    # rounding to overflow many times over (60 s would cost the suite ~3 minutes)
+    sim, peak = _surge(material, 200, 'improved_euler', 8.0)
+    assert 0.0 < peak < sim.material.mbl
+
+
+def test_nan_end_position_is_rejected_without_touching_the_state():
+    sim = Simulator(from_values({}), history=math.inf)
+    sim.push_fairlead(0.0, [36.0, 0.0, 8.0])
+    sim.start(0.0)
+    sim.advance_to(1.0)
+    before = sim.output()
+    for bad in ([math.nan, 0.0, 8.0], [36.0, math.inf, 8.0]):
+        with pytest.raises(TrajectoryError, match='non-finite'):
+            sim.push_fairlead(2.0, bad)
+    with pytest.raises(TrajectoryError, match='not after'):
+        sim.push_fairlead(-1.0, [36.0, 0.0, 8.0])
+    assert len(sim.fairlead) == 1
+    sim.advance_to(2.0)
+    after = sim.output()
+    assert np.isfinite(after.positions).all()
+    assert after.fairlead_tension == pytest.approx(before.fairlead_tension, rel=1e-3)
+
+
+def test_non_finite_state_restarts_on_the_catenary():
+    sim = Simulator(from_values({}), history=math.inf)
+    sim.push_fairlead(0.0, [36.0, 0.0, 8.0])
+    sim.start(0.0)
+    settled = sim.output().fairlead_tension
+    sim.rope.v[5, 2] = math.nan
+    advance = sim.advance_to(0.5)
+    assert advance.restarted == 'non-finite state'
+    out = sim.output()
+    assert np.isfinite(out.positions).all()
+    assert out.fairlead_tension == pytest.approx(settled, rel=1e-6)
+
+
+def test_teleport_restarts_at_the_new_place():
+    sim = Simulator(from_values({'teleport_distance': 5.0}), history=math.inf)
+    sim.push_fairlead(0.0, [36.0, 0.0, 8.0])
+    sim.start(0.0)
+    sim.advance_to(1.0)
+    assert sim.push_fairlead(1.0, [36.5, 0.0, 8.0]) == ''
+    assert sim.push_fairlead(1.1, [20.0, 10.0, 8.0]) == 'teleport'
+    out = sim.output()
+    assert out.positions[-1] == pytest.approx([20.0, 10.0, 8.0])
+    assert np.linalg.norm(out.positions[0]) == pytest.approx(0.0)

@@ -1,0 +1,81 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""End trajectories: interpolation between samples, extrapolation, rejection of bad samples."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rope_sim_ros.trajectory import EndTrajectory, TrajectoryError
+
+
+def _filled(method, step=0.02):
+    trajectory = EndTrajectory(keep=math.inf, method=method)
+    for t in np.arange(0.0, 2.0 + 1e-9, step):
+        trajectory.push(float(t), [math.sin(t), 2.0 * t, 0.0])
+    return trajectory
+
+
+def test_linear_is_the_secant():
+    trajectory = _filled('linear', 0.5)
+    positions, velocities = trajectory.sample(np.array([0.25, 0.75]))
+    assert positions[0, 0] == pytest.approx(0.5 * math.sin(0.5))
+    assert velocities[0, 0] == pytest.approx(math.sin(0.5) / 0.5)
+    assert velocities[1, 1] == pytest.approx(2.0)
+
+
+def test_cubic_is_smooth_and_accurate():
+    times = np.linspace(0.1, 1.9, 500)
+    cubic, linear = _filled('cubic'), _filled('linear')
+    for trajectory, pos_tol, vel_tol in ((cubic, 2e-7, 2e-4), (linear, 6e-5, 1.1e-2)):
+        positions, velocities = trajectory.sample(times)
+        assert np.abs(positions[:, 0] - np.sin(times)).max() < pos_tol
+        assert np.abs(velocities[:, 0] - np.cos(times)).max() < vel_tol
+    # cubic velocity is continuous across a sample; linear jumps there
+    for trajectory, continuous in ((cubic, True), (linear, False)):
+        _, v = trajectory.sample(np.array([1.0 - 1e-9, 1.0 + 1e-9]))
+        assert (abs(v[1, 0] - v[0, 0]) < 1e-6) == continuous
+
+
+def test_before_first_and_past_last_sample():
+    trajectory = _filled('cubic')
+    positions, velocities = trajectory.sample(np.array([-1.0, 2.05, 10.0]))
+    assert positions[0] == pytest.approx([0.0, 0.0, 0.0])
+    assert velocities[0] == pytest.approx([0.0, 0.0, 0.0])
+    # extrapolated for 0.05 s with the last tangent, then held still
+    assert positions[1, 1] == pytest.approx(4.1)
+    assert velocities[1, 1] == pytest.approx(2.0)
+    assert positions[2, 1] == pytest.approx(4.0 + 2.0 * trajectory.extrapolation)
+    assert velocities[2] == pytest.approx([0.0, 0.0, 0.0])
+
+
+def test_bad_samples_are_refused_and_change_nothing():
+    trajectory = EndTrajectory()
+    trajectory.push(1.0, [1.0, 2.0, 3.0])
+    for t, p, message in ((2.0, [math.nan, 0, 0], 'non-finite'),
+                          (math.inf, [0, 0, 0], 'non-finite'),
+                          (1.0, [0, 0, 0], 'not after'), (0.5, [0, 0, 0], 'not after')):
+        with pytest.raises(TrajectoryError, match=message):
+            trajectory.push(t, p)
+    assert len(trajectory) == 1
+    assert trajectory.last_position == pytest.approx([1.0, 2.0, 3.0])
+
+
+def test_history_is_bounded():
+    trajectory = EndTrajectory(keep=1.0)
+    for t in np.arange(0.0, 10.0, 0.1):
+        trajectory.push(float(t), [t, 0.0, 0.0])
+    assert len(trajectory) <= 12
