@@ -96,10 +96,10 @@ def test_another_material_gives_another_finite_series(recorded, capsys):
     before, after = tensions(original), tensions(hmpe)
     assert len(before) == len(after) == 401
     assert np.isfinite(after).all() and (after > 0).all()
-    # HMPE is about four times stiffer than polyester at the same diameter: the same
-    # surge pulls it much harder.
-    assert after.max() > 1.5 * before.max()
+    # This line sags (40 m over a 36.9 m chord): its tension is set by its weight, and
+    # HMPE weighs 496 d^2 kg/m against polyester's 679 d^2.
     assert np.abs(after - before).max() > 100.0
+    assert after.mean() / before.mean() == pytest.approx(496.0 / 679.0, rel=0.03)
     for m in read_messages(hmpe, ['/rope/particles']):
         points = np.array([[p.position.x, p.position.y, p.position.z]
                            for p in deserialize(m).poses])
