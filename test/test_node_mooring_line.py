@@ -31,7 +31,7 @@ import numpy as np
 import pytest
 import rclpy
 from rclpy.executors import SingleThreadedExecutor
-from rclpy.parameter import Parameter
+from rclpy.parameter import Parameter, parameter_value_to_python
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros import params
@@ -42,6 +42,8 @@ from std_srvs.srv import Trigger
 FAIRLEAD = np.array([36.0, 0.0, 8.0])
 CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
 START_TIMEOUT = 60.0  # the first node of a fresh install compiles the kernels (~10 s)
+PARAMS_FILE = Path(__file__).resolve().parent.parent / 'config' / 'mooring_line.yaml'
+VECTORS = [name for name, spec in params.SPECS.items() if isinstance(spec.default, list)]
 
 
 # ------------------------------------------------------------------------------ helpers
@@ -207,8 +209,7 @@ def all_finite(client: Client) -> bool:
 
 
 def default_line() -> params.LineParams:
-    return params.load_params(Path(__file__).resolve().parent.parent / 'config' /
-                              'mooring_line.yaml')
+    return params.load_params(PARAMS_FILE)
 
 
 def chain_at(fairlead) -> catenary.ChainEquilibrium:
@@ -246,6 +247,14 @@ def line_node(colcon_install, colcon_env, tmp_path_factory):
 
 
 # --------------------------------------------------------------------------------- tests
+
+
+def test_params_file_sets_every_parameter_to_its_default():
+    values = params.read_params_file(PARAMS_FILE)
+    assert set(values) == set(params.SPECS), set(values) ^ set(params.SPECS)
+    assert {k: v for k, v in values.items() if v != params.SPECS[k].default} == {}
+    text = PARAMS_FILE.read_text()
+    assert '/**/mooring_line:' in text  # reaches the node in any namespace
 
 
 def test_static_fairlead_gives_catenary_tension(line_node):
@@ -330,6 +339,12 @@ def test_parameters(line_node):
     for name, spec in params.SPECS.items():
         assert descriptors[name].read_only == spec.read_only, name
         assert spec.unit in descriptors[name].description
+    # the parameter file reached the node in its namespace: every value is the file's
+    values = client.call(client.parameters.get_parameters(list(params.SPECS))).values
+    in_file = params.read_params_file(PARAMS_FILE)
+    for name, value in zip(params.SPECS, values):
+        got = parameter_value_to_python(value)
+        assert (list(got) if name in VECTORS else got) == in_file[name], name
     assert descriptors['max_strain'].floating_point_range[0].to_value == 10.0
     assert descriptors['segments'].integer_range[0].from_value == 2
     assert 'polyester' in descriptors['material'].additional_constraints

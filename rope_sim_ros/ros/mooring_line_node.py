@@ -18,14 +18,17 @@ ROS glue only. Parameters (params.SPECS) become ParameterDescriptors and then a 
 pose messages become end samples; a timer advances the simulator and publishes its output.
 
 Time: the rope follows the node clock, so use_sim_time and /clock work. Each tick advances
-it to now, but never past the newest sample of an end whose pose stream is live: the end is
-then interpolated between stamped samples exactly as the offline runner does, instead of
-extrapolated and pulled back when the next sample arrives (on a stiff line that jerk costs
-as much tension noise as the motion itself). When a stream falls silent for LIVE_INPUT
-seconds the end holds (after a short extrapolation) and the rope goes on to now.
+it to now, but while an end's pose stream is live never past that end's second-newest
+sample: how an end moves up to a sample depends on the sample after it (the side of the
+secant at the sample instant, the spline's tangent there), so one sample ahead the ends
+move exactly as in the offline runner, which knows the whole motion. Running ahead instead
+(extrapolating, then pulling the end back when the next pose arrives) costs a stiff line as
+much tension noise as the motion itself. When a stream falls silent for LIVE_INPUT seconds
+the end holds (after a short extrapolation) and the rope goes on to now.
 """
 
 import array
+from collections import deque
 import math
 from typing import Any, Dict, List, Optional
 
@@ -151,6 +154,8 @@ class MooringLineNode(Node):
             raise StartupError(str(e)) from None
         self._epoch_ns: Optional[int] = None  # stamp of the first pose: simulator time 0
         self._levers = {'fairlead': np.zeros(3), 'bollard': np.zeros(3)}
+        # times [s] of the two newest accepted samples of each end
+        self._recent = {'fairlead': deque(maxlen=2), 'bollard': deque(maxlen=2)}
         self._fresh = False  # publish the next state even if time did not advance
 
         qos = QoSProfile(depth=50)
@@ -173,7 +178,8 @@ class MooringLineNode(Node):
         self.get_logger().info(
             f'{line.material} line, {line.diameter * 1e3:g} mm, {props.length:g} m, '
             f'{props.segments} segments, MBL {self.simulator.material.mbl / 1e3:.0f} kN, '
-            f'time step {self.simulator.time_step * 1e3:.4f} ms; waiting for the first pose '
+            f'{line.integrator} step {self.simulator.time_step * 1e3:.4g} ms; waiting for the '
+            'first pose '
             f'on {self._fairlead_sub.topic_name}')
 
     # -- parameters ---------------------------------------------------------------------
@@ -256,6 +262,9 @@ class MooringLineNode(Node):
             self._drop('fairlead/pose', e)
             return
         self._levers['fairlead'] = end.lever
+        if event == 'teleport':
+            self._recent['fairlead'].clear()
+        self._recent['fairlead'].append(t)
         if not self.simulator.started:
             self.simulator.start(t)
             self._fresh = True
@@ -280,6 +289,7 @@ class MooringLineNode(Node):
             self._drop('bollard/pose', e)
             return
         self._levers['bollard'] = end.lever
+        self._recent['bollard'].append(t)
 
     def _sample(self, topic: str, msg: PoseStamped, offset) -> Optional[tuple]:
         """Return (time [s], PosePoint) of a pose message, or None if it was dropped."""
@@ -326,11 +336,14 @@ class MooringLineNode(Node):
         return (ns - self._epoch_ns) * 1e-9
 
     def _target_time(self, now: float) -> float:
-        """Now, but not past the newest sample of a live pose stream (module docstring)."""
+        """Return now, but not past the second-newest sample of a live pose stream.
+
+        See the module docstring; a stream with a single sample so far holds at it.
+        """
         target = now
-        for end in (self.simulator.fairlead, self.simulator.bollard):
-            if len(end) and now - end.last_time <= self.LIVE_INPUT:
-                target = min(target, end.last_time)
+        for recent in self._recent.values():
+            if recent and now - recent[-1] <= self.LIVE_INPUT:
+                target = min(target, recent[0])
         return target
 
     def _on_tick(self) -> None:
@@ -364,6 +377,8 @@ class MooringLineNode(Node):
             'fairlead pose to restart the rope')
         self.simulator = self._new_simulator(self.simulator.params)
         self._epoch_ns = None
+        for recent in self._recent.values():
+            recent.clear()
 
     def _on_reset(self, request: Trigger.Request, response: Trigger.Response):
         if not self.simulator.started:
