@@ -48,27 +48,38 @@ class EndTrajectory:
         self.extrapolation = extrapolation
         self.method = method
         self.keep = keep
-        self._t = np.empty(0)
-        self._p = np.empty((0, 3))
+        # samples live in [_first, _count) of arrays that grow by doubling: a push at 1 kHz
+        # must not copy the whole history
+        self._times = np.empty(64)
+        self._points = np.empty((64, 3))
+        self._first = 0
+        self._count = 0
+
+    @property
+    def _t(self) -> np.ndarray:
+        return self._times[self._first:self._count]
+
+    @property
+    def _p(self) -> np.ndarray:
+        return self._points[self._first:self._count]
 
     def __len__(self) -> int:
         """Number of buffered samples."""
-        return len(self._t)
+        return self._count - self._first
 
     @property
     def last_time(self) -> float:
         """Stamp of the newest sample [s] (-inf when empty)."""
-        return float(self._t[-1]) if len(self._t) else -math.inf
+        return float(self._times[self._count - 1]) if len(self) else -math.inf
 
     @property
     def last_position(self):
         """Newest sample position, or None."""
-        return self._p[-1].copy() if len(self._t) else None
+        return self._points[self._count - 1].copy() if len(self) else None
 
     def clear(self) -> None:
         """Forget every sample."""
-        self._t = np.empty(0)
-        self._p = np.empty((0, 3))
+        self._first = self._count = 0
 
     def push(self, t: float, position) -> None:
         """Append a sample.
@@ -79,13 +90,27 @@ class EndTrajectory:
         p = np.asarray(position, dtype=float).reshape(3)
         if not (math.isfinite(t) and np.isfinite(p).all()):
             raise TrajectoryError(f'non-finite sample at t={t}: {p.tolist()}')
-        if len(self._t) and t <= self._t[-1]:
+        if len(self) and t <= self.last_time:
             raise TrajectoryError(
-                f'sample at t={t:.6f} s is not after the newest one ({self._t[-1]:.6f} s)')
-        old = self._t < t - self.keep
-        old[-1:] = False  # always keep one sample to interpolate from
-        self._t = np.append(self._t[~old], t)
-        self._p = np.vstack([self._p[~old], p])
+                f'sample at t={t:.6f} s is not after the newest one ({self.last_time:.6f} s)')
+        # forget what is older than `keep`, always keeping one sample to interpolate from
+        while self._count - self._first > 1 and self._times[self._first + 1] < t - self.keep:
+            self._first += 1
+        if self._count == len(self._times):
+            self._make_room()
+        self._times[self._count] = t
+        self._points[self._count] = p
+        self._count += 1
+
+    def _make_room(self) -> None:
+        """Move the live samples to the front, doubling the arrays if they are half full."""
+        live = self._count - self._first
+        size = len(self._times) * (2 if 2 * live >= len(self._times) else 1)
+        times, points = np.empty(size), np.empty((size, 3))
+        times[:live] = self._times[self._first:self._count]
+        points[:live] = self._points[self._first:self._count]
+        self._times, self._points = times, points
+        self._first, self._count = 0, live
 
     def sample(self, times: np.ndarray) -> tuple:
         """Positions and velocities at `times`, shapes (n, 3) each.

@@ -1,0 +1,335 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Speed and accuracy of this model against MoorDyn, side by side, in one run.
+
+The reference dynamic case of ../shared/reference (a 40 m line in air, bollard at the
+origin, fairlead at (36, 0, 8) surging 2 m along the chord with a 10 s period after a 10 s
+ramp), for polyester (the reference), steel wire (d 40 mm, EA 1e8) and HMPE (MoorPy 48 mm),
+N = 20, 50, 100. Both models get the same motion: MoorDyn is stepped every 1 ms through its
+Python API with the secant velocity (how the reference was made); this model receives the
+same 1 ms samples and advances in 10 ms outputs. Reported per run: the time step, wall
+seconds per simulated second, real-time factor, the ratio of real-time factors (ours /
+MoorDyn's), and the NRMSE of the fairlead force against MoorDyn's over t = 10..60 s
+(RMS difference / RMS of MoorDyn's force about its mean). MoorDyn's initial-condition solve
+is timed apart and not counted.
+
+Then, with no peer: every preset at N = 50 (the default integrator), eight lines of an
+arrangement stepped in one process at 100 Hz output, and the snap load of a jerked end.
+
+    python benchmarks/physics_vs_moordyn.py [--duration 60] [--segments 20 50 100]
+"""
+
+import argparse
+import contextlib
+import math
+import os
+from pathlib import Path
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+from rope_sim_ros.params import from_values, MATERIALS
+from rope_sim_ros.physics.rope import critical_axial_damping
+from rope_sim_ros.simulator import load_materials, Simulator
+
+FAIRLEAD = np.array([36.0, 0.0, 8.0])
+CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
+LENGTH = 40.0
+AIR = 1.225
+GRAVITY = 9.81
+COUPLING = 0.001
+OUTPUT = 0.01
+
+
+def _case(name):
+    """Diameter, mass per length, EA and BA of a benchmark line."""
+    if name == 'polyester':
+        return 0.064, 2.6, 5.0e7, 2903.43
+    if name == 'wire':
+        return 0.040, 6.5, 1.0e8, 6492.27
+    props = load_materials().properties('hmpe', 0.048)
+    ba = critical_axial_damping(LENGTH, props.mass_per_length, props.axial_stiffness)
+    return 0.048, props.mass_per_length, props.axial_stiffness, ba
+
+
+def fairlead_motion(t):
+    """The reference motion: 2 m along the chord, 10 s period, 10 s cosine ramp."""
+    t = np.asarray(t, dtype=float)
+    ramp = np.where(t < 10.0, 0.5 * (1.0 - np.cos(np.pi * t / 10.0)), 1.0)
+    return FAIRLEAD + (2.0 * np.sin(2.0 * np.pi * t / 10.0) * ramp)[..., None] * CHORD
+
+
+def run_ours(case, segments, integrator, duration):
+    """Fairlead force magnitudes at 100 Hz, wall seconds and the step of this model."""
+    diameter, mass, ea, ba = _case(case)
+    weight = (mass - AIR * math.pi / 4.0 * diameter ** 2) * GRAVITY  # in air, as MoorDyn
+    params = from_values(dict(
+        segments=segments, length=LENGTH, mass_per_length=weight / GRAVITY,
+        axial_stiffness=ea, axial_damping=ba, bending_stiffness_ratio=0.0,
+        bending_damping_ratio=0.0, integrator=integrator, gravity=[0.0, 0.0, -GRAVITY]))
+    sim = Simulator(params, output_interval=OUTPUT)
+    samples = np.arange(0.0, duration + 2 * COUPLING, COUPLING)
+    positions = fairlead_motion(samples)
+    outputs = np.arange(OUTPUT, duration + 1e-9, OUTPUT)
+    sim.push_fairlead(0.0, positions[0])
+    sim.start(0.0)
+    force = np.empty(len(outputs))
+    pushed = 1
+    start = time.perf_counter()
+    for k, t in enumerate(outputs):
+        # samples arrive as in a live stream: up to one coupling step ahead of the output
+        while pushed < len(samples) and samples[pushed] <= t + COUPLING + 1e-12:
+            sim.push_fairlead(samples[pushed], positions[pushed])
+            pushed += 1
+        sim.advance_to(t)
+        force[k] = sim.output().fairlead_tension
+    return force, time.perf_counter() - start, sim.time_step
+
+
+MOORDYN_INPUT = """--------------------- MoorDyn Input File ------------------------------------
+benchmark line in air (rope_sim_ros benchmarks/physics_vs_moordyn.py)
+----------------------- LINE TYPES ------------------------------------------
+TypeName   Diam     Mass/m     EA         BA/-zeta    EI         Cd     Ca     CdAx    CaAx
+(name)     (m)      (kg/m)     (N)        (N-s/-)     (N-m^2)    (-)    (-)    (-)     (-)
+line       {d}      {m}        {ea}       {ba}        0.0        1.2    1      0.008   0
+---------------------- POINT PROPERTIES --------------------------------
+ID    Type      X       Y       Z       Mass    Volume      CdA    Ca
+(#)   (-)       (m)     (m)     (m)     (kg)    (m^3)       (m^2)  (-)
+1     Coupled   0.0     0.0     -100    0.0     0.0         0.0    0.0
+2     Coupled   36      0.0     -92     0.0     0.0         0.0    0.0
+---------------------- LINES ----------------------------------------
+ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)  (name)     (#)      (#)      (m)       (-)      (-)
+1    line       1        2        40        {n}      -
+---------------------- OPTIONS -----------------------------------------
+0             writeLog      no log file
+{dtm}         dtM           coupling/model time step (s)
+9.81          g             gravity (m/s^2)
+1.225         WtrDnsty      fluid density: air (kg/m^3)
+1000          WtrDpth       depth (m): seabed far below the line
+RK2           tScheme       time integration scheme (MoorDyn default)
+1             ICgenDynamic  1 = legacy dynamic relaxation IC
+1000          CdScaleIC     drag scale factor during IC
+60            TmaxIC        max IC time (s)
+1             dtIC          IC convergence interval (s)
+1e-07         threshIC      IC convergence threshold (-)
+1             disableOutput no console output while stepping
+1             disableOutTime no console time print
+------------------------- need this line --------------------------------------
+"""
+
+
+def moordyn_step(case, segments):
+    """MoorDyn's RK2 step: a quarter of the axial wave's crossing time of a segment.
+
+    Its automatic (CFL) step blew up on these stiff lines (reference/README.md); a quarter
+    of l0 sqrt(m/EA) matches the largest stable steps found there, rounded down.
+    """
+    _, mass, ea, _ = _case(case)
+    step = 0.25 * LENGTH / segments * math.sqrt(mass / ea)
+    return float(f'{step:.0e}') if f'{step:.0e}'[0] == '1' else float(f'{step:.1e}')
+
+
+@contextlib.contextmanager
+def _quiet():
+    """Silence MoorDyn's console output (it prints from C++, below sys.stdout)."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with open(os.devnull, 'w') as null:
+        os.dup2(null.fileno(), 1)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
+
+
+def run_moordyn(case, segments, duration):
+    """Fairlead force magnitudes at 100 Hz, stepping and init wall seconds, dtM."""
+    import moordyn  # a benchmark dependency only
+    diameter, mass, ea, ba = _case(case)
+    dtm = moordyn_step(case, segments)
+    offset = np.array([0.0, 0.0, -100.0])
+    with tempfile.TemporaryDirectory() as folder, _quiet():
+        path = Path(folder) / 'line.txt'
+        path.write_text(MOORDYN_INPUT.format(d=diameter, m=mass, ea=ea, ba=ba, n=segments,
+                                             dtm=dtm))
+        system = moordyn.Create(str(path))
+        start = time.perf_counter()
+        moordyn.Init(system, list(offset) + list(FAIRLEAD + offset), [0.0] * 6)
+        init = time.perf_counter() - start
+    steps = int(round(duration / COUPLING))
+    per_output = int(round(OUTPUT / COUPLING))
+    positions = fairlead_motion(np.arange(steps + 1) * COUPLING) + offset
+    force = np.empty(steps // per_output)
+    start = time.perf_counter()
+    for k in range(steps):
+        velocity = (positions[k + 1] - positions[k]) / COUPLING
+        # MoorDyn moves a coupled point from the position given with the velocity given
+        f = moordyn.Step(system, list(offset) + list(positions[k]),
+                         [0.0, 0.0, 0.0] + list(velocity), k * COUPLING, COUPLING)
+        if (k + 1) % per_output == 0:
+            force[(k + 1) // per_output - 1] = math.sqrt(f[3] ** 2 + f[4] ** 2 + f[5] ** 2)
+    wall = time.perf_counter() - start
+    moordyn.Close(system)
+    return force, wall, init, dtm
+
+
+def nrmse(series, reference):
+    """RMS difference over the RMS of the reference about its mean."""
+    return float(np.sqrt(np.mean((series - reference) ** 2)) / np.std(reference))
+
+
+def compare(duration, segment_counts):
+    """The table against MoorDyn."""
+    print(f'## This model vs MoorDyn 2.7.2, {duration:g} s of the reference motion, one core')
+    print()
+    print('| line | N | model | step [s] | wall s / sim s | real-time factor | '
+          'vs MoorDyn | NRMSE vs MoorDyn |')
+    print('|---|---|---|---|---|---|---|---|')
+    window = slice(int(round(10.0 / OUTPUT)) - 1, None)
+    for case in ('polyester', 'wire', 'hmpe'):
+        for segments in segment_counts:
+            md_force, md_wall, md_init, dtm = run_moordyn(case, segments, duration)
+            md_rtf = duration / md_wall
+            print(f'| {case} | {segments} | MoorDyn RK2 (init {md_init:.1f} s) | {dtm:.0e} | '
+                  f'{md_wall / duration:.4f} | {md_rtf:.1f} | 1.0 | - |', flush=True)
+            for integrator in ('improved_euler', 'implicit_euler'):
+                force, wall, dt = run_ours(case, segments, integrator, duration)
+                rtf = duration / wall
+                error = nrmse(force[window], md_force[window])
+                print(f'| {case} | {segments} | {integrator} | {dt:.1e} | '
+                      f'{wall / duration:.4f} | {rtf:.1f} | {rtf / md_rtf:.1f}x | '
+                      f'{100 * error:.2f} % |', flush=True)
+    print()
+
+
+def surge_params(material, segments=50):
+    """A preset at 64 mm with the default integrator."""
+    return from_values(dict(material=material, segments=segments))
+
+
+def run_surge(sims, duration):
+    """Drive simulators with a 2 m, 8 s surge at 100 Hz; return CPU seconds spent."""
+    samples = np.arange(0.0, duration + 0.05, 0.02)
+    surge = 2.0 * np.sin(2.0 * np.pi * samples / 8.0) * np.minimum(samples / 8.0, 1.0)
+    for sim, fairlead in sims:
+        sim.push_fairlead(0.0, fairlead)
+        sim.start(0.0)
+    pushed = 1
+    cpu = time.process_time()
+    for t in np.arange(OUTPUT, duration + 1e-9, OUTPUT):
+        while pushed < len(samples) and samples[pushed] <= t + 0.02:
+            for sim, fairlead in sims:
+                sim.push_fairlead(samples[pushed], fairlead + [surge[pushed], 0.0, 0.0])
+            pushed += 1
+        for sim, _ in sims:
+            sim.advance_to(t)
+            sim.output()
+    return time.process_time() - cpu
+
+
+def presets(duration):
+    """Real-time factor of every preset at N = 50."""
+    print(f'## Every preset at N = 50 (64 mm, default integrator), {duration:g} s surge, '
+          '100 Hz output')
+    print()
+    print('| material | step [s] | CPU s / sim s | real-time factor |')
+    print('|---|---|---|---|')
+    for material in MATERIALS:
+        sim = Simulator(surge_params(material), output_interval=OUTPUT)
+        cpu = run_surge([(sim, FAIRLEAD)], duration)
+        print(f'| {material} | {sim.time_step:.1e} | {cpu / duration:.4f} | '
+              f'{duration / cpu:.0f} |', flush=True)
+    print()
+
+
+ARRANGEMENT = (  # (name, material, bollard, fairlead): one ship's lines, 50 segments each
+    ('head line', 'polyester', (-60.0, 20.0, 2.0), (-40.0, 8.0, 8.0)),
+    ('forward breast', 'nylon', (-20.0, 25.0, 2.0), (-20.0, 8.0, 8.0)),
+    ('forward spring', 'hmpe', (-5.0, 22.0, 2.0), (-30.0, 8.0, 8.0)),
+    ('forward spring 2', 'steel_wire', (0.0, 22.0, 2.0), (-25.0, 8.0, 8.0)),
+    ('aft spring', 'hmpe', (5.0, 22.0, 2.0), (30.0, 8.0, 8.0)),
+    ('aft spring 2', 'steel_wire', (0.0, 22.0, 2.0), (25.0, 8.0, 8.0)),
+    ('aft breast', 'nylon', (20.0, 25.0, 2.0), (20.0, 8.0, 8.0)),
+    ('stern line', 'polyester', (60.0, 20.0, 2.0), (40.0, 8.0, 8.0)),
+)
+
+
+def arrangement(duration):
+    """Eight lines of one ship in one process."""
+    sims = []
+    for _, material, bollard, fairlead in ARRANGEMENT:
+        chord = np.linalg.norm(np.subtract(fairlead, bollard))
+        params = from_values(dict(material=material, segments=50, length=1.02 * chord,
+                                  bollard_position=list(bollard)))
+        sims.append((Simulator(params, output_interval=OUTPUT), np.array(fairlead)))
+    cpu = run_surge(sims, duration)
+    print(f'## Arrangement: 8 lines x 50 segments (2 each of polyester, nylon, HMPE, wire), '
+          f'{duration:g} s surge, 100 Hz output')
+    print()
+    print(f'CPU: {100 * cpu / duration:.1f} % of one core '
+          f'({cpu:.2f} CPU s for {duration:g} s simulated; goal < 25 %)')
+    print()
+
+
+def snap_load():
+    """Peak tension of a jerked end: each integrator against the converged explicit one."""
+    print('## Snap load: a slack 40 m polyester line (N 50) jerked 1.5 m taut in 0.2 s')
+    print()
+    print('| integrator | step [s] | peak fairlead tension [N] | vs converged |')
+    print('|---|---|---|---|')
+    rows = []
+    for integrator, step in (('improved_euler', 0.0), ('improved_euler', 2e-5),
+                             ('implicit_euler', 0.0), ('implicit_euler', 0.001),
+                             ('implicit_euler', 0.0002)):
+        params = from_values(dict(material='polyester', segments=50, integrator=integrator,
+                                  time_step=step))
+        sim = Simulator(params)
+        for t, x in ((0.0, 38.0), (0.5, 38.0), (0.7, 39.5), (3.0, 39.5)):
+            sim.push_fairlead(t, [x, 0.0, 0.0])
+        sim.start(0.0)
+        peak = 0.0
+        for t in np.arange(0.001, 2.0, 0.001):
+            sim.advance_to(t)
+            peak = max(peak, sim.output().fairlead_tension)
+        rows.append((integrator, sim.time_step, peak))
+    converged = rows[1][2]
+    for integrator, step, peak in rows:
+        print(f'| {integrator} | {step:.1e} | {peak:.0f} | {100 * (peak / converged - 1):+.1f} % |')
+    print()
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--duration', type=float, default=60.0)
+    parser.add_argument('--segments', type=int, nargs='+', default=[20, 50, 100])
+    parser.add_argument('--skip-moordyn', action='store_true')
+    args = parser.parse_args()
+    os.environ.setdefault('NUMBA_NUM_THREADS', '1')
+    # compile every kernel before timing anything
+    run_ours('polyester', 20, 'improved_euler', 0.05)
+    run_ours('polyester', 20, 'implicit_euler', 0.05)
+    if not args.skip_moordyn:
+        compare(args.duration, args.segments)
+    presets(args.duration)
+    arrangement(args.duration)
+    snap_load()
+
+
+if __name__ == '__main__':
+    main()
