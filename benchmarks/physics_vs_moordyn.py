@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Speed and accuracy of this model against MoorDyn, side by side, in one run.
+"""
+Speed and accuracy of this model against MoorDyn, side by side, in one run.
 
 The reference dynamic case of ../shared/reference (a 40 m line in air, bollard at the
 origin, fairlead at (36, 0, 8) surging 2 m along the chord with a 10 s period after a 10 s
@@ -67,7 +68,7 @@ def _case(name):
 
 
 def fairlead_motion(t):
-    """The reference motion: 2 m along the chord, 10 s period, 10 s cosine ramp."""
+    """Return the reference motion: 2 m along the chord, 10 s period, 10 s ramp."""
     t = np.asarray(t, dtype=float)
     ramp = np.where(t < 10.0, 0.5 * (1.0 - np.cos(np.pi * t / 10.0)), 1.0)
     return FAIRLEAD + (2.0 * np.sin(2.0 * np.pi * t / 10.0) * ramp)[..., None] * CHORD
@@ -134,7 +135,8 @@ RK2           tScheme       time integration scheme (MoorDyn default)
 
 
 def moordyn_step(case, segments):
-    """MoorDyn's RK2 step: a quarter of the axial wave's crossing time of a segment.
+    """
+    Choose the RK2 step of MoorDyn: a quarter of an axial wave's segment crossing time.
 
     Its automatic (CFL) step blew up on these stiff lines (reference/README.md); a quarter
     of l0 sqrt(m/EA) matches the largest stable steps found there, rounded down.
@@ -195,7 +197,7 @@ def nrmse(series, reference):
 
 
 def compare(duration, segment_counts):
-    """The table against MoorDyn."""
+    """Print the table against MoorDyn."""
     print(f'## This model vs MoorDyn 2.7.2, {duration:g} s of the reference motion, one core')
     print()
     print('| line | N | model | step [s] | wall s / sim s | real-time factor | '
@@ -219,7 +221,7 @@ def compare(duration, segment_counts):
 
 
 def surge_params(material, segments=50):
-    """A preset at 64 mm with the default integrator."""
+    """Make a preset line at 64 mm with the default integrator."""
     return from_values(dict(material=material, segments=segments))
 
 
@@ -310,7 +312,8 @@ def snap_load():
         rows.append((integrator, sim.time_step, peak))
     converged = rows[1][2]
     for integrator, step, peak in rows:
-        print(f'| {integrator} | {step:.1e} | {peak:.0f} | {100 * (peak / converged - 1):+.1f} % |')
+        change = 100.0 * (peak / converged - 1.0)
+        print(f'| {integrator} | {step:.1e} | {peak:.0f} | {change:+.1f} % |')
     print()
 
 

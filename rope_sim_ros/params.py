@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The line's parameters: one table shared by the ROS node, the offline runner and the tests.
+"""
+The line's parameters: one table shared by the ROS node, the offline runner and the tests.
 
 Every parameter has a name, a default, a unit, a description and an allowed range. The node
 turns the table into ParameterDescriptors; the runner reads the same keys from the standard
@@ -38,16 +39,16 @@ class ParameterError(ValueError):
 
 @dataclass(frozen=True)
 class Spec:
-    """How one parameter may be set.
+    """
+    How one parameter may be set.
 
-    Attributes:
-        default: value when the user gives none; its type is the parameter's type.
-        unit: SI unit, '' when dimensionless.
-        description: one line for `ros2 param describe` and the README.
-        low / high: inclusive bounds for numbers (None = unbounded).
-        low_open: the lower bound itself is not allowed (e.g. length > 0).
-        choices: allowed strings.
-        read_only: a change needs a restart (the node refuses it at run time).
+    :ivar default: value when the user gives none; its type is the parameter's type.
+    :ivar unit: SI unit, '' when dimensionless.
+    :ivar description: one line for `ros2 param describe` and the README.
+    :ivar low / high: inclusive bounds for numbers (None = unbounded).
+    :ivar low_open: the lower bound itself is not allowed (e.g. length > 0).
+    :ivar choices: allowed strings.
+    :ivar read_only: a change needs a restart (the node refuses it at run time).
     """
 
     default: Any
@@ -130,11 +131,11 @@ def _describe_range(name: str, spec: Spec) -> str:
 
 
 def check(name: str, value: Any) -> Any:
-    """Validate one parameter value and return it in its canonical type.
+    """
+    Validate one parameter value and return it in its canonical type.
 
-    Raises:
-        ParameterError: unknown name, wrong type, non-finite or out of range; the message
-            names the parameter and what is allowed.
+    :raises ParameterError: unknown name, wrong type, non-finite or out of range; the message
+        names the parameter and what is allowed.
     """
     if name not in SPECS:
         raise ParameterError(
@@ -208,10 +209,10 @@ class LineParams:
     record_path: str = SPECS['record_path'].default
 
     def with_values(self, values: Mapping[str, Any]) -> 'LineParams':
-        """Return a copy with `values` validated and applied.
+        """
+        Return a copy with `values` validated and applied.
 
-        Raises:
-            ParameterError: the first bad value, named.
+        :raises ParameterError: the first bad value, named.
         """
         return replace(self, **{k: check(k, v) for k, v in values.items()})
 
@@ -221,18 +222,18 @@ class LineParams:
 
 
 def from_values(values: Mapping[str, Any]) -> LineParams:
-    """Validated parameters from a {name: value} map (defaults for the rest)."""
+    """Validate a {name: value} map into parameters (defaults for the rest)."""
     return LineParams().with_values(values)
 
 
 def read_params_file(path, node_name: str = NODE_NAME) -> dict:
-    """The `ros__parameters` of `node_name` in a ROS 2 parameter YAML file.
+    """
+    Read the `ros__parameters` of `node_name` from a ROS 2 parameter YAML file.
 
     Accepts the node name with or without a namespace and the `/**` wildcard, as the ROS
     parameter file format does.
 
-    Raises:
-        ParameterError: unreadable file or no parameters for the node.
+    :raises ParameterError: unreadable file or no parameters for the node.
     """
     try:
         with open(path, encoding='utf-8') as f:
@@ -256,7 +257,7 @@ def read_params_file(path, node_name: str = NODE_NAME) -> dict:
 
 
 def load_params(path, overrides: Optional[Mapping[str, Any]] = None) -> LineParams:
-    """Validated parameters from a parameter file, with optional overrides on top."""
+    """Read and validate a parameter file, with optional overrides on top."""
     values = read_params_file(path)
     values.update(overrides or {})
     return from_values(values)

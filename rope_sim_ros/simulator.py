@@ -12,8 +12,10 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Drives a Rope through time from end trajectories: the one simulator of the node, the
-offline runner and the tests.
+"""
+Drive a Rope through time from end trajectories.
+
+The one simulator of the node, the offline runner and the tests.
 
 Data flows one way: end samples -> trajectories -> fixed substeps -> rope state -> outputs.
 """
@@ -55,7 +57,7 @@ def _ament_prefixes() -> list:
 
 
 def load_materials() -> MaterialLibrary:
-    """The material presets of config/materials.yaml."""
+    """Load the material presets of config/materials.yaml."""
     return MaterialLibrary.from_file(default_config_dir() / 'materials.yaml')
 
 
@@ -77,14 +79,14 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
 
 @dataclass(frozen=True)
 class Output:
-    """What the line looks like at one instant.
+    """
+    What the line looks like at one instant.
 
-    Attributes:
-        t: state time [s].
-        positions: particles (N+1, 3) [m], bollard first.
-        fairlead_force: force of the line on the fairlead (3,) [N].
-        bollard_force: force of the line on the bollard (3,) [N].
-        max_strain: largest structural spring strain.
+    :ivar t: state time [s].
+    :ivar positions: particles (N+1, 3) [m], bollard first.
+    :ivar fairlead_force: force of the line on the fairlead (3,) [N].
+    :ivar bollard_force: force of the line on the bollard (3,) [N].
+    :ivar max_strain: largest structural spring strain.
     """
 
     t: float
@@ -106,12 +108,12 @@ class Output:
 
 @dataclass(frozen=True)
 class Advance:
-    """What one advance_to call did.
+    """
+    What one advance_to call did.
 
-    Attributes:
-        steps: substeps taken.
-        lag: how far the state time is behind the requested time [s].
-        restarted: why the rope was restarted ('' when it was not).
+    :ivar steps: substeps taken.
+    :ivar lag: how far the state time is behind the requested time [s].
+    :ivar restarted: why the rope was restarted ('' when it was not).
     """
 
     steps: int
@@ -125,20 +127,19 @@ class Simulator:
     def __init__(self, params: LineParams, materials: Optional[MaterialLibrary] = None,
                  output_interval: float = 0.0, compiled: bool = True,
                  history: float = 5.0):
-        """Build the line; the rope is placed by start().
+        """
+        Build the line; the rope is placed by start().
 
-        Args:
-            params: validated parameters.
-            materials: presets (default: config/materials.yaml).
-            output_interval: if > 0, the automatic step is shortened to divide it, so that
-                outputs fall on step times.
-            compiled: step with the numba kernels (False: the numpy reference path).
-            history: seconds of end samples kept behind the newest (math.inf offline, where
-                a whole motion is pushed before the first step).
+        :param params: validated parameters.
+        :param materials: presets (default: config/materials.yaml).
+        :param output_interval: if > 0, the automatic step is shortened to divide it, so that
+            outputs fall on step times.
+        :param compiled: step with the numba kernels (False: the numpy reference path).
+        :param history: seconds of end samples kept behind the newest (math.inf offline, where
+            a whole motion is pushed before the first step).
 
-        Raises:
-            ParameterError / MaterialError / ValueError: the line cannot be built; the
-                message says why.
+        :raises ParameterError / MaterialError / ValueError: the line cannot be built; the
+            message says why.
         """
         self.params = params
         self.material = (materials or load_materials()).properties(
@@ -163,7 +164,7 @@ class Simulator:
 
     @property
     def started(self) -> bool:
-        """True once the rope has been placed."""
+        """Tell whether the rope has been placed."""
         return self.rope is not None
 
     def update(self, values: dict) -> None:
@@ -178,10 +179,10 @@ class Simulator:
     # -- inputs -------------------------------------------------------------------------
 
     def push_fairlead(self, t: float, position) -> str:
-        """Add a fairlead sample; return 'teleport' if it restarted the rope, else ''.
+        """
+        Add a fairlead sample; return 'teleport' if it restarted the rope, else ''.
 
-        Raises:
-            TrajectoryError: non-finite or not newer than the last sample (state unchanged).
+        :raises TrajectoryError: non-finite or not newer than the last sample (state unchanged).
         """
         last = self.fairlead.last_position
         self.fairlead.push(t, position)
@@ -211,10 +212,10 @@ class Simulator:
     # -- time ---------------------------------------------------------------------------
 
     def start(self, t: float, shape: Optional[np.ndarray] = None) -> None:
-        """Place the rope at rest at time t: in equilibrium between the ends, or at `shape`.
+        """
+        Place the rope at rest at time t: in equilibrium between the ends, or at `shape`.
 
-        Raises:
-            TrajectoryError: no fairlead sample yet.
+        :raises TrajectoryError: no fairlead sample yet.
         """
         if not len(self.fairlead):
             raise TrajectoryError('cannot start the rope before the first fairlead sample')
@@ -234,7 +235,8 @@ class Simulator:
         self.time = t
 
     def advance_to(self, t: float, max_steps: Optional[int] = None) -> Advance:
-        """Advance the rope in fixed substeps up to t (at most max_steps of them).
+        """
+        Advance the rope in fixed substeps up to t (at most max_steps of them).
 
         A state that turns non-finite is never kept: the rope restarts on the catenary.
         """
@@ -278,7 +280,7 @@ class Simulator:
         self.time = t
 
     def output(self) -> Output:
-        """The current state: particles, end forces and the largest strain."""
+        """Return the current state: particles, end forces and the largest strain."""
         rope = self.rope
         if self.compiled:
             forces = np.empty((2, 3))

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Timestamped positions of one rope end, interpolated between samples.
+"""
+Timestamped positions of one rope end, interpolated between samples.
 
 'linear' interpolation moves the end on the secant of each interval (the velocity jumps at
 every sample); 'cubic' uses a Catmull-Rom Hermite spline, whose velocity is continuous.
@@ -37,13 +38,13 @@ class EndTrajectory:
 
     def __init__(self, extrapolation: float = 0.1, keep: float = 5.0,
                  method: str = 'linear'):
-        """Create an empty trajectory.
+        """
+        Create an empty trajectory.
 
-        Args:
-            extrapolation: how long [s] to move on with the last velocity past the newest
-                sample before holding.
-            keep: how much history [s] to keep behind the newest sample.
-            method: 'linear' or 'cubic'.
+        :param extrapolation: how long [s] to move on with the last velocity past the newest
+            sample before holding.
+        :param keep: how much history [s] to keep behind the newest sample.
+        :param method: 'linear' or 'cubic'.
         """
         self.extrapolation = extrapolation
         self.method = method
@@ -64,7 +65,7 @@ class EndTrajectory:
         return self._points[self._first:self._count]
 
     def __len__(self) -> int:
-        """Number of buffered samples."""
+        """Count the buffered samples."""
         return self._count - self._first
 
     @property
@@ -82,10 +83,10 @@ class EndTrajectory:
         self._first = self._count = 0
 
     def push(self, t: float, position) -> None:
-        """Append a sample.
+        """
+        Append a sample.
 
-        Raises:
-            TrajectoryError: non-finite time or position, or t not after the newest sample.
+        :raises TrajectoryError: non-finite time or position, or t not after the newest sample.
         """
         p = np.asarray(position, dtype=float).reshape(3)
         if not (math.isfinite(t) and np.isfinite(p).all()):
@@ -113,7 +114,8 @@ class EndTrajectory:
         self._first, self._count = 0, live
 
     def sample(self, times: np.ndarray) -> tuple:
-        """Positions and velocities at `times`, shapes (n, 3) each.
+        """
+        Positions and velocities at `times`, shapes (n, 3) each.
 
         Before the first sample the end rests there; between samples it follows the chosen
         interpolation; after the last one it extrapolates, then holds.
@@ -141,7 +143,10 @@ def _sample(t, p, times, extrapolation, cubic):
             positions[n] = p[0]
             continue
         if tau >= t[last]:  # past the newest sample: straight on with its velocity
-            m = _tangent(t, p, last) if cubic else (p[last] - p[last - 1]) / (t[last] - t[last - 1])
+            if cubic:
+                m = _tangent(t, p, last)
+            else:
+                m = (p[last] - p[last - 1]) / (t[last] - t[last - 1])
             positions[n] = p[last] + m * (tau - t[last])
             if moving:
                 velocities[n] = m

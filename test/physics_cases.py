@@ -43,7 +43,7 @@ def _number(text):
 
 
 def static_row(reference_dir, material, segments):
-    """The moordyn_static.csv row of one material and N."""
+    """Find the moordyn_static.csv row of one material and N."""
     for row in read_rows(reference_dir / 'moordyn_static.csv'):
         if row['material'] == material and int(row['N']) == segments:
             return row
@@ -51,7 +51,7 @@ def static_row(reference_dir, material, segments):
 
 
 def reference_params(material, segments, **overrides):
-    """The reference line as parameters: in air, mass w/g, the reference BA, no drag."""
+    """Make the reference line's parameters: in air, mass w/g, the reference BA, no drag."""
     weight = {'polyester': 25.467341, 'wire': 63.749899}[material]
     damping = {'polyester': 2903.43, 'wire': 6492.27}[material]
     values = dict(

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""A real recorder process killed with SIGKILL, and one stopped with Ctrl-C (SIGINT).
+"""
+A real recorder process killed with SIGKILL, and one stopped with Ctrl-C (SIGINT).
 
 The child records one Wrench every 5 ms with log time = wall clock, as the node does.
 After SIGKILL everything older than the chunk flush interval must be readable; after

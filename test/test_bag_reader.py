@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Reading bags cut short, as a killed recorder leaves them, and recovering them.
+"""
+Reading bags cut short, as a killed recorder leaves them, and recovering them.
 
 A complete bag is cut at byte offsets inside and between its chunks (and its
 metadata.yaml removed): the reader must return exactly the messages of the chunks that

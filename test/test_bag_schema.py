@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The schema text and type hash rope_sim_ros.bag embeds, against the files and two decoders.
+"""
+The schema text and type hash rope_sim_ros.bag embeds, against the files and two decoders.
 
 The expected PoseStamped text is spelled out by hand from rosbag2_storage_mcap's rule (root
 file, then each nested type once, depth-first, in sorted order) so that a change of order

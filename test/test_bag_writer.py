@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""BagWriter against rosbag2 Jazzy's layout, read back by rosbags and by mcap_ros2.
+"""
+BagWriter against rosbag2 Jazzy's layout, read back by rosbags and by mcap_ros2.
 
 Every number written (times, poses, forces, counts, QoS, hashes) is read back through
 two readers that share no code with ours, and metadata.yaml is compared with the copy

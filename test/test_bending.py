@@ -34,7 +34,7 @@ def _sharpest_angle(positions):
 
 
 def _whip(bending_ratio):
-    """A slack 40 m polyester line whose fairlead is whipped 4 m sideways at 1.5 Hz."""
+    """Whip the fairlead of a slack 40 m polyester line 4 m sideways at 1.5 Hz."""
     params = from_values(dict(
         material='polyester', segments=40, length=40.0,
         bending_stiffness_ratio=bending_ratio, bending_damping_ratio=bending_ratio))

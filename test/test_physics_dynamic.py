@@ -15,9 +15,8 @@
 """Fairlead force under the reference motion against MoorDyn, and fast path vs reference."""
 
 import numpy as np
-import pytest
-
 from physics_cases import nrmse, read_rows, reference_params, run_motion
+import pytest
 
 
 def _reference_run(reference_dir, segments):

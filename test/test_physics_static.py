@@ -15,11 +15,11 @@
 """Settled end forces against the lumped chain's exact equilibrium and the catenary."""
 
 import numpy as np
-import pytest
-
 from physics_cases import (
     AXIAL_STIFFNESS, BOLLARD, FAIRLEAD, GRAVITY, LENGTH, reference_params, run_motion,
     static_row)
+import pytest
+
 from rope_sim_ros.physics.catenary import catenary_points
 
 

@@ -25,7 +25,7 @@ from rope_sim_ros.trajectory import TrajectoryError
 
 
 def _surge(material, segments, integrator, duration):
-    """A 40 m line of the preset at 64 mm; the fairlead surges 2 m with an 8 s period."""
+    """Surge a 40 m, 64 mm line of the preset 2 m with an 8 s period."""
     params = from_values(dict(material=material, segments=segments, integrator=integrator))
     sim = Simulator(params, history=math.inf, output_interval=0.1)
     times = np.arange(0.0, duration + 0.05, 0.05)

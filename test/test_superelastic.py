@@ -27,7 +27,7 @@ MAX_STRAIN = 0.25
 
 
 def _jerk(integrator, adjusting):
-    """A soft 10 m line, slack at 9 m, whose end is jerked to 12 m (1.2 L) in 0.1 s."""
+    """Jerk the end of a soft 10 m line, slack at 9 m, to 12 m (1.2 L) in 0.1 s."""
     params = from_values(dict(
         segments=20, length=10.0, mass_per_length=1.0, axial_stiffness=2.0e4,
         axial_damping=1.0, max_strain=MAX_STRAIN, superelastic_adjustment=adjusting,

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""rosbag2-compatible (ROS 2 Jazzy, MCAP storage) bag writing, reading and recovery.
+"""
+rosbag2-compatible (ROS 2 Jazzy, MCAP storage) bag writing, reading and recovery.
 
 BagWriter records from a background thread to `<dir>/<dir name>_0.mcap` and writes
 `<dir>/metadata.yaml` at close; read_messages() and deserialize() read a bag back (also

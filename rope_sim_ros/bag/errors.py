@@ -16,7 +16,8 @@
 
 
 class BagError(Exception):
-    """A bag cannot be written, read or recovered.
+    """
+    A bag cannot be written, read or recovered.
 
     The message names the path, what is wrong with it and what is allowed instead.
     """

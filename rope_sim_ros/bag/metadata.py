@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""rosbag2 Jazzy metadata: metadata.yaml (version 9) and the QoS profiles of a topic.
+"""
+rosbag2 Jazzy metadata: metadata.yaml (version 9) and the QoS profiles of a topic.
 
 The layout follows rosbag2_storage's yaml.hpp and qos.cpp at Jazzy: the keys in the
 order rosbag2 encodes them, QoS policies as strings ('keep_last', 'reliable', ...) since
@@ -46,14 +47,14 @@ EMPTY_BAG_START_NS = 2**63 - 1
 
 @dataclasses.dataclass
 class TopicRecord:
-    """One topic of a bag as metadata.yaml lists it.
+    """
+    One topic of a bag as metadata.yaml lists it.
 
-    Attributes:
-        name: Topic name, e.g. '/fairlead/pose'.
-        type_name: Message type, e.g. 'geometry_msgs/msg/PoseStamped'.
-        offered_qos_profiles: The profiles as the YAML string stored in MCAP channel metadata.
-        type_hash: RIHS01 type description hash.
-        message_count: Messages written on the topic.
+    :ivar name: Topic name, e.g. '/fairlead/pose'.
+    :ivar type_name: Message type, e.g. 'geometry_msgs/msg/PoseStamped'.
+    :ivar offered_qos_profiles: The profiles as the YAML string stored in MCAP channel metadata.
+    :ivar type_hash: RIHS01 type description hash.
+    :ivar message_count: Messages written on the topic.
     """
 
     name: str
@@ -65,13 +66,13 @@ class TopicRecord:
 
 @dataclasses.dataclass
 class FileRecord:
-    """One storage file of a bag.
+    """
+    One storage file of a bag.
 
-    Attributes:
-        path: File name relative to the bag directory.
-        message_count: Messages in the file.
-        start_ns: Earliest log time [ns], EMPTY_BAG_START_NS if there is none.
-        end_ns: Latest log time [ns], 0 if there is none.
+    :ivar path: File name relative to the bag directory.
+    :ivar message_count: Messages in the file.
+    :ivar start_ns: Earliest log time [ns], EMPTY_BAG_START_NS if there is none.
+    :ivar end_ns: Latest log time [ns], 0 if there is none.
     """
 
     path: str
@@ -113,17 +114,16 @@ def _policy(kind: str, value: Any) -> str:
 
 
 def qos_to_dict(profile: QoSProfile) -> Dict[str, Any]:
-    """Return one QoS profile in rosbag2's version 9 form.
+    """
+    Return one QoS profile in rosbag2's version 9 form.
 
     Policies left at system_default and durations left unspecified (0) are written as
     DDS resolves them (keep_last, reliable, volatile, automatic, infinite), which is what
     the ROS graph reports for such a publisher and so what `ros2 bag record` stores.
 
-    Args:
-        profile: The offered QoS of the publisher.
+    :param profile: The offered QoS of the publisher.
 
-    Returns:
-        A dict with the keys and order of rosbag2's Rosbag2QoS encoding.
+    :returns: A dict with the keys and order of rosbag2's Rosbag2QoS encoding.
     """
     def duration(value: Any) -> Dict[str, int]:
         nanoseconds = value.nanoseconds
@@ -146,17 +146,15 @@ QosSpec = Union[None, QoSProfile, Sequence[QoSProfile]]
 
 
 def qos_profiles_yaml(qos: QosSpec) -> str:
-    """Return the offered_qos_profiles string of MCAP channel metadata.
+    """
+    Return the offered_qos_profiles string of MCAP channel metadata.
 
-    Args:
-        qos: One profile, several (one per publisher) or None for rclpy's default
-            publisher profile (keep_last 10, reliable, volatile).
+    :param qos: One profile, several (one per publisher) or None for rclpy's default
+        publisher profile (keep_last 10, reliable, volatile).
 
-    Returns:
-        The YAML list as rosbag2's serialize_rclcpp_qos_vector dumps it.
+    :returns: The YAML list as rosbag2's serialize_rclcpp_qos_vector dumps it.
 
-    Raises:
-        BagError: qos is not a QoSProfile or a sequence of them.
+    :raises BagError: qos is not a QoSProfile or a sequence of them.
     """
     if qos is None:
         profiles = [QoSProfile(depth=10)]
@@ -172,16 +170,14 @@ def qos_profiles_yaml(qos: QosSpec) -> str:
 
 
 def parse_qos_profiles(text: str) -> List[Dict[str, Any]]:
-    """Parse an offered_qos_profiles string back into its list.
+    """
+    Parse an offered_qos_profiles string back into its list.
 
-    Args:
-        text: The channel metadata value; empty for a topic recorded without QoS.
+    :param text: The channel metadata value; empty for a topic recorded without QoS.
 
-    Returns:
-        The list of profile dicts (empty when text is empty).
+    :returns: The list of profile dicts (empty when text is empty).
 
-    Raises:
-        BagError: text is not a YAML list.
+    :raises BagError: text is not a YAML list.
     """
     if not text.strip():
         return []
@@ -199,15 +195,14 @@ def bag_metadata(
     topics: Iterable[TopicRecord],
     custom_data: Optional[Mapping[str, str]] = None,
 ) -> Dict[str, Any]:
-    """Build the metadata map of a bag (metadata.yaml without its top-level key).
+    """
+    Build the metadata map of a bag (metadata.yaml without its top-level key).
 
-    Args:
-        files: The storage files in order, with their statistics.
-        topics: The topics with their message counts.
-        custom_data: Free key/value strings recorded with the bag.
+    :param files: The storage files in order, with their statistics.
+    :param topics: The topics with their message counts.
+    :param custom_data: Free key/value strings recorded with the bag.
 
-    Returns:
-        The map with rosbag2 Jazzy's keys in rosbag2's order.
+    :returns: The map with rosbag2 Jazzy's keys in rosbag2's order.
     """
     count = sum(record.message_count for record in files)
     filled = [record for record in files if record.message_count]
@@ -281,16 +276,14 @@ def serialized_metadata(metadata: Mapping[str, Any]) -> str:
 
 
 def load_metadata(path: str) -> Dict[str, Any]:
-    """Read a metadata.yaml and return its map below the top-level key.
+    """
+    Read a metadata.yaml and return its map below the top-level key.
 
-    Args:
-        path: The metadata.yaml file.
+    :param path: The metadata.yaml file.
 
-    Returns:
-        The metadata map.
+    :returns: The metadata map.
 
-    Raises:
-        BagError: the file cannot be read, is not YAML or lacks the top-level key.
+    :raises BagError: the file cannot be read, is not YAML or lacks the top-level key.
     """
     try:
         with open(path, encoding='utf-8') as stream:

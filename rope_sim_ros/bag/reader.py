@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Read rosbag2 MCAP bags, complete ones and ones cut short by a killed recorder.
+"""
+Read rosbag2 MCAP bags, complete ones and ones cut short by a killed recorder.
 
 A complete file (footer and summary present) is read through its index in log-time
 order. A file without footer, as SIGKILL or a power cut leaves it, is read front to
@@ -46,14 +47,14 @@ PathLike = Union[str, 'os.PathLike[str]']
 
 
 class BagMessage(NamedTuple):
-    """One recorded message.
+    """
+    One recorded message.
 
-    Attributes:
-        topic: Topic name.
-        type_name: Message type, 'pkg/msg/Type'.
-        log_time_ns: Receive/record time [ns].
-        publish_time_ns: Send time [ns].
-        data: The serialized (CDR) message.
+    :ivar topic: Topic name.
+    :ivar type_name: Message type, 'pkg/msg/Type'.
+    :ivar log_time_ns: Receive/record time [ns].
+    :ivar publish_time_ns: Send time [ns].
+    :ivar data: The serialized (CDR) message.
     """
 
     topic: str
@@ -65,14 +66,14 @@ class BagMessage(NamedTuple):
 
 @dataclasses.dataclass(frozen=True)
 class TopicInfo:
-    """One topic of a bag.
+    """
+    One topic of a bag.
 
-    Attributes:
-        name: Topic name.
-        type_name: Message type, 'pkg/msg/Type'.
-        message_count: Messages readable on the topic.
-        offered_qos_profiles: The QoS profiles as stored in the channel (YAML string).
-        type_hash: RIHS01 type description hash ('' if the bag has none).
+    :ivar name: Topic name.
+    :ivar type_name: Message type, 'pkg/msg/Type'.
+    :ivar message_count: Messages readable on the topic.
+    :ivar offered_qos_profiles: The QoS profiles as stored in the channel (YAML string).
+    :ivar type_hash: RIHS01 type description hash ('' if the bag has none).
     """
 
     name: str
@@ -84,17 +85,17 @@ class TopicInfo:
 
 @dataclasses.dataclass(frozen=True)
 class BagInfo:
-    """What a bag holds.
+    """
+    What a bag holds.
 
-    Attributes:
-        path: The bag directory or file as given.
-        files: Its MCAP files.
-        topics: TopicInfo by topic name.
-        message_count: Messages readable in all files.
-        start_ns: Earliest log time [ns] (0 for an empty bag).
-        end_ns: Latest log time [ns] (0 for an empty bag).
-        duration_ns: end_ns - start_ns.
-        complete: Every file has its summary; False for a recording cut short.
+    :ivar path: The bag directory or file as given.
+    :ivar files: Its MCAP files.
+    :ivar topics: TopicInfo by topic name.
+    :ivar message_count: Messages readable in all files.
+    :ivar start_ns: Earliest log time [ns] (0 for an empty bag).
+    :ivar end_ns: Latest log time [ns] (0 for an empty bag).
+    :ivar duration_ns: end_ns - start_ns.
+    :ivar complete: Every file has its summary; False for a recording cut short.
     """
 
     path: str
@@ -108,17 +109,15 @@ class BagInfo:
 
 
 def bag_files(path: PathLike) -> List[str]:
-    """Return the MCAP files of a bag directory (or the file itself).
+    """
+    Return the MCAP files of a bag directory (or the file itself).
 
-    Args:
-        path: A bag directory, or one .mcap file.
+    :param path: A bag directory, or one .mcap file.
 
-    Returns:
-        The files in recording order: as metadata.yaml lists them, else sorted by name
-        (a bag killed before close has no metadata.yaml yet).
+    :returns: The files in recording order: as metadata.yaml lists them, else sorted by
+        name (a bag killed before close has no metadata.yaml yet).
 
-    Raises:
-        BagError: path does not exist, is not an MCAP bag, or lists missing files.
+    :raises BagError: path does not exist, is not an MCAP bag, or lists missing files.
     """
     path = os.fspath(path)
     if os.path.isfile(path):
@@ -171,16 +170,15 @@ def _summary(stream: Any) -> Any:
 
 
 def stream_records(stream: Any) -> Iterator[Union[Schema, Channel, Message]]:
-    """Yield the schemas, channels and messages of an MCAP file in file order.
+    """
+    Yield the schemas, channels and messages of an MCAP file in file order.
 
     Reading stops quietly at the end of the last whole chunk: a missing footer or a
     chunk cut off or damaged by a kill ends the records, it is not an error.
 
-    Args:
-        stream: The file, open for binary reading at its start.
+    :param stream: The file, open for binary reading at its start.
 
-    Yields:
-        Schema, Channel and Message records.
+    :yields: Schema, Channel and Message records.
     """
     reader = StreamReader(stream, emit_chunks=True, record_size_limit=2**31)
     try:
@@ -198,16 +196,14 @@ def stream_records(stream: Any) -> Iterator[Union[Schema, Channel, Message]]:
 
 
 def open_file(path: str) -> Any:
-    """Open an MCAP file for reading.
+    """
+    Open an MCAP file for reading.
 
-    Args:
-        path: The file.
+    :param path: The file.
 
-    Returns:
-        The binary stream.
+    :returns: The binary stream.
 
-    Raises:
-        BagError: the file cannot be opened.
+    :raises BagError: the file cannot be opened.
     """
     try:
         return open(path, 'rb')
@@ -248,20 +244,18 @@ def _read_file(path: str, topics: Optional[frozenset]) -> Iterator[BagMessage]:
 def read_messages(
     path: PathLike, topics: Optional[Iterable[str]] = None,
 ) -> Iterator[BagMessage]:
-    """Yield the messages of a bag in log-time order.
+    """
+    Yield the messages of a bag in log-time order.
 
     Works on complete bags and on bags whose recorder was killed: then every chunk
     written out before the kill is read, and the cut-off rest is ignored.
 
-    Args:
-        path: A bag directory, or one .mcap file.
-        topics: Topic names to read; None for all.
+    :param path: A bag directory, or one .mcap file.
+    :param topics: Topic names to read; None for all.
 
-    Yields:
-        BagMessage records.
+    :yields: BagMessage records.
 
-    Raises:
-        BagError: path is not a readable MCAP bag.
+    :raises BagError: path is not a readable MCAP bag.
     """
     wanted = None if topics is None else frozenset(topics)
     for name in bag_files(path):
@@ -269,16 +263,14 @@ def read_messages(
 
 
 def deserialize(message: BagMessage) -> Any:
-    """Turn a BagMessage back into its rclpy message object.
+    """
+    Turn a BagMessage back into its rclpy message object.
 
-    Args:
-        message: A record from read_messages().
+    :param message: A record from read_messages().
 
-    Returns:
-        The message, e.g. a geometry_msgs.msg.PoseStamped.
+    :returns: The message, e.g. a geometry_msgs.msg.PoseStamped.
 
-    Raises:
-        BagError: the type has no Python class here.
+    :raises BagError: the type has no Python class here.
     """
     return deserialize_message(message.data, message_class(message.type_name))
 
@@ -320,19 +312,17 @@ def _file_info(path: str) -> Tuple[Dict[str, TopicInfo], int, int, int, bool]:
 
 
 def bag_info(path: PathLike) -> BagInfo:
-    """Summarise a bag: its topics, types, message counts and time range.
+    """
+    Summarise a bag: its topics, types, message counts and time range.
 
     Counts are of the messages actually readable, so for a recording cut short they
     are what read_messages() will yield.
 
-    Args:
-        path: A bag directory, or one .mcap file.
+    :param path: A bag directory, or one .mcap file.
 
-    Returns:
-        The BagInfo.
+    :returns: The BagInfo.
 
-    Raises:
-        BagError: path is not a readable MCAP bag.
+    :raises BagError: path is not a readable MCAP bag.
     """
     files = bag_files(path)
     topics: Dict[str, TopicInfo] = {}

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Make a recording cut short by a kill (no summary, no metadata.yaml) a complete bag.
+"""
+Make a recording cut short by a kill (no summary, no metadata.yaml) a complete bag.
 
 Everything readable is copied as it was written (schemas, QoS and type hashes of the
 channels, log and publish times, sequence numbers) into a new MCAP file with summary
@@ -56,19 +57,17 @@ def _copy(source: str, target: storage.McapFile) -> None:
 
 
 def recover(path: PathLike, output: Optional[PathLike] = None) -> int:
-    """Rewrite the readable part of a bag as a complete bag.
+    """
+    Rewrite the readable part of a bag as a complete bag.
 
-    Args:
-        path: The bag directory (or its .mcap file) of the cut-short recording.
-        output: A new bag directory to write; None repairs path in place (each .mcap
-            file is replaced only once its complete copy is on disk).
+    :param path: The bag directory (or its .mcap file) of the cut-short recording.
+    :param output: A new bag directory to write; None repairs path in place (each .mcap
+        file is replaced only once its complete copy is on disk).
 
-    Returns:
-        The number of messages in the recovered bag.
+    :returns: The number of messages in the recovered bag.
 
-    Raises:
-        BagError: path is not an MCAP bag, output exists and is not empty, or a file
-            cannot be written.
+    :raises BagError: path is not an MCAP bag, output exists and is not empty, or a file
+        cannot be written.
     """
     sources = bag_files(path)
     if output is None:

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Message definitions and type hashes as rosbag2 Jazzy embeds them in MCAP schemas.
+"""
+Message definitions and type hashes as rosbag2 Jazzy embeds them in MCAP schemas.
 
 rosbag2_storage_mcap (message_definition_cache.cpp) stores for each type the root .msg
 file verbatim, then every nested type once, depth-first in sorted order, each preceded by
@@ -50,16 +51,14 @@ _MAX_DEPTH = 50
 
 
 def split_type_name(type_name: str) -> Tuple[str, str]:
-    """Split a message type name into its package and type.
+    """
+    Split a message type name into its package and type.
 
-    Args:
-        type_name: 'geometry_msgs/msg/PoseStamped' or 'geometry_msgs/PoseStamped'.
+    :param type_name: 'geometry_msgs/msg/PoseStamped' or 'geometry_msgs/PoseStamped'.
 
-    Returns:
-        The package and the type, e.g. ('geometry_msgs', 'PoseStamped').
+    :returns: The package and the type, e.g. ('geometry_msgs', 'PoseStamped').
 
-    Raises:
-        BagError: the name is not of the form pkg/msg/Type.
+    :raises BagError: the name is not of the form pkg/msg/Type.
     """
     match = _TYPE_NAME.match(type_name)
     if match is None:
@@ -70,16 +69,14 @@ def split_type_name(type_name: str) -> Tuple[str, str]:
 
 
 def canonical_type_name(type_name: str) -> str:
-    """Return the 'pkg/msg/Type' form of a message type name.
+    """
+    Return the 'pkg/msg/Type' form of a message type name.
 
-    Args:
-        type_name: 'pkg/msg/Type' or 'pkg/Type'.
+    :param type_name: 'pkg/msg/Type' or 'pkg/Type'.
 
-    Returns:
-        The name with its 'msg' namespace, as rosbag2 writes it in metadata.yaml.
+    :returns: The name with its 'msg' namespace, as rosbag2 writes it in metadata.yaml.
 
-    Raises:
-        BagError: the name is not of the form pkg/msg/Type.
+    :raises BagError: the name is not of the form pkg/msg/Type.
     """
     package, name = split_type_name(type_name)
     return f'{package}/msg/{name}'
@@ -122,16 +119,14 @@ def _dependencies(text: str, package: str) -> list:
 
 @functools.lru_cache(maxsize=None)
 def message_definition(type_name: str) -> str:
-    """Return the full ros2msg definition of a message type as rosbag2 Jazzy embeds it.
+    """
+    Return the full ros2msg definition of a message type as rosbag2 Jazzy embeds it.
 
-    Args:
-        type_name: 'pkg/msg/Type' (or 'pkg/Type').
+    :param type_name: 'pkg/msg/Type' (or 'pkg/Type').
 
-    Returns:
-        The root .msg text followed by each nested type's text, depth-first and sorted.
+    :returns: The root .msg text followed by each nested type's text, depth-first and sorted.
 
-    Raises:
-        BagError: the type is unknown or its .msg files cannot be read.
+    :raises BagError: the type is unknown or its .msg files cannot be read.
     """
     seen = set()
 
@@ -155,16 +150,14 @@ def message_definition(type_name: str) -> str:
 
 @functools.lru_cache(maxsize=None)
 def type_hash(type_name: str) -> str:
-    """Return the RIHS01 type description hash of a message type.
+    """
+    Return the RIHS01 type description hash of a message type.
 
-    Args:
-        type_name: 'pkg/msg/Type' (or 'pkg/Type').
+    :param type_name: 'pkg/msg/Type' (or 'pkg/Type').
 
-    Returns:
-        The 'RIHS01_<sha256>' string from share/<pkg>/msg/<Type>.json.
+    :returns: The 'RIHS01_<sha256>' string from share/<pkg>/msg/<Type>.json.
 
-    Raises:
-        BagError: the .json file is missing, unreadable or does not list the type.
+    :raises BagError: the .json file is missing, unreadable or does not list the type.
     """
     canonical = canonical_type_name(type_name)
     path = _interface_file(type_name, '.json')
@@ -183,16 +176,14 @@ def type_hash(type_name: str) -> str:
 
 @functools.lru_cache(maxsize=None)
 def message_class(type_name: str) -> type:
-    """Import the Python class of a message type.
+    """
+    Import the Python class of a message type.
 
-    Args:
-        type_name: 'pkg/msg/Type' (or 'pkg/Type').
+    :param type_name: 'pkg/msg/Type' (or 'pkg/Type').
 
-    Returns:
-        The generated rosidl class, e.g. geometry_msgs.msg.PoseStamped.
+    :returns: The generated rosidl class, e.g. geometry_msgs.msg.PoseStamped.
 
-    Raises:
-        BagError: the package has no Python message module or lacks the type.
+    :raises BagError: the package has no Python message module or lacks the type.
     """
     package, name = split_type_name(type_name)
     try:

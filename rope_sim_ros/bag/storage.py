@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Synchronous MCAP storage in rosbag2 Jazzy's layout (no threads; see writer.py for those).
+"""
+Synchronous MCAP storage in rosbag2 Jazzy's layout (no threads; see writer.py for those).
 
 What rosbag2_storage_mcap (mcap_storage.cpp) writes and we write too: header profile
 'ros2'; one schema per type, encoding 'ros2msg', with the full .msg text; one channel per
@@ -58,16 +59,14 @@ LIBRARY = _library()
 
 
 def create_bag_directory(path: Union[str, 'os.PathLike[str]']) -> str:
-    """Create the directory of a new bag, refusing to reuse one that holds anything.
+    """
+    Create the directory of a new bag, refusing to reuse one that holds anything.
 
-    Args:
-        path: The bag directory to create (its parents are created too).
+    :param path: The bag directory to create (its parents are created too).
 
-    Returns:
-        The normalised path of the empty directory.
+    :returns: The normalised path of the empty directory.
 
-    Raises:
-        BagError: path exists and is not an empty directory, or it cannot be created.
+    :raises BagError: path exists and is not an empty directory, or it cannot be created.
     """
     path = os.path.normpath(os.fspath(path))
     if os.path.lexists(path):
@@ -89,17 +88,15 @@ def create_bag_directory(path: Union[str, 'os.PathLike[str]']) -> str:
 
 
 def write_metadata_yaml(directory: str, metadata: Mapping[str, Any]) -> str:
-    """Write metadata.yaml into a bag directory, atomically.
+    """
+    Write metadata.yaml into a bag directory, atomically.
 
-    Args:
-        directory: The bag directory.
-        metadata: The metadata map (without the top-level key).
+    :param directory: The bag directory.
+    :param metadata: The metadata map (without the top-level key).
 
-    Returns:
-        The path of the metadata file.
+    :returns: The path of the metadata file.
 
-    Raises:
-        BagError: the file cannot be written.
+    :raises BagError: the file cannot be written.
     """
     path = os.path.join(directory, meta.METADATA_FILE)
     temporary = path + '.tmp'
@@ -116,25 +113,24 @@ def write_metadata_yaml(directory: str, metadata: Mapping[str, Any]) -> str:
 
 
 class McapFile:
-    """One MCAP storage file of a bag, written synchronously.
+    """
+    One MCAP storage file of a bag, written synchronously.
 
-    Attributes:
-        path: The .mcap file.
-        record: Its FileRecord (message count and time range so far).
-        topics: The TopicRecords by topic name, with their message counts so far.
+    :ivar path: The .mcap file.
+    :ivar record: Its FileRecord (message count and time range so far).
+    :ivar topics: The TopicRecords by topic name, with their message counts so far.
     """
 
     def __init__(self, path: str, *, chunk_size: int, name: Optional[str] = None) -> None:
-        """Create the file and write the MCAP header.
+        """
+        Create the file and write the MCAP header.
 
-        Args:
-            path: The .mcap file to create; it must not exist.
-            chunk_size: Bytes of messages after which a chunk is written out.
-            name: The file's name in the bag's metadata, if it is written under another
-                name first (default: the base name of path).
+        :param path: The .mcap file to create; it must not exist.
+        :param chunk_size: Bytes of messages after which a chunk is written out.
+        :param name: The file's name in the bag's metadata, if it is written under another
+            name first (default: the base name of path).
 
-        Raises:
-            BagError: the file exists or cannot be created.
+        :raises BagError: the file exists or cannot be created.
         """
         self.path = path
         self.record = meta.FileRecord(name or os.path.basename(path))
@@ -156,14 +152,13 @@ class McapFile:
         self._stream.flush()
 
     def add_topic(self, topic: meta.TopicRecord, definition: str) -> None:
-        """Register a topic: its type's schema (once per type) and its channel.
+        """
+        Register a topic: its type's schema (once per type) and its channel.
 
-        Args:
-            topic: Name, type, QoS string and type hash (its count is ignored).
-            definition: The full ros2msg text of the type.
+        :param topic: Name, type, QoS string and type hash (its count is ignored).
+        :param definition: The full ros2msg text of the type.
 
-        Raises:
-            BagError: the topic is registered already with another type.
+        :raises BagError: the topic is registered already with another type.
         """
         known = self.topics.get(topic.name)
         if known is not None:
@@ -187,14 +182,14 @@ class McapFile:
         self, topic: str, data: bytes, log_time_ns: int, publish_time_ns: int,
         sequence: int = 0,
     ) -> None:
-        """Append one serialized message to the current chunk.
+        """
+        Append one serialized message to the current chunk.
 
-        Args:
-            topic: A registered topic.
-            data: The CDR bytes.
-            log_time_ns: Receive/record time [ns].
-            publish_time_ns: Send time [ns].
-            sequence: Publisher sequence number, 0 if unknown.
+        :param topic: A registered topic.
+        :param data: The CDR bytes.
+        :param log_time_ns: Receive/record time [ns].
+        :param publish_time_ns: Send time [ns].
+        :param sequence: Publisher sequence number, 0 if unknown.
         """
         self._writer.add_message(
             self._channels[topic], log_time_ns, data, publish_time_ns, sequence)
@@ -202,7 +197,8 @@ class McapFile:
         self.record.add(log_time_ns)
 
     def flush_chunk(self) -> None:
-        """Write out the chunk in progress and hand everything to the operating system.
+        """
+        Write out the chunk in progress and hand everything to the operating system.
 
         After this a kill of the process loses nothing written so far.
         """
@@ -218,13 +214,12 @@ class McapFile:
         self._stream.flush()
 
     def close(self, metadata: Mapping[str, Any]) -> None:
-        """Write the rosbag2 metadata record, the summary and the footer; close the file.
+        """
+        Write the rosbag2 metadata record, the summary and the footer; close the file.
 
-        Args:
-            metadata: The bag's metadata map for the 'rosbag2' record.
+        :param metadata: The bag's metadata map for the 'rosbag2' record.
 
-        Raises:
-            BagError: the file cannot be completed.
+        :raises BagError: the file cannot be completed.
         """
         try:
             self.flush_chunk()
@@ -255,14 +250,13 @@ def new_file_name(directory: str, index: int = 0) -> str:
 def metadata_for(
     files: Sequence[McapFile], custom_data: Optional[Mapping[str, str]] = None,
 ) -> Dict[str, Any]:
-    """Build the metadata map of a bag from its storage files.
+    """
+    Build the metadata map of a bag from its storage files.
 
-    Args:
-        files: The files in order.
-        custom_data: Free key/value strings recorded with the bag.
+    :param files: The files in order.
+    :param custom_data: Free key/value strings recorded with the bag.
 
-    Returns:
-        The metadata map (without the top-level key).
+    :returns: The metadata map (without the top-level key).
     """
     topics: Dict[str, meta.TopicRecord] = {}
     for storage in files:

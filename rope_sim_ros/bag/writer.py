@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""BagWriter: record messages to a rosbag2 Jazzy MCAP bag from a background thread.
+"""
+BagWriter: record messages to a rosbag2 Jazzy MCAP bag from a background thread.
 
 The caller's write() only serialises and enqueues, so a slow or stalled disk never
 stalls a simulation step; a full queue drops the message and counts it. The thread
@@ -41,7 +42,8 @@ _STOP = object()
 
 
 class BagWriter:
-    """Writes a rosbag2 Jazzy bag: `<path>/<name>_0.mcap` and `<path>/metadata.yaml`.
+    """
+    Writes a rosbag2 Jazzy bag: `<path>/<name>_0.mcap` and `<path>/metadata.yaml`.
 
     Use it as a context manager, or call close() yourself (e.g. in the node's shutdown)::
 
@@ -65,18 +67,17 @@ class BagWriter:
         flush_interval: float = DEFAULT_FLUSH_INTERVAL,
         custom_data: Optional[Mapping[str, str]] = None,
     ) -> None:
-        """Create the bag directory and its MCAP file and start the writer thread.
+        """
+        Create the bag directory and its MCAP file and start the writer thread.
 
-        Args:
-            path: The bag directory to create; it must not exist or be empty.
-            queue_size: Messages that may wait for the thread before write() drops.
-            chunk_size: Bytes of messages per MCAP chunk.
-            flush_interval: Seconds after which a chunk in progress is written out
-                anyway; a kill loses at most about this much recording.
-            custom_data: Free key/value strings for metadata.yaml's custom_data.
+        :param path: The bag directory to create; it must not exist or be empty.
+        :param queue_size: Messages that may wait for the thread before write() drops.
+        :param chunk_size: Bytes of messages per MCAP chunk.
+        :param flush_interval: Seconds after which a chunk in progress is written out
+            anyway; a kill loses at most about this much recording.
+        :param custom_data: Free key/value strings for metadata.yaml's custom_data.
 
-        Raises:
-            BagError: a bad argument, or the path exists already, or is not writable.
+        :raises BagError: a bad argument, or the path exists already, or is not writable.
         """
         if queue_size < 1 or chunk_size < 1 or not flush_interval > 0:
             raise BagError(
@@ -131,16 +132,15 @@ class BagWriter:
         return self._closed
 
     def add_topic(self, name: str, type_name: str, qos: meta.QosSpec = None) -> None:
-        """Register a topic before writing to it (again with the same type: no effect).
+        """
+        Register a topic before writing to it (again with the same type: no effect).
 
-        Args:
-            name: Fully qualified topic name, e.g. '/mooring_line/fairlead/tension'.
-            type_name: Message type, 'pkg/msg/Type'.
-            qos: The publisher's offered QoS profile(s); None for rclpy's default.
+        :param name: Fully qualified topic name, e.g. '/mooring_line/fairlead/tension'.
+        :param type_name: Message type, 'pkg/msg/Type'.
+        :param qos: The publisher's offered QoS profile(s); None for rclpy's default.
 
-        Raises:
-            BagError: the bag is closed, the name is not absolute, the type is unknown
-                or the topic was added before with another type.
+        :raises BagError: the bag is closed, the name is not absolute, the type is unknown
+            or the topic was added before with another type.
         """
         if self._closed:
             raise BagError(f'bag {self._path} is closed; cannot add topic {name!r}')
@@ -172,20 +172,18 @@ class BagWriter:
         log_time_ns: int,
         publish_time_ns: Optional[int] = None,
     ) -> bool:
-        """Queue one message for recording; never blocks on the disk.
+        """
+        Queue one message for recording; never blocks on the disk.
 
-        Args:
-            topic: A topic registered with add_topic().
-            message: The message object, or its CDR bytes as received.
-            log_time_ns: Receive/record time [ns] (MCAP log_time).
-            publish_time_ns: Send time [ns] (MCAP publish_time); log_time_ns if None.
+        :param topic: A topic registered with add_topic().
+        :param message: The message object, or its CDR bytes as received.
+        :param log_time_ns: Receive/record time [ns] (MCAP log_time).
+        :param publish_time_ns: Send time [ns] (MCAP publish_time); log_time_ns if None.
 
-        Returns:
-            True if queued; False if dropped (queue full, recording stopped by an error
+        :returns: True if queued; False if dropped (queue full, recording stopped by an error
             or the bag closed), which the `dropped` count records.
 
-        Raises:
-            BagError: the topic was not added or the message is not of its type.
+        :raises BagError: the topic was not added or the message is not of its type.
         """
         known = self._topics.get(topic)
         if known is None:
@@ -213,13 +211,13 @@ class BagWriter:
         return True
 
     def close(self) -> None:
-        """Write what is queued, complete the MCAP file and write metadata.yaml.
+        """
+        Write what is queued, complete the MCAP file and write metadata.yaml.
 
         Waits for the writer thread. Calling it again has no effect.
 
-        Raises:
-            BagError: recording stopped on an error (the bag is then left as a killed
-                recording would be: recover() makes it whole up to its last chunk).
+        :raises BagError: recording stopped on an error (the bag is then left as a killed
+            recording would be: recover() makes it whole up to its last chunk).
         """
         if self._closed:
             return

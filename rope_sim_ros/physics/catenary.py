@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Static shapes of a mooring line: Irvine's elastic catenary and the lumped-mass chain.
+"""
+Static shapes of a mooring line: Irvine's elastic catenary and the lumped-mass chain.
 
 Planar convention (shared/reference/README.md): end A at (0, 0), end B at (span, rise), x
 horizontal from A to B, z up. The line pulls A with (+H, V_A) and B with (-H, -V_B), so
@@ -59,14 +60,14 @@ class CatenaryError(ValueError):
 
 @dataclass(frozen=True)
 class CatenarySolution:
-    """End forces of an elastic catenary, in the planar convention of the module docstring.
+    """
+    End forces of an elastic catenary, in the planar convention of the module docstring.
 
-    Attributes:
-        horizontal_tension: H [N], the horizontal force on A (and, reversed, on B); H >= 0.
-        vertical_a: V_A [N], the vertical force of the line on end A (+ up).
-        vertical_b: V_B [N]; the line pulls B with (-H, -V_B).
-        tension_a: |force on A| = hypot(H, V_A) [N].
-        tension_b: |force on B| = hypot(H, V_B) [N].
+    :ivar horizontal_tension: H [N], the horizontal force on A (and, reversed, on B); H >= 0.
+    :ivar vertical_a: V_A [N], the vertical force of the line on end A (+ up).
+    :ivar vertical_b: V_B [N]; the line pulls B with (-H, -V_B).
+    :ivar tension_a: |force on A| = hypot(H, V_A) [N].
+    :ivar tension_b: |force on B| = hypot(H, V_B) [N].
     """
 
     horizontal_tension: float
@@ -79,16 +80,16 @@ class CatenarySolution:
 # eq=False: comparing numpy arrays field by field has no single truth value.
 @dataclass(frozen=True, eq=False)
 class ChainEquilibrium:
-    """Static equilibrium of the N-segment lumped-mass chain between two fixed ends.
+    """
+    Static equilibrium of the N-segment lumped-mass chain between two fixed ends.
 
-    Attributes:
-        positions: (N + 1, 3) node positions [m], first = end A, last = end B.
-        force_a: (3,) total force of the line on end A [N]: the first segment's tension
-            (pointing into the line) plus the weight of the half segment lumped at A.
-        force_b: (3,) the same at end B.
-        segment_tension: (N,) tension of each segment [N], from A to B.
-        horizontal_tension: H [N], the horizontal component of every segment's tension
-            (of a weightless chain, where nothing is horizontal: its tension).
+    :ivar positions: (N + 1, 3) node positions [m], first = end A, last = end B.
+    :ivar force_a: (3,) total force of the line on end A [N]: the first segment's tension
+        (pointing into the line) plus the weight of the half segment lumped at A.
+    :ivar force_b: (3,) the same at end B.
+    :ivar segment_tension: (N,) tension of each segment [N], from A to B.
+    :ivar horizontal_tension: H [N], the horizontal component of every segment's tension
+        (of a weightless chain, where nothing is horizontal: its tension).
     """
 
     positions: np.ndarray
@@ -142,21 +143,20 @@ def _check_segments(segments: int) -> int:
 
 def _asinh_difference(v: ArrayLike, v_a: float, dv: ArrayLike, t: ArrayLike, t_a: float,
                       h: float) -> np.ndarray:
-    """Return asinh(v / h) - asinh(v_a / h) without cancellation.
+    """
+    Return asinh(v / h) - asinh(v_a / h) without cancellation.
 
     Where v and v_a share a sign the two terms nearly cancel on a taut or vertical line, so
     use sinh(a - b) = (v - v_a)(v + v_a) / (v t_a + v_a t), which needs no h at all.
 
-    Args:
-        v: vertical tension component(s) at the far point [N].
-        v_a: vertical component at the near point [N].
-        dv: v - v_a, known exactly by the caller (w s) [N].
-        t: hypot(h, v) [N].
-        t_a: hypot(h, v_a) [N].
-        h: horizontal tension, > 0 unless v and v_a share a sign [N].
+    :param v: vertical tension component(s) at the far point [N].
+    :param v_a: vertical component at the near point [N].
+    :param dv: v - v_a, known exactly by the caller (w s) [N].
+    :param t: hypot(h, v) [N].
+    :param t_a: hypot(h, v_a) [N].
+    :param h: horizontal tension, > 0 unless v and v_a share a sign [N].
 
-    Returns:
-        The difference, shaped like v.
+    :returns: The difference, shaped like v.
     """
     v = np.asarray(v, dtype=float)
     same_sign = v * v_a > 0.0
@@ -233,20 +233,18 @@ def _newton_step(f: np.ndarray, jac: np.ndarray) -> np.ndarray:
 
 def _newton(residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
             start: np.ndarray, scale: float, what: str) -> np.ndarray:
-    """Solve residual(x) = 0 for x = (H, V) with H > 0 by Newton with backtracking.
+    """
+    Solve residual(x) = 0 for x = (H, V) with H > 0 by Newton with backtracking.
 
-    Args:
-        residual: returns (f (2,), Jacobian (2, 2)) at x; f in metres.
-        start: initial (H, V), H > 0.
-        scale: length the residual is measured against (the line's length) [m].
-        what: name of the problem, for the error message.
+    :param residual: returns (f (2,), Jacobian (2, 2)) at x; f in metres.
+    :param start: initial (H, V), H > 0.
+    :param scale: length the residual is measured against (the line's length) [m].
+    :param what: name of the problem, for the error message.
 
-    Returns:
-        The converged (H, V).
+    :returns: The converged (H, V).
 
-    Raises:
-        CatenaryError: the residual did not fall below _ROUNDING_TOLERANCE * scale (Newton
-            aims at _TOLERANCE * scale and stops there).
+    :raises CatenaryError: the residual did not fall below _ROUNDING_TOLERANCE * scale (Newton
+        aims at _TOLERANCE * scale and stops there).
     """
     x = np.array(start, dtype=float)
     f, jac = residual(x)
@@ -277,23 +275,21 @@ def _newton(residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
 
 def solve_catenary(span: float, rise: float, length: float, weight_per_length: float,
                    axial_stiffness: float) -> CatenarySolution:
-    """Solve Irvine's elastic catenary between A = (0, 0) and B = (span, rise).
+    """
+    Solve Irvine's elastic catenary between A = (0, 0) and B = (span, rise).
 
     Handles slack, U-shaped, nearly taut and stretched (chord > L) lines, very soft lines,
     B below A, and a vertical hang (a span below 1e-9 L is solved as 1e-9 L).
 
-    Args:
-        span: horizontal distance from A to B [m], >= 0.
-        rise: height of B above A [m], any sign.
-        length: unstretched length L [m], > 0.
-        weight_per_length: weight w per unstretched metre [N/m], > 0.
-        axial_stiffness: EA [N], > 0.
+    :param span: horizontal distance from A to B [m], >= 0.
+    :param rise: height of B above A [m], any sign.
+    :param length: unstretched length L [m], > 0.
+    :param weight_per_length: weight w per unstretched metre [N/m], > 0.
+    :param axial_stiffness: EA [N], > 0.
 
-    Returns:
-        The end forces.
+    :returns: The end forces.
 
-    Raises:
-        CatenaryError: an input is invalid, or Newton did not converge.
+    :raises CatenaryError: an input is invalid, or Newton did not converge.
     """
     span = _check_non_negative('span', span)
     rise = _check_finite('rise', rise)
@@ -333,20 +329,18 @@ def _solve_lower_end(span: float, rise: float, length: float, w: float,
 
 def catenary_profile(solution: CatenarySolution, length: float, weight_per_length: float,
                      axial_stiffness: float, s: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """Return the planar shape of a solved catenary.
+    """
+    Return the planar shape of a solved catenary.
 
-    Args:
-        solution: from solve_catenary with the same line properties.
-        length: unstretched length L [m], > 0.
-        weight_per_length: w [N/m], > 0.
-        axial_stiffness: EA [N], > 0.
-        s: unstretched arc lengths from A [m] (any shape).
+    :param solution: from solve_catenary with the same line properties.
+    :param length: unstretched length L [m], > 0.
+    :param weight_per_length: w [N/m], > 0.
+    :param axial_stiffness: EA [N], > 0.
+    :param s: unstretched arc lengths from A [m] (any shape).
 
-    Returns:
-        (x, z): horizontal and vertical positions relative to A [m], shaped like s.
+    :returns: (x, z): horizontal and vertical positions relative to A [m], shaped like s.
 
-    Raises:
-        CatenaryError: an input is invalid.
+    :raises CatenaryError: an input is invalid.
     """
     _check_positive('length', length)
     w = _check_positive('weight_per_length', weight_per_length)
@@ -408,22 +402,20 @@ def _straight_line(end_a: np.ndarray, end_b: np.ndarray, segments: int) -> np.nd
 def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
                     weight_per_length: float, axial_stiffness: float, gravity: ArrayLike,
                     s: ArrayLike) -> np.ndarray:
-    """Return world points of the elastic catenary between two ends.
+    """
+    Return world points of the elastic catenary between two ends.
 
-    Args:
-        end_a: (3,) end A [m].
-        end_b: (3,) end B [m].
-        length: unstretched length L [m], > 0.
-        weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
-        axial_stiffness: EA [N], > 0.
-        gravity: (3,) gravity vector [m/s^2], any direction; zero means weightless.
-        s: (M,) unstretched arc lengths from A [m].
+    :param end_a: (3,) end A [m].
+    :param end_b: (3,) end B [m].
+    :param length: unstretched length L [m], > 0.
+    :param weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
+    :param axial_stiffness: EA [N], > 0.
+    :param gravity: (3,) gravity vector [m/s^2], any direction; zero means weightless.
+    :param s: (M,) unstretched arc lengths from A [m].
 
-    Returns:
-        (M, 3) points; s = 0 gives end A and s = L gives end B.
+    :returns: (M, 3) points; s = 0 gives end A and s = L gives end B.
 
-    Raises:
-        CatenaryError: an input is invalid, or the catenary did not converge.
+    :raises CatenaryError: an input is invalid, or the catenary did not converge.
     """
     end_a = _check_point('end_a', end_a)
     end_b = _check_point('end_b', end_b)
@@ -505,28 +497,26 @@ def _weightless_chain(end_a: np.ndarray, end_b: np.ndarray, length: float, segme
 def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: int,
                       weight_per_length: float, axial_stiffness: float,
                       gravity: ArrayLike) -> ChainEquilibrium:
-    """Return the exact static equilibrium of the N-segment lumped-mass chain.
+    """
+    Return the exact static equilibrium of the N-segment lumped-mass chain.
 
     N equal linear springs of unstretched length l0 = L / N (length l0 (1 + T / EA)); the
     interior nodes carry the weight w l0, the two fixed end nodes w l0 / 2 each. Newton on
     the two closure equations, seeded by the elastic catenary. This is what a converged
     simulation with the same lumping settles to (moordyn_static.csv's disc_* values).
 
-    Args:
-        end_a: (3,) end A [m].
-        end_b: (3,) end B [m].
-        length: unstretched length L [m], > 0.
-        segments: N >= 1.
-        weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
-        axial_stiffness: EA [N], > 0.
-        gravity: (3,) gravity vector [m/s^2]; zero means weightless (a straight chain).
+    :param end_a: (3,) end A [m].
+    :param end_b: (3,) end B [m].
+    :param length: unstretched length L [m], > 0.
+    :param segments: N >= 1.
+    :param weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
+    :param axial_stiffness: EA [N], > 0.
+    :param gravity: (3,) gravity vector [m/s^2]; zero means weightless (a straight chain).
 
-    Returns:
-        Positions, end forces and segment tensions.
+    :returns: Positions, end forces and segment tensions.
 
-    Raises:
-        CatenaryError: an input is invalid, or there is no equilibrium Newton can reach
-            (for example a chain folded at a vertical hang, or too few segments to sag).
+    :raises CatenaryError: an input is invalid, or there is no equilibrium Newton can reach
+        (for example a chain folded at a vertical hang, or too few segments to sag).
     """
     end_a = _check_point('end_a', end_a)
     end_b = _check_point('end_b', end_b)
@@ -560,25 +550,23 @@ def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segment
 def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: int,
                   weight_per_length: float, axial_stiffness: float,
                   gravity: ArrayLike) -> np.ndarray:
-    """Return node positions to start a simulation at rest.
+    """
+    Return node positions to start a simulation at rest.
 
     The chain's exact equilibrium if Newton reaches it, else the elastic catenary sampled at
     s = linspace(0, L, N + 1), else the straight line between the ends. Never non-finite.
 
-    Args:
-        end_a: (3,) end A [m].
-        end_b: (3,) end B [m].
-        length: unstretched length L [m], > 0.
-        segments: N >= 1.
-        weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
-        axial_stiffness: EA [N], > 0.
-        gravity: (3,) gravity vector [m/s^2].
+    :param end_a: (3,) end A [m].
+    :param end_b: (3,) end B [m].
+    :param length: unstretched length L [m], > 0.
+    :param segments: N >= 1.
+    :param weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
+    :param axial_stiffness: EA [N], > 0.
+    :param gravity: (3,) gravity vector [m/s^2].
 
-    Returns:
-        (N + 1, 3) positions, first = end A, last = end B.
+    :returns: (N + 1, 3) positions, first = end A, last = end B.
 
-    Raises:
-        CatenaryError: an input is invalid (solver failures fall back instead).
+    :raises CatenaryError: an input is invalid (solver failures fall back instead).
     """
     end_a = _check_point('end_a', end_a)
     end_b = _check_point('end_b', end_b)

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Time integration of the rope and the choice of its time step.
+"""
+Time integration of the rope and the choice of its time step.
 
 The seed's improved Euler (eq. 7) is Heun's method: an Euler predictor, then the mean of the
 two accelerations for the velocity and the trapezoid of the two velocities for the position.
@@ -30,13 +31,13 @@ SAFETY_FACTOR = 0.8
 
 def improved_euler_step(rope: Rope, dt: float, ends_next: np.ndarray,
                         end_velocities_next: np.ndarray) -> None:
-    """Advance the rope by dt in place (seed eq. 7).
+    """
+    Advance the rope by dt in place (seed eq. 7).
 
-    Args:
-        rope: the rope at time t.
-        dt: step [s].
-        ends_next: positions of particles 0 and N at t + dt, shape (2, 3).
-        end_velocities_next: their velocities at t + dt, shape (2, 3).
+    :param rope: the rope at time t.
+    :param dt: step [s].
+    :param ends_next: positions of particles 0 and N at t + dt, shape (2, 3).
+    :param end_velocities_next: their velocities at t + dt, shape (2, 3).
     """
     x, v = rope.x, rope.v
     a1 = rope.accelerations(x, v)
@@ -57,7 +58,8 @@ def _heun_growth(z: np.ndarray) -> np.ndarray:
 
 
 def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
-    """Eigenvalues of the chain's axial modes, from the slowest to the fastest.
+    """
+    Eigenvalues of the chain's axial modes, from the slowest to the fastest.
 
     The chain's frequencies lie in (0, w_max] with w_max^2 <= 4 (k_s + k_b) / m
     (Gershgorin). Each mode is damped in proportion to its stiffness (w^2 beta).
@@ -73,7 +75,8 @@ def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
 
 
 def stability_limit(props: RopeProperties) -> float:
-    """Largest stable improved-Euler step [s] for the line's axial modes.
+    """
+    Largest stable improved-Euler step [s] for the line's axial modes.
 
     Returns 0 when no step is stable (an undamped line).
     """
@@ -108,13 +111,13 @@ def first_axial_period(props: RopeProperties) -> float:
 
 
 def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler') -> float:
-    """The step used when the user sets time_step 0 [s].
+    """
+    Choose the step used when the user sets time_step 0 [s].
 
     improved_euler: the stability limit times a safety factor. implicit_euler (stable for any
     step): a step that still sees the first axial mode, at most IMPLICIT_MAX_STEP.
 
-    Raises:
-        ValueError: the line has no damping, so the improved Euler step is never stable.
+    :raises ValueError: the line has no damping, so the improved Euler step is never stable.
     """
     if integrator == 'implicit_euler':
         return min(IMPLICIT_MAX_STEP, first_axial_period(props) / IMPLICIT_STEPS_PER_AXIAL_PERIOD)

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Compiled (numba) loops for the rope's hot path, with the same physics as rope.py.
+"""
+Compiled (numba) loops for the rope's hot path, with the same physics as rope.py.
 
 Pure numpy pays about 40 us of call overhead per force evaluation whatever N is, which caps
 a stiff line near real time. These kernels run many steps per call. The numpy path in
@@ -27,7 +28,7 @@ from .superelastic import adjust
 
 
 def coefficients(props: RopeProperties) -> np.ndarray:
-    """The line's numbers in the flat layout the kernels take (see line_forces)."""
+    """Pack the line's numbers in the flat layout the kernels take (see line_forces)."""
     return np.array([
         props.segment_length, props.structural_stiffness, props.structural_damping,
         props.bending_stiffness, props.bending_damping,
@@ -70,7 +71,8 @@ def _add_springs(x, v, out, stride, rest, stiffness, damping, axial, tension_onl
 
 @numba.njit(cache=True)
 def line_forces(x, v, out, coef):
-    """Spring and damper forces of the line on every particle into `out`.
+    """
+    Spring and damper forces of the line on every particle into `out`.
 
     coef = (l0, k_s, c_s, k_b, c_b, axial, drag_per_particle, particle_mass, gx, gy, gz).
     """
@@ -171,7 +173,8 @@ def _add_block(band, a, b, block, sign):
 
 @numba.njit(cache=True)
 def _spring_jacobians(x, band, block, stride, rest, k, c, axial):
-    """Add S + C of the springs (i, i + stride) to the band (k, c already scaled by the step).
+    """
+    Add S + C of the springs (i, i + stride) to the band (k, c already scaled by the step).
 
     S = k u u^T + (T / l)(I - u u^T), C = c u u^T (axial) or c I (seed form).
     """
@@ -237,7 +240,8 @@ def _cholesky_solve(band, rhs):
 @numba.njit(cache=True)
 def implicit_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strain,
                        adjusting, max_iterations, implicit_bending):
-    """Take len(ends) implicit Euler steps in place (arguments as improved_euler_run).
+    """
+    Take len(ends) implicit Euler steps in place (arguments as improved_euler_run).
 
     implicit_bending: put the bending springs in the matrix too (needed only when they are
     stiff enough to limit an explicit step; it widens the band from 5 to 8).

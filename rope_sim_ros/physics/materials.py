@@ -26,14 +26,14 @@ class MaterialError(ValueError):
 
 @dataclass(frozen=True)
 class MaterialProperties:
-    """What a preset gives for one diameter.
+    """
+    What a preset gives for one diameter.
 
-    Attributes:
-        name: preset name, e.g. 'polyester'.
-        mass_per_length: mass per unit length [kg/m].
-        axial_stiffness: static EA [N].
-        mbl: minimum breaking load [N].
-        working_load_limit: OCIMF MEG4 working load limit [N].
+    :ivar name: preset name, e.g. 'polyester'.
+    :ivar mass_per_length: mass per unit length [kg/m].
+    :ivar axial_stiffness: static EA [N].
+    :ivar mbl: minimum breaking load [N].
+    :ivar working_load_limit: OCIMF MEG4 working load limit [N].
     """
 
     name: str
@@ -56,10 +56,10 @@ class MaterialLibrary:
 
     @classmethod
     def from_file(cls, path) -> 'MaterialLibrary':
-        """Read a materials.yaml file.
+        """
+        Read a materials.yaml file.
 
-        Raises:
-            MaterialError: the file is missing or has no `materials:` map.
+        :raises MaterialError: the file is missing or has no `materials:` map.
         """
         try:
             with open(path, encoding='utf-8') as f:
@@ -76,10 +76,10 @@ class MaterialLibrary:
         return tuple(sorted(self._entries))
 
     def properties(self, name: str, diameter: float) -> MaterialProperties:
-        """Evaluate a preset at a nominal diameter [m].
+        """
+        Evaluate a preset at a nominal diameter [m].
 
-        Raises:
-            MaterialError: unknown preset name.
+        :raises MaterialError: unknown preset name.
         """
         if name not in self._entries:
             raise MaterialError(

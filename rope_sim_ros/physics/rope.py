@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The rope: particles joined by structural (i, i+1) and bending (i, i+2) springs.
+"""
+The rope: particles joined by structural (i, i+1) and bending (i, i+2) springs.
 
 Particle 0 is the bollard end and particle N the fairlead end; both are kinematic (moved by
 the inputs), the N-1 others are free. Forces follow the seed paper (Liang & Yin 2016):
@@ -26,21 +27,21 @@ import numpy as np
 
 @dataclass(frozen=True)
 class RopeProperties:
-    """The physical numbers of one line, all resolved (no 'take from material' zeros).
+    """
+    The physical numbers of one line, all resolved (no 'take from material' zeros).
 
-    Attributes:
-        segments: number of segments N.
-        length: unstretched length L [m].
-        mass_per_length: [kg/m].
-        axial_stiffness: EA [N].
-        axial_damping: BA [N s]: a segment's damping coefficient is BA / segment length.
-        bending_stiffness_ratio: bending spring stiffness / structural spring stiffness.
-        bending_damping_ratio: bending spring damping / structural spring damping.
-        damping_model: 'axial' (stretch rate only) or 'seed' (K_SD (V_A - V_B)).
-        air_drag_coefficient: K_A per metre [N s^2 / m^3].
-        gravity: gravity vector [m/s^2], shape (3,).
-        max_strain: super-elasticity threshold (strain).
-        superelastic_adjustment: apply the position/velocity adjustment.
+    :ivar segments: number of segments N.
+    :ivar length: unstretched length L [m].
+    :ivar mass_per_length: [kg/m].
+    :ivar axial_stiffness: EA [N].
+    :ivar axial_damping: BA [N s]: a segment's damping coefficient is BA / segment length.
+    :ivar bending_stiffness_ratio: bending spring stiffness / structural spring stiffness.
+    :ivar bending_damping_ratio: bending spring damping / structural spring damping.
+    :ivar damping_model: 'axial' (stretch rate only) or 'seed' (K_SD (V_A - V_B)).
+    :ivar air_drag_coefficient: K_A per metre [N s^2 / m^3].
+    :ivar gravity: gravity vector [m/s^2], shape (3,).
+    :ivar max_strain: super-elasticity threshold (strain).
+    :ivar superelastic_adjustment: apply the position/velocity adjustment.
     """
 
     segments: int
@@ -68,12 +69,12 @@ class RopeProperties:
 
     @property
     def structural_stiffness(self) -> float:
-        """k = EA / l0 [N/m]."""
+        """Structural spring stiffness k = EA / l0 [N/m]."""
         return self.axial_stiffness / self.segment_length
 
     @property
     def structural_damping(self) -> float:
-        """c = BA / l0 [N s/m]."""
+        """Structural spring damping c = BA / l0 [N s/m]."""
         return self.axial_damping / self.segment_length
 
     @property
@@ -88,13 +89,14 @@ class RopeProperties:
 
     @property
     def weight_per_length(self) -> float:
-        """w = mass per length * |g| [N/m]."""
+        """Weight per length w = mass per length * |g| [N/m]."""
         return self.mass_per_length * float(np.linalg.norm(self.gravity))
 
 
 def critical_axial_damping(length: float, mass_per_length: float, axial_stiffness: float,
                            ratio: float = 0.01) -> float:
-    """BA [N s] giving `ratio` of critical damping to the line's first axial mode.
+    """
+    BA [N s] giving `ratio` of critical damping to the line's first axial mode.
 
     The first axial mode of a line fixed at both ends has w1 = (pi / L) sqrt(EA / m); a
     stiffness-proportional damper BA gives it the damping ratio BA w1 / (2 EA).
@@ -103,7 +105,8 @@ def critical_axial_damping(length: float, mass_per_length: float, axial_stiffnes
 
 
 def _spring_forces(x, v, stride, rest, stiffness, damping, axial, tension_only, out):
-    """Add the forces of springs (i, i + stride) to `out`; return their axial force.
+    """
+    Add the forces of springs (i, i + stride) to `out`; return their axial force.
 
     The axial force is positive in tension. A structural spring is a rope segment and carries
     no compression; a bending spring pushes back when the rope folds (the seed's purpose).
@@ -127,12 +130,12 @@ def _spring_forces(x, v, stride, rest, stiffness, damping, axial, tension_only, 
 
 
 class Rope:
-    """State and forces of one line.
+    """
+    State and forces of one line.
 
-    Attributes:
-        props: the line's RopeProperties.
-        x: particle positions, shape (N+1, 3) [m].
-        v: particle velocities, shape (N+1, 3) [m/s].
+    :ivar props: the line's RopeProperties.
+    :ivar x: particle positions, shape (N+1, 3) [m].
+    :ivar v: particle velocities, shape (N+1, 3) [m/s].
     """
 
     def __init__(self, props: RopeProperties, positions: np.ndarray):
@@ -147,7 +150,7 @@ class Rope:
 
     @property
     def count(self) -> int:
-        """Number of particles N + 1."""
+        """Count the particles: N + 1."""
         return self.props.segments + 1
 
     def line_forces(self, x: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -172,7 +175,8 @@ class Rope:
         return f / p.particle_mass + self._gravity
 
     def end_forces(self) -> tuple:
-        """Force of the line on the bollard (particle 0) and on the fairlead (particle N).
+        """
+        Force of the line on the bollard (particle 0) and on the fairlead (particle N).
 
         The attached springs and dampers plus the weight of the half segment lumped at the
         end, as MoorDyn reports for a coupled point: it converges to the catenary's end
@@ -188,5 +192,5 @@ class Rope:
         return np.sqrt(np.einsum('ij,ij->i', d, d)) / self.props.segment_length - 1.0
 
     def is_finite(self) -> bool:
-        """True when every position and velocity is a finite number."""
+        """Tell whether every position and velocity is a finite number."""
         return bool(np.isfinite(self.x).all() and np.isfinite(self.v).all())

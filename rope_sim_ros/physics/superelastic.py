@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The seed's cure for super-elasticity (section 1.2): position and velocity adjustment.
+"""
+The seed's cure for super-elasticity (section 1.2): position and velocity adjustment.
 
 After a step, wherever a structural spring is stretched beyond l0 (1 + max_strain), its two
 particles move toward each other along it until that length is restored (only the free one
@@ -43,7 +44,7 @@ REGULARISATION = 1e-6
 
 @numba.njit(cache=True)
 def _directions(x, d, length):
-    """Unit vectors d (N, 3) and lengths (N,) of the structural springs, in place."""
+    """Fill unit vectors d (N, 3) and lengths (N,) of the structural springs."""
     for i in range(x.shape[0] - 1):
         for p in range(3):
             d[i, p] = x[i + 1, p] - x[i, p]
@@ -82,7 +83,7 @@ def _solve_chain(u, inv_mass, active, rhs):
 
 @numba.njit(cache=True)
 def _apply(q, u, inv_mass, lam):
-    """q -= W J^T lam: particle i moves along u_i by w_i lam_i and back along u_{i-1}."""
+    """Apply q -= W J^T lam: particle i moves along u_i by w_i lam_i, back along u_{i-1}."""
     for i in range(len(lam)):
         for p in range(3):
             q[i, p] += inv_mass[i] * lam[i] * u[i, p]
@@ -91,18 +92,17 @@ def _apply(q, u, inv_mass, lam):
 
 @numba.njit(cache=True)
 def adjust(x, v, inv_mass, segment_length, max_strain, max_iterations):
-    """Apply the position and velocity adjustment in place.
+    """
+    Apply the position and velocity adjustment in place.
 
-    Args:
-        x: positions (N+1, 3), modified in place.
-        v: velocities (N+1, 3), modified in place.
-        inv_mass: 1 for free particles, 0 for kinematic ends, shape (N+1,).
-        segment_length: unstretched structural spring length l0 [m].
-        max_strain: threshold strain.
-        max_iterations: bound on the Newton iterations.
+    :param x: positions (N+1, 3), modified in place.
+    :param v: velocities (N+1, 3), modified in place.
+    :param inv_mass: 1 for free particles, 0 for kinematic ends, shape (N+1,).
+    :param segment_length: unstretched structural spring length l0 [m].
+    :param max_strain: threshold strain.
+    :param max_iterations: bound on the Newton iterations.
 
-    Returns:
-        Newton iterations taken (0 when no spring was over the threshold).
+    :returns: Newton iterations taken (0 when no spring was over the threshold).
     """
     n = x.shape[0] - 1
     limit = segment_length * (1.0 + max_strain)
