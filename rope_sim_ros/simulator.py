@@ -186,8 +186,7 @@ class Simulator:
         """
         last = self.fairlead.last_position
         self.fairlead.push(t, position)
-        jump = 0.0 if last is None else float(np.linalg.norm(np.asarray(position) - last))
-        if self.started and jump > self.params.teleport_distance:
+        if self.started and math.dist(position, last) > self.params.teleport_distance:
             self.fairlead.clear()
             self.fairlead.push(t, position)
             self.restart(max(t, self.time))
