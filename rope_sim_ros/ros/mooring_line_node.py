@@ -178,9 +178,8 @@ class MooringLineNode(Node):
         self.get_logger().info(
             f'{line.material} line, {line.diameter * 1e3:g} mm, {props.length:g} m, '
             f'{props.segments} segments, MBL {self.simulator.material.mbl / 1e3:.0f} kN, '
-            f'{line.integrator} step {self.simulator.time_step * 1e3:.4g} ms; waiting for the '
-            'first pose '
-            f'on {self._fairlead_sub.topic_name}')
+            f'{line.integrator} step {self.simulator.time_step * 1e3:.4g} ms; '
+            f'waiting for the first pose on {self._fairlead_sub.topic_name}')
 
     # -- parameters ---------------------------------------------------------------------
 
@@ -243,7 +242,11 @@ class MooringLineNode(Node):
         values = {p.name: _plain(p.value) for p in parameters if p.name in params.SPECS}
         if not values:
             return
-        self.simulator.update(values)
+        try:
+            self.simulator.update(values)
+        except ValueError as e:  # validated already: the simulator should never refuse
+            self.get_logger().error(f'could not apply {values}: {e}')
+            return
         if 'publish_rate' in values:
             self._timer.timer_period_ns = int(1e9 / self.simulator.params.publish_rate)
         self.get_logger().info('set ' + ', '.join(f'{k} = {v}' for k, v in values.items()))
@@ -307,6 +310,11 @@ class MooringLineNode(Node):
         if abs(end.quaternion_norm - 1.0) > 1e-3:
             self._warn(f'{topic}: norm', f'{topic}: normalised a non-unit quaternion '
                        f'(|q| = {end.quaternion_norm:.4g})')
+        frame_id = self.simulator.params.frame_id
+        if msg.header.frame_id and msg.header.frame_id != frame_id:
+            self._warn(f'{topic}: frame', f'{topic}: header.frame_id is '
+                       f'{msg.header.frame_id!r}, not {frame_id!r}: taken as {frame_id!r} '
+                       '(no tf lookup)')
         if now_ns and abs(stamp_ns - now_ns) > self.STAMP_SKEW_WARNING * 1e9:
             self._warn(f'{topic}: skew', f'{topic}: stamps are {(now_ns - stamp_ns) * 1e-9:+.3f}'
                        ' s behind the node clock: are the clocks in sync (use_sim_time)?')
