@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Latency of the mooring_line node: from a fairlead pose to the next tension message.
+"""
+Latency of the mooring_line node: from a fairlead pose to the next tension message.
 
 Starts the colcon-installed node (<repo>/install, built with colcon first if missing) in its
 own ROS domain, publishes --count fairlead poses at --rate Hz (a 0.1 m, 0.5 Hz motion along

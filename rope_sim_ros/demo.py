@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""`make demo`: a live mooring line in one command.
+"""
+`make demo`: a live mooring line in one command.
 
 Starts the colcon-installed executables mooring_line (with config/mooring_line.yaml),
 ship_motion and line_monitor in their own ROS domain (unless ROS_DOMAIN_ID is set), forwards

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The mooring_line node over real DDS: started from the colcon install, as `ros2 run` would.
+"""
+The mooring_line node over real DDS: started from the colcon install, as `ros2 run` would.
 
 One node process serves the topic, parameter, reset and bad-input tests (in that order, in
 namespace /line); the moving-fairlead comparison gets a fresh node (its start must be known
@@ -172,10 +173,10 @@ class Client:
         return stamp_ns
 
     def drive(self, seconds: float, position, rate: float = 50.0) -> list:
-        """Publish position(t) at `rate` for `seconds` (t from 0) while spinning.
+        """
+        Publish position(t) at `rate` for `seconds` (t from 0) while spinning.
 
-        Returns:
-            [(stamp_ns, position)] of every published pose.
+        :returns: [(stamp_ns, position)] of every published pose.
         """
         sent = []
         start, start_ns = time.monotonic(), time.time_ns()
@@ -444,7 +445,8 @@ def offline_simulator(line: params.LineParams) -> Simulator:
 
 
 def _first_sample(sent: list, first_output_ns: int, line: params.LineParams) -> tuple:
-    """Return (index, time origin) of the pose the node started the rope with.
+    """
+    Return (index, time origin) of the pose the node started the rope with.
 
     DDS may lose the first samples of a fresh connection even after both ends matched. The
     node starts on the first pose it gets, takes its stamp as time 0 and steps from there:

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""ROS 2 layer of rope_sim_ros: the mooring_line node, a scripted ship and a line monitor.
+"""
+ROS 2 layer of rope_sim_ros: the mooring_line node, a scripted ship and a line monitor.
 
 Glue only: it turns messages into simulator inputs and simulator outputs into messages; the
 physics and the time handling live in rope_sim_ros.simulator.

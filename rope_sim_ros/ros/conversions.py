@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Pure conversions between geometry_msgs and the simulator's numpy arrays.
+"""
+Pure conversions between geometry_msgs and the simulator's numpy arrays.
 
 Conventions: quaternions as numpy arrays are (x, y, z, w), as in geometry_msgs; positions
 and forces are in frame_id axes; time stamps are integer nanoseconds.
@@ -34,12 +35,12 @@ class PoseError(ValueError):
 
 
 class PosePoint(NamedTuple):
-    """A rope end computed from a pose message.
+    """
+    A rope end computed from a pose message.
 
-    Attributes:
-        point: pose position ⊕ offset: the end point in frame_id [m], shape (3,).
-        lever: the offset rotated into frame_id: point minus the pose origin [m], shape (3,).
-        quaternion_norm: |q| of the message before normalisation (1 for a clean message).
+    :ivar point: pose position ⊕ offset: the end point in frame_id [m], shape (3,).
+    :ivar lever: the offset rotated into frame_id: point minus the pose origin [m], shape (3,).
+    :ivar quaternion_norm: |q| of the message before normalisation (1 for a clean message).
     """
 
     point: np.ndarray
@@ -48,10 +49,10 @@ class PosePoint(NamedTuple):
 
 
 def unit_quaternion(q) -> tuple:
-    """Return (q normalised as an (x, y, z, w) array, |q| before) of a Quaternion message.
+    """
+    Return (q normalised as an (x, y, z, w) array, |q| before) of a Quaternion message.
 
-    Raises:
-        PoseError: a component is NaN or infinite, or |q| is (nearly) zero.
+    :raises PoseError: a component is NaN or infinite, or |q| is (nearly) zero.
     """
     array = np.array([q.x, q.y, q.z, q.w], dtype=float)
     if not np.isfinite(array).all():
@@ -71,10 +72,10 @@ def rotate(q: np.ndarray, v) -> np.ndarray:
 
 
 def pose_point(pose: Pose, offset) -> PosePoint:
-    """Return the point pose ⊕ offset: the offset (body frame) rotated and added.
+    """
+    Return the point pose ⊕ offset: the offset (body frame) rotated and added.
 
-    Raises:
-        PoseError: non-finite position or orientation, or a zero quaternion.
+    :raises PoseError: non-finite position or orientation, or a zero quaternion.
     """
     p = pose.position
     position = np.array([p.x, p.y, p.z], dtype=float)
@@ -97,7 +98,8 @@ def ns_to_stamp(ns: int) -> Time:
 
 
 def tangent_quaternions(positions: np.ndarray) -> np.ndarray:
-    """Orientations (n, 4) whose x axis points along the rope, from the bollard onwards.
+    """
+    Orientations (n, 4) whose x axis points along the rope, from the bollard onwards.
 
     The tangent at an inner particle is the central difference of its neighbours, at an end
     the adjacent segment; the rotation is the shortest arc from +x to it (so the roll about
@@ -138,11 +140,11 @@ def pose_array(positions: np.ndarray, frame_id: str, stamp_ns: int) -> PoseArray
 
 
 def wrench(force, lever) -> Wrench:
-    """Return a Wrench: the force and its moment lever × force about the pose origin.
+    """
+    Return a Wrench: the force and its moment lever × force about the pose origin.
 
-    Args:
-        force: force of the line on the end point [N], shape (3,).
-        lever: end point minus the pose origin [m], shape (3,).
+    :param force: force of the line on the end point [N], shape (3,).
+    :param lever: end point minus the pose origin [m], shape (3,).
     """
     force = np.asarray(force, dtype=float)
     torque = np.cross(np.asarray(lever, dtype=float), force)

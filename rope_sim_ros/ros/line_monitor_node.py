@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""A console view of one mooring line: one line per second on stdout.
+"""
+A console view of one mooring line: one line per second on stdout.
 
 Subscribes rope/particles, fairlead/tension and bollard/tension and prints the state time
 (from the first particles message), both tensions, the largest strain of a segment (from

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The mooring_line node: one simulated mooring line between a bollard and a fairlead.
+"""
+The mooring_line node: one simulated mooring line between a bollard and a fairlead.
 
 ROS glue only. Parameters (params.SPECS) become ParameterDescriptors and then a Simulator;
 pose messages become end samples; a timer advances the simulator and publishes its output.
@@ -132,10 +133,10 @@ class MooringLineNode(Node):
     THROTTLE = 5.0  # seconds between repeated warnings of one kind
 
     def __init__(self, **kwargs):
-        """Declare the parameters, build the simulator, then create the ROS interfaces.
+        """
+        Declare the parameters, build the simulator, then create the ROS interfaces.
 
-        Raises:
-            StartupError: a parameter value is not allowed or the line cannot be built.
+        :raises StartupError: a parameter value is not allowed or the line cannot be built.
         """
         super().__init__(NODE_NAME, **kwargs)
         self._last_log: Dict[str, float] = {}
@@ -194,14 +195,14 @@ class MooringLineNode(Node):
         return values
 
     def _start_values(self) -> dict:
-        """Return the values of --params-file / -p, validated (doubles may be integers).
+        """
+        Return the values of --params-file / -p, validated (doubles may be integers).
 
         rclpy would refuse `length: 40` for a double; the offline runner reading the same
         file accepts it, so the node does too. rclpy keeps these values in
         Node._parameter_overrides, which has no public accessor.
 
-        Raises:
-            StartupError: the first value that is not allowed, named.
+        :raises StartupError: the first value that is not allowed, named.
         """
         values = {}
         for name, parameter in getattr(self, '_parameter_overrides', {}).items():
@@ -332,7 +333,8 @@ class MooringLineNode(Node):
 
     @staticmethod
     def _new_simulator(line: params.LineParams) -> Simulator:
-        """Return a Simulator whose step divides the publish period, as `rope_sim run` does.
+        """
+        Return a Simulator whose step divides the publish period, as `rope_sim run` does.
 
         With the same step and the same time origin (the first pose = 0) the node and the
         offline runner step at the same times, so they give the same numbers.
@@ -344,7 +346,8 @@ class MooringLineNode(Node):
         return (ns - self._epoch_ns) * 1e-9
 
     def _target_time(self, now: float) -> float:
-        """Return now, but not past the second-newest sample of a live pose stream.
+        """
+        Return now, but not past the second-newest sample of a live pose stream.
 
         See the module docstring; a stream with a single sample so far holds at it.
         """
@@ -425,11 +428,11 @@ class MooringLineNode(Node):
             self.record(topic, msg)
 
     def record(self, topic: str, msg: Any) -> None:
-        """Pass a received or published message to the recorder (the recording hook).
+        """
+        Pass a received or published message to the recorder (the recording hook).
 
-        Args:
-            topic: the topic name relative to the node's namespace.
-            msg: the message.
+        :param topic: the topic name relative to the node's namespace.
+        :param msg: the message.
         """
         if self.recorder is not None:
             self.recorder.write(topic, msg, self.get_clock().now().nanoseconds)

@@ -12,7 +12,8 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""A scripted ship for demos and test rigs: publishes fairlead/pose.
+"""
+A scripted ship for demos and test rigs: publishes fairlead/pose.
 
 The ship oscillates around a mean position in surge, sway and heave (along its own axes,
 turned by `heading` about z) and rolls about its x axis; every motion is a sine with its
@@ -55,11 +56,11 @@ PARAMETERS = {
 
 
 def ship_pose(t: float, p: dict) -> tuple:
-    """Return (position [x, y, z], quaternion (x, y, z, w)) of the ship at time t [s].
+    """
+    Return (position [x, y, z], quaternion (x, y, z, w)) of the ship at time t [s].
 
-    Args:
-        t: seconds since the start of the motion.
-        p: parameter values by name (PARAMETERS).
+    :param t: seconds since the start of the motion.
+    :param p: parameter values by name (PARAMETERS).
     """
     ramp = p['ramp_duration']
     fade = 1.0 if t >= ramp else 0.5 * (1.0 - math.cos(math.pi * max(t, 0.0) / ramp))
