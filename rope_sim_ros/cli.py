@@ -104,8 +104,10 @@ def build_parser() -> argparse.ArgumentParser:
         'run', help='run a motion table (MOTION.csv) through the line',
         description='Run the line through a motion table. MOTION.csv has a header with t, '
         'fairlead_x, fairlead_y, fairlead_z and optionally bollard_x, bollard_y, bollard_z '
-        '(world-frame end points, interpolated linearly). Writes OUT.csv with the forces of '
-        'the line on both ends every 1/rate s and/or a bag as the node records it.')
+        '(world-frame end points, interpolated between rows as the parameter '
+        'end_interpolation says: cubic by default, linear = the secant of each row interval). '
+        'Writes OUT.csv with the forces of the line on both ends every 1/rate s and/or a bag '
+        'as the node records it.')
     _add_params_options(run, 'config/mooring_line.yaml')
     run.add_argument('--motion', required=True, metavar='MOTION.csv', help='motion table')
     run.add_argument('--out', metavar='OUT.csv',

@@ -95,7 +95,8 @@ SPECS: Mapping[str, Spec] = {
         'implicit_euler', '', 'implicit_euler: stable at any step, fastest for stiff lines; '
         'improved_euler: the explicit scheme of the seed paper', choices=INTEGRATORS),
     'time_step': Spec(
-        0.0, 's', 'integration step; 0 = automatic from the stability limit', 0.0, 0.1),
+        0.0, 's', 'integration step; 0 = automatic (improved_euler: from its stability limit; '
+        'implicit_euler: a quarter of the first axial period, at most 5 ms)', 0.0, 0.1),
     'end_interpolation': Spec(
         'cubic', '', 'end motion between samples: linear (secant velocity, which jumps at '
         'every sample) or cubic (Catmull-Rom: continuous velocity, far smaller tension ripple '
@@ -120,6 +121,8 @@ SPECS: Mapping[str, Spec] = {
 def _describe_range(name: str, spec: Spec) -> str:
     if spec.choices:
         return 'one of ' + ', '.join(spec.choices)
+    if isinstance(spec.default, str):
+        return 'any text'
     if isinstance(spec.default, list):
         return 'a list of 3 finite numbers'
     if isinstance(spec.default, bool):
