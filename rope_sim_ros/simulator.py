@@ -275,7 +275,12 @@ class Simulator:
                        MAX_ITERATIONS)
 
     def skip_to(self, t: float) -> None:
-        """Move the state time to t without simulating (after falling far behind)."""
+        """
+        Move the state time to t without simulating.
+
+        The particles stay where they are, so after more than rounding the ends jump at the
+        next step to where they are at t: follow a long skip with restart().
+        """
         self.time = t
 
     def output(self) -> Output:
