@@ -13,17 +13,20 @@
 # limitations under the License.
 
 """
-`make demo`: a live mooring line in one command.
+`make demo`: a live mooring line in one command, recorded to a bag and plotted.
 
-Starts the colcon-installed executables mooring_line (with config/mooring_line.yaml),
-ship_motion and line_monitor in their own ROS domain (unless ROS_DOMAIN_ID is set), forwards
-the monitor's lines to stdout for --duration seconds of output, then stops every child with
-SIGINT, by its process id, and waits for it.
+Starts the colcon-installed executables mooring_line (with config/mooring_line.yaml,
+recording to a new bag out/demo_<time>/bag), ship_motion and line_monitor in their own ROS
+domain (unless ROS_DOMAIN_ID is set), forwards the monitor's lines to stdout for --duration
+seconds of output, then stops every child with SIGINT, by its process id, and waits for it.
+Then `rope_sim info` describes the bag, `rope_sim plot` draws out/demo_<time>/tension.png,
+and the demo says where both are.
 
-    python -m rope_sim_ros.demo [--duration 30] [--install install] [--params FILE]
+    python -m rope_sim_ros.demo [--duration 30] [--install install] [--params FILE] [--out out]
 """
 
 import argparse
+import errno
 import os
 from pathlib import Path
 import queue
@@ -91,11 +94,14 @@ def main(argv=None) -> int:
                         help='colcon install base (default: <repo>/install)')
     parser.add_argument('--params', type=Path, default=REPO / 'config' / 'mooring_line.yaml',
                         help='parameter file of mooring_line (default config/mooring_line.yaml)')
+    parser.add_argument('--out', type=Path, default=REPO / 'out',
+                        help='where the run directory demo_<time>/ (bag and plot) is made '
+                        '(default: <repo>/out)')
     args = parser.parse_args(argv)
 
     prefix = args.install.resolve() / PACKAGE
     executables = prefix / 'lib' / PACKAGE
-    missing = [name for name in ('mooring_line', 'ship_motion', 'line_monitor')
+    missing = [name for name in ('mooring_line', 'ship_motion', 'line_monitor', 'rope_sim')
                if not (executables / name).is_file()]
     if missing:
         print(f'demo: {", ".join(missing)} not found in {executables}: run `make build` first',
@@ -107,11 +113,20 @@ def main(argv=None) -> int:
         print(f'demo: {e}', file=sys.stderr)
         return 2
 
+    try:
+        run_dir = new_run_directory(args.out)
+    except OSError as e:
+        print(f'demo: cannot create a run directory in {args.out}: {e.strerror or e}',
+              file=sys.stderr)
+        return 2
+    bag = run_dir / 'bag'
+
     env = overlay_environment(prefix)
     print(f'demo: ROS_DOMAIN_ID={env["ROS_DOMAIN_ID"]}, parameters {args.params}, '
-          f'{args.duration:g} s; Ctrl-C stops early', flush=True)
+          f'{args.duration:g} s, recording to {bag}; Ctrl-C stops early', flush=True)
     commands = {
-        'mooring_line': ['--ros-args', '--params-file', str(args.params)],
+        'mooring_line': ['--ros-args', '--params-file', str(args.params),
+                         '-p', f'record_path:={bag}'],
         'ship_motion': [],
         'line_monitor': ['--ros-args', '-p', f'length:={length!r}'],
     }
@@ -134,7 +149,58 @@ def main(argv=None) -> int:
     if bad:
         print(f'demo: exit codes {bad}', file=sys.stderr)
     print(f'demo: stopped {", ".join(codes)}', flush=True)
-    return 0 if ok and not bad else 1
+    shown = show_bag(executables / 'rope_sim', env, bag, run_dir / 'tension.png')
+    return 0 if ok and not bad and shown else 1
+
+
+def new_run_directory(base: Path) -> Path:
+    """
+    Create and return a new directory base/demo_<date>-<time>[_<n>]; never reuse one.
+
+    :param base: where to make it (created if missing).
+    :returns: the new, empty directory.
+    :raises OSError: base cannot be created or written.
+    """
+    base.mkdir(parents=True, exist_ok=True)
+    stem = 'demo_' + time.strftime('%Y%m%d-%H%M%S')
+    for n in range(1, 1000):
+        path = base / (stem if n == 1 else f'{stem}_{n}')
+        try:
+            path.mkdir()
+        except FileExistsError:
+            continue
+        return path.resolve()
+    raise FileExistsError(errno.EEXIST, 'too many runs this second', str(base / stem))
+
+
+def show_bag(rope_sim: Path, env: dict, bag: Path, png: Path) -> bool:
+    """
+    Run `rope_sim info` and `rope_sim plot` on the recorded bag and say where things are.
+
+    A bag left incomplete (mooring_line had to be killed) is completed with
+    `rope_sim recover` first.
+
+    :param rope_sim: the installed rope_sim executable.
+    :param env: the environment to run it in.
+    :param bag: the bag directory mooring_line recorded.
+    :param png: the plot to write.
+    :returns: True if the bag was there and both commands succeeded.
+    """
+    if not (bag / 'metadata.yaml').is_file():
+        if not bag.is_dir():
+            print(f'demo: no bag was recorded at {bag}', file=sys.stderr)
+            return False
+        print(f'demo: {bag} was not closed; completing it with rope_sim recover', flush=True)
+        if subprocess.run([str(rope_sim), 'recover', str(bag)], env=env).returncode != 0:
+            return False
+    ok = True
+    for command in (['info', str(bag)], ['plot', str(bag), '-o', str(png)]):
+        print(f'demo: rope_sim {" ".join(command)}', flush=True)
+        ok = subprocess.run([str(rope_sim), *command], env=env).returncode == 0 and ok
+    print(f'demo: bag  {bag}', flush=True)
+    if png.is_file():
+        print(f'demo: plot {png}', flush=True)
+    return ok and png.is_file()
 
 
 def _show(children: dict, lines: queue.Queue, duration: float) -> bool:

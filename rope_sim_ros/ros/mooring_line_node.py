@@ -26,11 +26,19 @@ move exactly as in the offline runner, which knows the whole motion. Running ahe
 (extrapolating, then pulling the end back when the next pose arrives) costs a stiff line as
 much tension noise as the motion itself. When a stream falls silent for LIVE_INPUT seconds
 the end holds (after a short extrapolation) and the rope goes on to now.
+
+Recording (record_path): every received pose and published message also goes to a bag
+through recorder.Recorder, which never blocks the tick; Ctrl-C and SIGTERM close the bag,
+after SIGKILL `rope_sim recover` completes it.
 """
 
 import array
 from collections import deque
+import contextlib
+import functools
 import math
+import os
+import signal
 from typing import Any, Dict, List, Optional
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
@@ -45,13 +53,18 @@ from rclpy.qos import QoSProfile
 from std_srvs.srv import Trigger
 
 from . import conversions
+from .recorder import POSE_ARRAY, POSE_STAMPED, Recorder, WRENCH
 from .. import params
+from ..bag import BagError
+from ..runner import PARAMETERS_KEY, parameters_yaml
 from ..simulator import Simulator
 from ..trajectory import TrajectoryError
 
 NODE_NAME = params.NODE_NAME
 # Parameters rclpy itself declares or reads; not ours to warn about.
 ROS_PARAMETERS = ('use_sim_time', 'start_type_description_service')
+_OUTPUT_TYPES = {'rope/particles': POSE_ARRAY, 'fairlead/tension': WRENCH,
+                 'bollard/tension': WRENCH}
 
 
 class StartupError(Exception):
@@ -141,7 +154,8 @@ class MooringLineNode(Node):
         super().__init__(NODE_NAME, **kwargs)
         self._last_log: Dict[str, float] = {}
         self.dropped: Dict[str, int] = {}
-        self.recorder = None  # set by recording (record_path): gets every message via record()
+        # A Recorder while recording (record_path): gets every message via record().
+        self.recorder: Optional[Recorder] = None
         self.simulator: Optional[Simulator] = None
         self.add_pre_set_parameters_callback(self._coerce_parameters)
         self.add_on_set_parameters_callback(self._validate_parameters)
@@ -171,10 +185,7 @@ class MooringLineNode(Node):
             PoseStamped, 'bollard/pose', self._on_bollard_pose, qos)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
         self._timer = self.create_timer(1.0 / line.publish_rate, self._on_tick)
-        if line.record_path:
-            self.get_logger().warning(
-                f'record_path {line.record_path!r} is set, but recording is not available in '
-                'this build: nothing is recorded')
+        self._start_recording()
         props = self.simulator.props
         self.get_logger().info(
             f'{line.material} line, {line.diameter * 1e3:g} mm, {props.length:g} m, '
@@ -427,6 +438,56 @@ class MooringLineNode(Node):
             self._outputs[topic].publish(msg)
             self.record(topic, msg)
 
+    # -- recording ----------------------------------------------------------------------
+
+    def _start_recording(self) -> None:
+        """
+        Start recording to record_path, if it is set: inputs and outputs, resolved names.
+
+        The bag stores the parameters at start-up as `rope_sim run` does (custom_data
+        rope_sim_ros.parameters), so `rope_sim resim` and `rope_sim plot` use them.
+
+        :raises StartupError: record_path exists and is not an empty directory, or it
+            cannot be created or written.
+        """
+        line = self.simulator.params
+        if not line.record_path:
+            return
+        try:
+            recorder = Recorder(line.record_path, {PARAMETERS_KEY: parameters_yaml(line)},
+                                self.get_logger())
+        except (BagError, OSError) as e:
+            raise StartupError(f'record_path: {e}') from None
+        for topic, subscription in (('fairlead/pose', self._fairlead_sub),
+                                    ('bollard/pose', self._bollard_sub)):
+            # Stored with the QoS its publishers offer, as `ros2 bag record` does.
+            recorder.add_topic(topic, subscription.topic_name, POSE_STAMPED,
+                               offered_qos=functools.partial(
+                                   self._offered_qos, subscription.topic_name))
+        for topic, publisher in self._outputs.items():
+            recorder.add_topic(topic, publisher.topic_name, _OUTPUT_TYPES[topic],
+                               publisher.qos_profile)
+        self.recorder = recorder
+        self.get_logger().info(
+            f'recording {", ".join(self._outputs)}, fairlead/pose and bollard/pose to '
+            f'{os.path.abspath(recorder.path)}')
+
+    def _offered_qos(self, topic: str) -> List[QoSProfile]:
+        """Return the QoS profiles the publishers of a topic offer (from the graph)."""
+        return [info.qos_profile for info in self.get_publishers_info_by_topic(topic)]
+
+    def close_recording(self) -> None:
+        """Complete the bag, if recording: summary and metadata.yaml; log the drop count."""
+        if self.recorder is not None:
+            self.recorder.close()
+
+    def destroy_node(self) -> None:
+        """Destroy the node, then close the bag (see close_recording)."""
+        # In this order the closing lines are not sent to /rosout, whose publisher is gone
+        # after a signal shut the context down (rcl would complain about each line).
+        super().destroy_node()
+        self.close_recording()
+
     def record(self, topic: str, msg: Any) -> None:
         """
         Pass a received or published message to the recorder (the recording hook).
@@ -462,7 +523,15 @@ def _fmt(point) -> str:
 
 
 def main(args=None) -> int:
-    """Run the node until Ctrl-C; exit code 2 when a parameter is not allowed."""
+    """
+    Run the node until Ctrl-C or SIGTERM, then close its bag (if recording).
+
+    rclpy.init installs handlers for SIGINT (which then raises KeyboardInterrupt) and
+    SIGTERM (which shuts the context down, so spin raises ExternalShutdownException): both
+    end in the same clean shutdown, exit code 0.
+
+    :returns: 0, or 2 when a parameter is not allowed or record_path cannot be used.
+    """
     rclpy.init(args=args)
     try:
         node = MooringLineNode()
@@ -473,14 +542,36 @@ def main(args=None) -> int:
     except KeyboardInterrupt:
         rclpy.try_shutdown()
         return 0
+    except Exception:
+        if rclpy.ok():
+            raise
+        return 0  # SIGTERM during start-up: rclpy shut the context down under us
     try:
-        rclpy.spin(node)
+        if rclpy.ok():  # else SIGTERM came between start-up and spinning
+            rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
-        pass
+        pass  # Ctrl-C; SIGTERM, whose rclpy handler shuts the context down
     finally:
-        node.destroy_node()
+        with _signals_ignored():  # a second Ctrl-C must not cut the bag short
+            node.destroy_node()
         rclpy.try_shutdown()
     return 0
+
+
+@contextlib.contextmanager
+def _signals_ignored():
+    """Ignore SIGINT and SIGTERM inside the block (main thread only); SIGKILL still works."""
+    saved = {}
+    try:
+        for number in (signal.SIGINT, signal.SIGTERM):
+            saved[number] = signal.signal(number, signal.SIG_IGN)
+    except ValueError:  # not the main thread: leave signals alone
+        pass
+    try:
+        yield
+    finally:
+        for number, handler in saved.items():
+            signal.signal(number, handler if handler is not None else signal.SIG_DFL)
 
 
 if __name__ == '__main__':

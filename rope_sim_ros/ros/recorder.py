@@ -1,0 +1,283 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Recording of the mooring_line node: its inputs and outputs to a rosbag2 Jazzy bag.
+
+A thin layer over bag.BagWriter that the node feeds from its record() hook. It encodes
+the three message types itself (numpy/struct CDR with zeroed padding, as the offline
+runner does: rclpy's serialize_message leaves padding bytes uninitialised, and is slower),
+sets publish_time from the header stamp where there is one, and never lets a recording
+problem reach the simulation: write() cannot raise and never waits for the disk; an error
+stops recording, is logged once and the node goes on.
+
+Input topics are registered with the QoS their publishers offer, looked up on the graph
+when the first message arrives (what `ros2 bag record` stores); an input that never
+arrives is still listed, with rclpy's default publisher profile.
+"""
+
+import logging
+import os
+import struct
+from typing import Any, Callable, Dict, Optional
+
+from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
+import numpy as np
+
+from ..bag import BagError, BagWriter
+from ..bag.metadata import QosSpec
+
+POSE_STAMPED = 'geometry_msgs/msg/PoseStamped'
+POSE_ARRAY = 'geometry_msgs/msg/PoseArray'
+WRENCH = 'geometry_msgs/msg/Wrench'
+
+# CDR (XCDR1, little endian) encapsulation header, as rclpy's serialize_message writes it.
+_CDR_LE = b'\x00\x01\x00\x00'
+
+
+def _pad(body: bytes, alignment: int) -> bytes:
+    # CDR aligns from the end of the encapsulation header; padding is zeros here.
+    return body + bytes(-len(body) % alignment)
+
+
+def _header(msg: Any) -> bytes:
+    name = msg.header.frame_id.encode('utf-8') + b'\x00'
+    stamp = msg.header.stamp
+    return struct.pack('<iII', stamp.sec, stamp.nanosec, len(name)) + name
+
+
+def pose_stamped_cdr(msg: PoseStamped) -> bytes:
+    """
+    Return a PoseStamped as CDR bytes with zero padding.
+
+    :param msg: the message.
+    :returns: what serialize_message returns, but with deterministic padding.
+    """
+    p, q = msg.pose.position, msg.pose.orientation
+    return (_CDR_LE + _pad(_header(msg), 8)
+            + struct.pack('<7d', p.x, p.y, p.z, q.x, q.y, q.z, q.w))
+
+
+def pose_array_cdr(msg: PoseArray) -> bytes:
+    """
+    Return a PoseArray as CDR bytes with zero padding, its poses packed by numpy.
+
+    :param msg: the message.
+    :returns: what serialize_message returns, but with deterministic padding.
+    """
+    poses = msg.poses
+    body = _pad(_pad(_header(msg), 4) + struct.pack('<I', len(poses)), 8)
+    values = np.array([(p.position.x, p.position.y, p.position.z, p.orientation.x,
+                        p.orientation.y, p.orientation.z, p.orientation.w) for p in poses],
+                      dtype='<f8')
+    return _CDR_LE + body + values.tobytes()
+
+
+def wrench_cdr(msg: Wrench) -> bytes:
+    """
+    Return a Wrench as CDR bytes (six doubles, no padding).
+
+    :param msg: the message.
+    :returns: the same bytes as serialize_message.
+    """
+    f, t = msg.force, msg.torque
+    return _CDR_LE + struct.pack('<6d', f.x, f.y, f.z, t.x, t.y, t.z)
+
+
+# type name -> (message class, encoder, has a header)
+_TYPES = {
+    POSE_STAMPED: (PoseStamped, pose_stamped_cdr, True),
+    POSE_ARRAY: (PoseArray, pose_array_cdr, True),
+    WRENCH: (Wrench, wrench_cdr, False),
+}
+
+
+class _Topic:
+    """One recorded topic: its resolved name, type, encoder and how to find its QoS."""
+
+    def __init__(self, name: str, type_name: str, qos: QosSpec,
+                 offered_qos: Optional[Callable[[], QosSpec]]) -> None:
+        self.name = name
+        self.type_name = type_name
+        self.cls, self.encode, self.stamped = _TYPES[type_name]
+        self.qos = qos
+        # Set for an input: registration waits for its first message (or close()).
+        self.offered_qos = offered_qos
+
+
+class Recorder:
+    """
+    Records the messages the node hands it to a new bag, never blocking the caller.
+
+    ::
+
+        recorder = Recorder('run1', parameters_text, node.get_logger())
+        recorder.add_topic('fairlead/tension', '/line_1/fairlead/tension', WRENCH, qos)
+        recorder.write('fairlead/tension', wrench, now_ns)
+        recorder.close()
+    """
+
+    def __init__(self, path: str, custom_data: Dict[str, str], logger: Any, *,
+                 queue_size: int = BagWriter.DEFAULT_QUEUE_SIZE,
+                 flush_interval: float = BagWriter.DEFAULT_FLUSH_INTERVAL) -> None:
+        """
+        Create the bag directory and start its writer thread.
+
+        :param path: the new bag directory; an existing non-empty one is refused.
+        :param custom_data: metadata.yaml custom_data (e.g. the node's parameters).
+        :param logger: an rclpy logger (info, warning, error) for what happens to the bag.
+        :param queue_size: messages that may wait for the disk before new ones are dropped.
+        :param flush_interval: seconds between chunk flushes at most (what a kill loses).
+        :raises BagError: the path exists and is not an empty directory, or is not writable.
+        """
+        self.logger = logger
+        self.writer = BagWriter(path, queue_size=queue_size, flush_interval=flush_interval,
+                                custom_data=custom_data)
+        _quiet_writer_log()
+        self._topics: Dict[str, _Topic] = {}
+        self._offered = 0
+        self._failure: Optional[str] = None  # why recording stopped, once logged
+
+    @property
+    def path(self) -> str:
+        """Return the bag directory."""
+        return self.writer.path
+
+    @property
+    def recording(self) -> bool:
+        """Return whether messages are still being recorded (not closed, no error)."""
+        return self._failure is None and not self.writer.closed
+
+    @property
+    def dropped(self) -> int:
+        """Return how many messages handed to write() were not recorded."""
+        return self.writer.dropped
+
+    def add_topic(self, relative: str, name: str, type_name: str, qos: QosSpec = None,
+                  offered_qos: Optional[Callable[[], QosSpec]] = None) -> None:
+        """
+        Register a topic the node will hand to write() under its relative name.
+
+        :param relative: the name the node uses, e.g. 'fairlead/tension'.
+        :param name: the resolved name recorded, e.g. '/line_1/fairlead/tension'.
+        :param type_name: POSE_STAMPED, POSE_ARRAY or WRENCH.
+        :param qos: the offered QoS profile(s) stored; None = rclpy's default publisher's.
+        :param offered_qos: for an input: a callable returning the QoS its publishers offer
+            (None or empty for the default), asked when the first message arrives.
+        :raises BagError: the type is not one of the three, or the name is not absolute.
+        """
+        if type_name not in _TYPES:
+            raise BagError(f'bag {self.path}: cannot record {type_name} on {name}: the '
+                           f'recorder knows {", ".join(_TYPES)}')
+        topic = _Topic(name, type_name, qos, offered_qos)
+        if offered_qos is None:
+            self.writer.add_topic(name, type_name, qos)
+        self._topics[relative] = topic
+
+    def write(self, relative: str, msg: Any, log_time_ns: int) -> None:
+        """
+        Queue one message; never raises, never waits for the disk.
+
+        publish_time is the header stamp where the message has a non-zero one, else the
+        log time. A message that cannot be queued (queue full, recording stopped) is
+        counted in `dropped`; the first error is logged once.
+
+        :param relative: a topic given to add_topic().
+        :param msg: the message as received or published.
+        :param log_time_ns: receive/record time on the node clock [ns].
+        """
+        if self._failure is not None or self.writer.closed:
+            return
+        try:
+            topic = self._topics[relative]
+            if topic.offered_qos is not None:
+                self._register(topic)
+            publish_time_ns = log_time_ns
+            if topic.stamped:
+                stamp = msg.header.stamp
+                if stamp.sec or stamp.nanosec:
+                    publish_time_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
+            if type(msg) is not topic.cls:
+                raise BagError(f'{topic.name} records {topic.type_name}, got '
+                               f'{type(msg).__module__}.{type(msg).__name__}')
+            self._offered += 1
+            self.writer.write(topic.name, topic.encode(msg), log_time_ns, publish_time_ns)
+            error = self.writer.error
+        except Exception as exc:  # noqa: B902 - recording must never stop the simulation
+            error = exc
+        if error is not None:
+            self._stop(error)
+
+    def _register(self, topic: _Topic) -> None:
+        """Register an input topic now, with the QoS its publishers offer."""
+        qos = topic.qos
+        try:
+            offered = topic.offered_qos()
+            if offered:
+                qos = offered
+        except Exception:  # noqa: B902 - a graph query failing costs the QoS, not the topic
+            pass
+        topic.offered_qos = None
+        self.writer.add_topic(topic.name, topic.type_name, qos)
+
+    def _stop(self, error: BaseException) -> None:
+        """Stop recording for good and log why, once."""
+        text = str(error)
+        if error is not self.writer.error:  # the writer's own errors name the file already
+            text = f'recording to {self.path} stopped: {text}'
+        self._failure = text
+        self.logger.error(f'{text}; the simulation goes on without recording')
+
+    def close(self) -> bool:
+        """
+        Complete the bag (summary, metadata.yaml) and log what it holds and what was dropped.
+
+        Never raises; calling it again has no effect.
+
+        :returns: True if the bag is complete, False if recording failed (the bag is then
+            readable up to its last chunk; `rope_sim recover` completes it).
+        """
+        if self.writer.closed:
+            return self._failure is None
+        for topic in self._topics.values():
+            if topic.offered_qos is not None:
+                try:
+                    self._register(topic)
+                except Exception as exc:  # noqa: B902
+                    self.logger.error(f'bag {self.path}: cannot list {topic.name}: {exc}')
+        try:
+            self.writer.close()
+        except Exception as exc:  # noqa: B902 - the node must still shut down cleanly
+            if self._failure is None:
+                self._stop(exc)
+            self.logger.error(
+                f'bag {self.path} is not complete: it is readable up to its last chunk; '
+                f'`rope_sim recover {self.path}` makes it a complete bag')
+            return False
+        self.logger.info(
+            f'bag {os.path.abspath(self.path)} closed: {self._offered - self.writer.dropped} '
+            f'messages on {len(self._topics)} topics, {self.writer.dropped} dropped')
+        if self.writer.dropped:
+            self.logger.warning(
+                f'bag {self.path}: {self.writer.dropped} messages were dropped, not '
+                'recorded (the disk could not keep up)')
+        return True
+
+
+def _quiet_writer_log() -> None:
+    """Leave BagWriter's errors to the Recorder, which logs them through the node logger."""
+    writer_log = logging.getLogger(BagWriter.__module__)
+    if not any(isinstance(h, logging.NullHandler) for h in writer_log.handlers):
+        writer_log.addHandler(logging.NullHandler())
+    writer_log.propagate = False
