@@ -18,9 +18,12 @@ Speed and accuracy of this model against MoorDyn, side by side, in one run.
 The reference dynamic case of ../shared/reference (a 40 m line in air, bollard at the
 origin, fairlead at (36, 0, 8) surging 2 m along the chord with a 10 s period after a 10 s
 ramp), for polyester (the reference), steel wire (d 40 mm, EA 1e8) and HMPE (MoorPy 48 mm),
-N = 20, 50, 100. Both models get the same motion: MoorDyn is stepped every 1 ms through its
-Python API with the secant velocity (how the reference was made); this model receives the
-same 1 ms samples and advances in 10 ms outputs. Reported per run: the time step, wall
+N = 20, 50, 100. Both models get the same motion, each through its own interface:
+MoorDyn is stepped every 1 ms through its Python API with the start position and secant
+velocity of the interval (how the reference was made: its fairlead moves linearly within a
+coupling step, so coarser coupling rings a stiff line); this model receives the motion as
+10 ms samples (the rows of the reference CSV; it interpolates them with a cubic spline) and
+advances in 10 ms outputs. Reported per run: the time step, wall
 seconds per simulated second, real-time factor, the ratio of real-time factors (ours /
 MoorDyn's), and the NRMSE of the fairlead force against MoorDyn's over t = 10..60 s
 (RMS difference / RMS of MoorDyn's force about its mean). MoorDyn's initial-condition solve
@@ -52,7 +55,8 @@ CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
 LENGTH = 40.0
 AIR = 1.225
 GRAVITY = 9.81
-COUPLING = 0.001
+COUPLING = 0.001  # MoorDyn's coupling step
+SAMPLES = 0.01  # our input samples
 OUTPUT = 0.01
 
 
@@ -81,9 +85,11 @@ def run_ours(case, segments, integrator, duration):
     params = from_values(dict(
         segments=segments, length=LENGTH, mass_per_length=weight / GRAVITY,
         axial_stiffness=ea, axial_damping=ba, bending_stiffness_ratio=0.0,
-        bending_damping_ratio=0.0, integrator=integrator, gravity=[0.0, 0.0, -GRAVITY]))
+        bending_damping_ratio=0.0, integrator=integrator, gravity=[0.0, 0.0, -GRAVITY],
+        # MoorDyn's transverse air drag (Cd 1.2 on the diameter), here on all directions
+        air_drag_coefficient=0.5 * AIR * 1.2 * diameter))
     sim = Simulator(params, output_interval=OUTPUT)
-    samples = np.arange(0.0, duration + 2 * COUPLING, COUPLING)
+    samples = np.arange(0.0, duration + 2 * SAMPLES, SAMPLES)
     positions = fairlead_motion(samples)
     outputs = np.arange(OUTPUT, duration + 1e-9, OUTPUT)
     sim.push_fairlead(0.0, positions[0])
@@ -92,8 +98,8 @@ def run_ours(case, segments, integrator, duration):
     pushed = 1
     start = time.perf_counter()
     for k, t in enumerate(outputs):
-        # samples arrive as in a live stream: up to one coupling step ahead of the output
-        while pushed < len(samples) and samples[pushed] <= t + COUPLING + 1e-12:
+        # samples arrive as in a live stream: up to one sample ahead of the output
+        while pushed < len(samples) and samples[pushed] <= t + SAMPLES + 1e-12:
             sim.push_fairlead(samples[pushed], positions[pushed])
             pushed += 1
         sim.advance_to(t)

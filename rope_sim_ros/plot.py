@@ -121,7 +121,8 @@ def describe(path) -> str:
     return '\n'.join(lines)
 
 
-def _shapes(path, namespace: str, count: int) -> List[Tuple[float, np.ndarray]]:
+def _shapes(path, namespace: str, count: int,
+            start_ns: int) -> List[Tuple[float, np.ndarray]]:
     topic = topic_name(namespace, PARTICLES)
     messages = list(read_messages(path, [topic]))
     if not messages:
@@ -130,7 +131,8 @@ def _shapes(path, namespace: str, count: int) -> List[Tuple[float, np.ndarray]]:
     shapes = []
     for i in picks:
         msg = deserialize(messages[i])
-        stamp = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        # on the tension plot's time axis (a node bag's stamps are epoch times)
+        stamp = (messages[i].log_time_ns - start_ns) / 1e9
         shapes.append((stamp, np.array(
             [[p.position.x, p.position.y, p.position.z] for p in msg.poses])))
     return shapes
@@ -195,11 +197,13 @@ def plot_bag(path, out_path, params: LineParams, namespace: Optional[str] = None
         top.set_ylabel('tension [kN]')
         top.set_ylim(bottom=0.0)
     top.set_xlabel(f'time since bag start [s] (start at log time {start / 1e9:.3f} s)')
-    top.set_title(f'{os.path.basename(os.path.normpath(os.fspath(path)))}: line tension')
+    folder = os.path.normpath(os.fspath(path))
+    title = os.path.join(os.path.basename(os.path.dirname(folder)), os.path.basename(folder))
+    top.set_title(f'{title}: line tension')
     top.grid(True, which='both', alpha=0.3)
     top.legend(loc='best', fontsize='small')
 
-    drawn = _shapes(path, namespace, shapes)
+    drawn = _shapes(path, namespace, shapes, start)
     cmap = matplotlib.colormaps['viridis']
     for k, (stamp, points) in enumerate(drawn):
         bottom.plot(points[:, 0], points[:, 2], '.-', markersize=3,
