@@ -22,7 +22,9 @@ Data flows one way: end samples -> trajectories -> fixed substeps -> rope state 
 
 from dataclasses import dataclass
 import math
+import os
 from pathlib import Path
+import sys
 from typing import Optional
 
 import numpy as np
@@ -40,20 +42,23 @@ CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
 
 
 def default_config_dir() -> Path:
-    """config/ of the source tree, else the installed share/rope_sim_ros/config."""
+    """
+    Find config/: the source tree's, else the installed share/rope_sim_ros/config.
+
+    An installed package lives in <prefix>/lib/pythonX.Y/site-packages/rope_sim_ros, so its
+    own prefix is tried first: an executable started without a sourced setup file (no
+    AMENT_PREFIX_PATH) still finds its materials.
+    """
     if (CONFIG_DIR / 'materials.yaml').exists():
         return CONFIG_DIR
-    import sys
-    for prefix in [sys.prefix, *_ament_prefixes()]:
-        candidate = Path(prefix) / 'share' / 'rope_sim_ros' / 'config'
+    own_prefix = Path(__file__).resolve().parents[:5][-1]
+    prefixes = [own_prefix, Path(sys.prefix)]
+    prefixes += [Path(p) for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
+    for prefix in prefixes:
+        candidate = prefix / 'share' / 'rope_sim_ros' / 'config'
         if (candidate / 'materials.yaml').exists():
             return candidate
     return CONFIG_DIR
-
-
-def _ament_prefixes() -> list:
-    import os
-    return [p for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
 
 
 def load_materials() -> MaterialLibrary:

@@ -27,6 +27,7 @@ import importlib
 import json
 import os
 import re
+import sys
 from typing import Tuple
 
 from ament_index_python.packages import get_package_share_directory
@@ -86,7 +87,12 @@ def _interface_file(type_name: str, extension: str) -> str:
     package, name = split_type_name(type_name)
     try:
         share = get_package_share_directory(package)
-    except (PackageNotFoundError, LookupError) as exc:
+    except (PackageNotFoundError, LookupError, OSError) as exc:
+        # ROS 2 from PyPI wheels keeps share/ in the Python prefix, which a shell that has
+        # sourced no setup file does not name in AMENT_PREFIX_PATH
+        share = os.path.join(sys.prefix, 'share', package)
+        if os.path.isdir(os.path.join(share, 'msg')):
+            return os.path.join(share, 'msg', name + extension)
         raise BagError(
             f'message package {package!r} of type {type_name!r} is not in the ament index '
             f'(AMENT_PREFIX_PATH={os.environ.get("AMENT_PREFIX_PATH", "")!r}): {exc}; '
