@@ -118,7 +118,8 @@ SPECS: Mapping[str, Spec] = {
 }
 
 
-def _describe_range(name: str, spec: Spec) -> str:
+def allowed(spec: Spec) -> str:
+    """Say in words what a parameter accepts (errors, descriptors, the README)."""
     if spec.choices:
         return 'one of ' + ', '.join(spec.choices)
     if isinstance(spec.default, str):
@@ -144,8 +145,8 @@ def check(name: str, value: Any) -> Any:
         raise ParameterError(
             f'unknown parameter {name!r}; known: {", ".join(sorted(SPECS))}')
     spec = SPECS[name]
-    allowed = _describe_range(name, spec)
-    bad = ParameterError(f'parameter {name!r} = {value!r} is not allowed: must be {allowed}')
+    bad = ParameterError(
+        f'parameter {name!r} = {value!r} is not allowed: must be {allowed(spec)}')
     default = spec.default
     if isinstance(default, bool):
         if not isinstance(value, bool):

@@ -78,7 +78,7 @@ def describe(name: str, spec: params.Spec) -> ParameterDescriptor:
         name=name,
         type=Parameter.Type.from_parameter_value(spec.default).value,
         description=spec.description + unit,
-        additional_constraints=allowed_values(spec),
+        additional_constraints=params.allowed(spec),
         read_only=spec.read_only)
     if _is_number(spec.default) and spec.low is not None and spec.high is not None:
         if isinstance(spec.default, int):
@@ -88,25 +88,6 @@ def describe(name: str, spec: params.Spec) -> ParameterDescriptor:
             descriptor.floating_point_range = [
                 FloatingPointRange(from_value=float(spec.low), to_value=float(spec.high))]
     return descriptor
-
-
-def allowed_values(spec: params.Spec) -> str:
-    """Return what a parameter accepts, in words (ParameterDescriptor.additional_constraints)."""
-    if spec.choices:
-        return 'one of: ' + ', '.join(spec.choices)
-    if isinstance(spec.default, bool):
-        return 'true or false'
-    if isinstance(spec.default, list):
-        return '[x, y, z]: three finite numbers' + (f' [{spec.unit}]' if spec.unit else '')
-    if isinstance(spec.default, str):
-        return 'any string'
-    bounds = []
-    if spec.low is not None:
-        bounds.append(f'{">" if spec.low_open else ">="} {spec.low:g}')
-    if spec.high is not None:
-        bounds.append(f'<= {spec.high:g}')
-    unit = f' {spec.unit}' if spec.unit else ''
-    return (' and '.join(bounds) or 'any finite number') + unit
 
 
 def _is_number(value: Any) -> bool:
