@@ -80,6 +80,8 @@ def stability_limit(props: RopeProperties) -> float:
 
     Returns 0 when no step is stable (an undamped line).
     """
+    if props.structural_damping + props.bending_damping <= 0.0:
+        return 0.0  # |G| > 1 for every mode: rounding would hide it at tiny steps
     modes = _mode_eigenvalues(props)
     lo, hi = 0.0, 4.0 / np.abs(modes).max()
     if _heun_growth(1e-9 * hi * modes).max() > 1.0:

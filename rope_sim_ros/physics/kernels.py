@@ -172,42 +172,116 @@ def _add_block(band, a, b, block, sign):
 
 
 @numba.njit(cache=True)
-def _spring_jacobians(x, band, block, stride, rest, k, c, axial):
+def _spring_block(x, i, j, rest, k, c, axial, block):
     """
-    Add S + C of the springs (i, i + stride) to the band (k, c already scaled by the step).
+    Fill block with S + C of the spring (i, j) (k, c already scaled by the step).
 
     S = k u u^T + (T / l)(I - u u^T), C = c u u^T (axial) or c I (seed form).
     """
+    dx = x[j, 0] - x[i, 0]
+    dy = x[j, 1] - x[i, 1]
+    dz = x[j, 2] - x[i, 2]
+    length = max(np.sqrt(dx * dx + dy * dy + dz * dz), 1e-12)
+    u0, u1, u2 = dx / length, dy / length, dz / length
+    # The full axial stiffness even where a segment is slack: a single linearised step that
+    # expects no resistance overshoots when the segment snaps taut within the step (and then
+    # blows up); overestimating it only damps that step a little. The geometric term only
+    # where the spring pulls: that keeps the matrix positive definite.
+    g = max(k * (length - rest), 0.0) / length
+    diag = g + (0.0 if axial else c)
+    along = k - g + (c if axial else 0.0)
+    block[0, 0] = along * u0 * u0 + diag
+    block[1, 1] = along * u1 * u1 + diag
+    block[2, 2] = along * u2 * u2 + diag
+    block[0, 1] = block[1, 0] = along * u0 * u1
+    block[0, 2] = block[2, 0] = along * u0 * u2
+    block[1, 2] = block[2, 1] = along * u1 * u2
+
+
+@numba.njit(cache=True)
+def _spring_jacobians(x, band, block, stride, rest, k, c, axial):
+    """Add S + C of the springs (i, i + stride) to the band (free-particle numbering)."""
     n = x.shape[0]
     for i in range(n - stride):
         j = i + stride
-        dx = x[j, 0] - x[i, 0]
-        dy = x[j, 1] - x[i, 1]
-        dz = x[j, 2] - x[i, 2]
-        length = max(np.sqrt(dx * dx + dy * dy + dz * dz), 1e-12)
-        u0, u1, u2 = dx / length, dy / length, dz / length
-        # The full axial stiffness even where a segment is slack: a single linearised step
-        # that expects no resistance overshoots when the segment snaps taut within the step
-        # (and then blows up); overestimating it only damps that step a little.
-        k_axial = k
-        # the geometric term only where the spring pulls: keeps the matrix positive definite
-        g = max(k * (length - rest), 0.0) / length
-        c_axial = c if axial else 0.0
-        c_iso = 0.0 if axial else c
-        diag = g + c_iso
-        along = k_axial - g + c_axial
-        block[0, 0] = along * u0 * u0 + diag
-        block[1, 1] = along * u1 * u1 + diag
-        block[2, 2] = along * u2 * u2 + diag
-        block[0, 1] = block[1, 0] = along * u0 * u1
-        block[0, 2] = block[2, 0] = along * u0 * u2
-        block[1, 2] = block[2, 1] = along * u1 * u2
-        # free-particle numbering: particle 1 -> 0; the ends are not unknowns
+        _spring_block(x, i, j, rest, k, c, axial, block)
+        # particle 1 is unknown 0; the ends are not unknowns
         a = i - 1 if 0 < i < n - 1 else -1
         b = j - 1 if 0 < j < n - 1 else -1
         _add_block(band, a, a, block, 1.0)
         _add_block(band, b, b, block, 1.0)
         _add_block(band, b, a, block, -1.0)
+
+
+@numba.njit(cache=True)
+def _structural_blocks(x, diagonal, lower, block, rest, k, c, axial):
+    """Add S + C of the structural springs as 3x3 blocks of a block-tridiagonal matrix."""
+    m = diagonal.shape[0]
+    for i in range(m + 1):  # spring i joins particles i and i + 1, unknowns i - 1 and i
+        _spring_block(x, i, i + 1, rest, k, c, axial, block)
+        for p in range(3):
+            for q in range(3):
+                if i > 0:
+                    diagonal[i - 1, p, q] += block[p, q]
+                if i < m:
+                    diagonal[i, p, q] += block[p, q]
+                if 0 < i < m:
+                    lower[i - 1, p, q] -= block[p, q]  # A[i, i - 1]
+
+
+@numba.njit(cache=True)
+def _inverse3(a, out):
+    """Invert a 3x3 matrix into out (adjugate over determinant)."""
+    c00 = a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]
+    c01 = a[1, 2] * a[2, 0] - a[1, 0] * a[2, 2]
+    c02 = a[1, 0] * a[2, 1] - a[1, 1] * a[2, 0]
+    inv_det = 1.0 / (a[0, 0] * c00 + a[0, 1] * c01 + a[0, 2] * c02)
+    out[0, 0] = c00 * inv_det
+    out[1, 0] = c01 * inv_det
+    out[2, 0] = c02 * inv_det
+    out[0, 1] = (a[0, 2] * a[2, 1] - a[0, 1] * a[2, 2]) * inv_det
+    out[1, 1] = (a[0, 0] * a[2, 2] - a[0, 2] * a[2, 0]) * inv_det
+    out[2, 1] = (a[0, 1] * a[2, 0] - a[0, 0] * a[2, 1]) * inv_det
+    out[0, 2] = (a[0, 1] * a[1, 2] - a[0, 2] * a[1, 1]) * inv_det
+    out[1, 2] = (a[0, 2] * a[1, 0] - a[0, 0] * a[1, 2]) * inv_det
+    out[2, 2] = (a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]) * inv_det
+
+
+@numba.njit(cache=True)
+def _block_thomas(diagonal, lower, rhs, inverse, work):
+    """
+    Solve the symmetric block-tridiagonal system in place; rhs (m, 3) -> solution.
+
+    Block Thomas: diagonal[i] -= L D^-1 L^T down the chain, then back-substitution.
+    inverse (m, 3, 3) and work (3, 3) are scratch.
+    """
+    m = diagonal.shape[0]
+    _inverse3(diagonal[0], inverse[0])
+    for i in range(1, m):
+        low = lower[i - 1]
+        prev = inverse[i - 1]
+        # work = low @ prev (the multiplier), then diagonal[i] -= work @ low^T
+        for p in range(3):
+            for q in range(3):
+                work[p, q] = (low[p, 0] * prev[0, q] + low[p, 1] * prev[1, q]
+                              + low[p, 2] * prev[2, q])
+        for p in range(3):
+            rhs[i, p] -= (work[p, 0] * rhs[i - 1, 0] + work[p, 1] * rhs[i - 1, 1]
+                          + work[p, 2] * rhs[i - 1, 2])
+            for q in range(3):
+                diagonal[i, p, q] -= (work[p, 0] * low[q, 0] + work[p, 1] * low[q, 1]
+                                      + work[p, 2] * low[q, 2])
+        _inverse3(diagonal[i], inverse[i])
+    for i in range(m - 1, -1, -1):
+        if i < m - 1:  # subtract A[i, i + 1] x[i + 1] = lower[i]^T x[i + 1]
+            low = lower[i]
+            for p in range(3):
+                rhs[i, p] -= (low[0, p] * rhs[i + 1, 0] + low[1, p] * rhs[i + 1, 1]
+                              + low[2, p] * rhs[i + 1, 2])
+        inv = inverse[i]
+        r0, r1, r2 = rhs[i, 0], rhs[i, 1], rhs[i, 2]
+        for p in range(3):
+            rhs[i, p] = inv[p, 0] * r0 + inv[p, 1] * r1 + inv[p, 2] * r2
 
 
 @numba.njit(cache=True)
@@ -248,13 +322,19 @@ def implicit_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strai
     """
     n = x.shape[0]
     last = n - 1
+    m = n - 2  # unknowns: the free particles
     l0, ks, cs, kb, cb, axial = coef[0], coef[1], coef[2], coef[3], coef[4], coef[5] > 0.5
     drag, mass = coef[6], coef[7]
     half_h2 = 0.5 * dt * dt
     f = np.empty_like(x)
     block = np.empty((3, 3))
-    band = np.empty((3 * (n - 2), 9 if implicit_bending else 6))
-    rhs = np.empty(3 * (n - 2))
+    rhs = np.empty((m, 3))
+    # structural springs only: 3x3 block-tridiagonal (block Thomas); with the bending
+    # springs the band is wider (banded Cholesky)
+    band = np.empty((3 * m, 9) if implicit_bending else (0, 0))
+    diagonal = np.empty((m, 3, 3))
+    lower = np.empty((max(m - 1, 0), 3, 3))
+    inverse = np.empty((m, 3, 3))
     for k in range(ends.shape[0]):
         for i in range(1, last):
             for p in range(3):
@@ -263,26 +343,35 @@ def implicit_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strai
             x[0, p], x[last, p] = ends[k, 0, p], ends[k, 1, p]
             v[0, p], v[last, p] = end_velocities[k, 0, p], end_velocities[k, 1, p]
         line_forces(x, v, f, coef)
-        band[:] = 0.0
-        _spring_jacobians(x, band, block, 1, l0, ks * half_h2, cs * dt, axial)
+        diagonal[:] = 0.0
+        lower[:] = 0.0
         if implicit_bending:
+            band[:] = 0.0
+            _spring_jacobians(x, band, block, 1, l0, ks * half_h2, cs * dt, axial)
             _spring_jacobians(x, band, block, 2, 2.0 * l0, kb * half_h2, cb * dt, axial)
+        else:
+            _structural_blocks(x, diagonal, lower, block, l0, ks * half_h2, cs * dt, axial)
         for i in range(1, last):
             speed = np.sqrt(v[i, 0] ** 2 + v[i, 1] ** 2 + v[i, 2] ** 2)
-            r0 = 3 * (i - 1)
             for p in range(3):
-                rhs[r0 + p] = f[i, p] - drag * speed * v[i, p] + mass * coef[8 + p]
+                rhs[i - 1, p] = f[i, p] - drag * speed * v[i, p] + mass * coef[8 + p]
                 # mass, and the drag Jacobian kappa (|v| I + v v^T / |v|)
-                for q in range(p + 1):
+                for q in range(3):
                     jac = dt * drag * v[i, p] * v[i, q] / max(speed, 1e-12)
                     if p == q:
                         jac += dt * drag * speed + mass
-                    band[r0 + p, p - q] += jac
-        _cholesky_solve(band, rhs)
+                    if implicit_bending:
+                        if q <= p:
+                            band[3 * (i - 1) + p, p - q] += jac
+                    else:
+                        diagonal[i - 1, p, q] += jac
+        if implicit_bending:
+            _cholesky_solve(band, rhs.reshape(3 * m))
+        else:
+            _block_thomas(diagonal, lower, rhs, inverse, block)
         for i in range(1, last):
             for p in range(3):
-                a1 = rhs[3 * (i - 1) + p]
-                x[i, p] += half_h2 * a1
-                v[i, p] += dt * a1
+                x[i, p] += half_h2 * rhs[i - 1, p]
+                v[i, p] += dt * rhs[i - 1, p]
         if adjusting:
             adjust(x, v, inv_mass, l0, max_strain, max_iterations)
