@@ -205,13 +205,14 @@ class Simulator:
     def ends_at(self, times: np.ndarray) -> tuple:
         """End positions and velocities at `times`: arrays (n, 2, 3), bollard first."""
         times = np.atleast_1d(np.asarray(times, dtype=float))
-        fp, fv = self.fairlead.sample(times)
+        ends = np.empty((len(times), 2, 3))
+        velocities = np.zeros((len(times), 2, 3))
+        ends[:, 1], velocities[:, 1] = self.fairlead.sample(times)
         if len(self.bollard):
-            bp, bv = self.bollard.sample(times)
+            ends[:, 0], velocities[:, 0] = self.bollard.sample(times)
         else:
-            bp = np.repeat([self.params.bollard_position], len(times), axis=0)
-            bv = np.zeros_like(bp)
-        return np.stack([bp, fp], axis=1), np.stack([bv, fv], axis=1)
+            ends[:, 0] = self.params.bollard_position
+        return ends, velocities
 
     # -- time ---------------------------------------------------------------------------
 
@@ -254,8 +255,9 @@ class Simulator:
         ends, velocities = self.ends_at(times)
         self._run(dt, ends, velocities)
         self.time = float(times[-1])
-        rope = self.rope
-        if not rope.is_finite():
+        finite = kernels.all_finite(self.rope.x, self.rope.v) if self.compiled else \
+            self.rope.is_finite()
+        if not finite:
             self.restart()
             return Advance(steps, t - self.time, 'non-finite state')
         return Advance(steps, t - self.time)

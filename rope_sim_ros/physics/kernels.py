@@ -95,6 +95,16 @@ def end_forces(x, v, coef, out):
 
 
 @numba.njit(cache=True)
+def all_finite(x, v):
+    """Tell whether every position and velocity is a finite number."""
+    for i in range(x.shape[0]):
+        for p in range(3):
+            if not (np.isfinite(x[i, p]) and np.isfinite(v[i, p])):
+                return False
+    return True
+
+
+@numba.njit(cache=True)
 def max_strain(x, segment_length):
     """Largest strain of the structural springs."""
     worst = -1.0
