@@ -57,8 +57,11 @@ try:
     while True:
         message = Wrench()
         message.force.x = float(k)
+        # Ctrl-C between the write and the count would make them disagree by one
+        signal.pthread_sigmask(signal.SIG_BLOCK, {{signal.SIGINT}})
         bag.write('{topic}', message, time.time_ns())
         k += 1
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {{signal.SIGINT}})
         time.sleep({period})
 except KeyboardInterrupt:
     bag.close()
