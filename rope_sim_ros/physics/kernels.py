@@ -16,8 +16,9 @@
 Compiled (numba) loops for the rope's hot path, with the same physics as rope.py.
 
 Pure numpy pays about 40 us of call overhead per force evaluation whatever N is, which caps
-a stiff line near real time. These kernels run many steps per call. The numpy path in
-rope.py / integrators.py / superelastic.py stays the reference that the tests compare with.
+a stiff line near real time. These kernels run many steps per call. The numpy forces and
+improved Euler step of rope.py / integrators.py stay the reference the tests compare with;
+the strain limit (superelastic.py) is one compiled implementation shared by both paths.
 """
 
 import numba
