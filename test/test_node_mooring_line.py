@@ -29,6 +29,7 @@ import time
 
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
+from node_harness import NodeProcess
 import numpy as np
 import pytest
 import rclpy
@@ -50,37 +51,6 @@ VECTORS = [name for name, spec in params.SPECS.items() if isinstance(spec.defaul
 
 
 # ------------------------------------------------------------------------------ helpers
-
-
-class NodeProcess:
-    """The installed mooring_line executable as a child process, its log in a file."""
-
-    def __init__(self, install: Path, env: dict, log: Path, namespace: str, *ros_args: str):
-        self.log = log
-        self.namespace = namespace
-        command = [
-            str(install / 'lib' / 'rope_sim_ros' / 'mooring_line'), '--ros-args',
-            '--params-file', str(install / 'share' / 'rope_sim_ros' / 'config' /
-                                 'mooring_line.yaml'),
-            '-r', f'__ns:={namespace}', *ros_args]
-        with open(log, 'w') as f:
-            self.process = subprocess.Popen(
-                command, env=env, stdin=subprocess.DEVNULL, stdout=f, stderr=subprocess.STDOUT)
-
-    def text(self) -> str:
-        """Return the node's output so far."""
-        return self.log.read_text(errors='replace')
-
-    def interrupt(self, timeout: float = 15.0) -> int:
-        """Send SIGINT (Ctrl-C) and return the exit code."""
-        if self.process.poll() is None:
-            self.process.send_signal(signal.SIGINT)
-        try:
-            return self.process.wait(timeout)
-        except subprocess.TimeoutExpired:
-            self.process.kill()
-            self.process.wait()
-            raise AssertionError(f'node ignored SIGINT for {timeout} s:\n{self.text()}')
 
 
 class Client:

@@ -26,12 +26,12 @@ import math
 import os
 from pathlib import Path
 import signal
-import subprocess
 import time
 import warnings
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 from mcap.reader import make_reader
+from node_harness import NodeProcess
 import numpy as np
 import pytest
 import rclpy
@@ -69,37 +69,6 @@ TYPES = {
 def fairlead_motion(t: float) -> np.ndarray:
     """Return a slow surge and heave of the fairlead around its rest point."""
     return FAIRLEAD + [0.4 * math.sin(2.0 * t), 0.0, 0.2 * math.sin(1.3 * t)]
-
-
-class NodeProcess:
-    """The installed mooring_line executable recording to record_path, its log in a file."""
-
-    def __init__(self, install: Path, env: dict, log: Path, namespace: str, record_path):
-        self.log = log
-        self.namespace = namespace
-        command = [
-            str(install / 'lib' / 'rope_sim_ros' / 'mooring_line'), '--ros-args',
-            '--params-file', str(install / 'share' / 'rope_sim_ros' / 'config' /
-                                 'mooring_line.yaml'),
-            '-r', f'__ns:={namespace}', '-p', f'record_path:={record_path}']
-        with open(log, 'w') as f:
-            self.process = subprocess.Popen(
-                command, env=env, stdin=subprocess.DEVNULL, stdout=f, stderr=subprocess.STDOUT)
-
-    def text(self) -> str:
-        """Return the node's output so far."""
-        return self.log.read_text(errors='replace')
-
-    def stop(self, signum: int, timeout: float = 20.0) -> int:
-        """Send a signal, wait for the exit and return the exit code."""
-        if self.process.poll() is None:
-            self.process.send_signal(signum)
-        try:
-            return self.process.wait(timeout)
-        except subprocess.TimeoutExpired:
-            self.process.kill()
-            self.process.wait()
-            raise AssertionError(f'node ignored signal {signum} for {timeout} s:\n{self.text()}')
 
 
 class Client:
@@ -195,7 +164,8 @@ def record_run(colcon_install, colcon_env, tmp_path, namespace: str, signum: int
                seconds: float) -> dict:
     """Record `seconds` of motion with a fresh node, stop it with signum; return the run."""
     bag = tmp_path / 'bag'
-    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'node.log', namespace, bag)
+    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'node.log', namespace,
+                       '-p', f'record_path:={bag}')
     client = Client(namespace)
     try:
         client.wait_for_node(node)
@@ -394,7 +364,7 @@ def test_refuses_an_existing_bag_and_an_unwritable_path(colcon_install, colcon_e
     unwritable = tmp_path / 'a_file' / 'bag'
 
     nodes = [NodeProcess(colcon_install, colcon_env, tmp_path / f'{name}.log', f'/rec_{name}',
-                         path)
+                         '-p', f'record_path:={path}')
              for name, path in (('existing', existing), ('unwritable', unwritable))]
     try:
         codes = [node.process.wait(START_TIMEOUT) for node in nodes]
