@@ -27,7 +27,6 @@ simulated time.
 from dataclasses import dataclass, field
 import math
 import os
-import struct
 import sys
 import time
 from typing import Any, Callable, List, Mapping, Optional, Sequence, Tuple
@@ -35,6 +34,7 @@ from typing import Any, Callable, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 import yaml
 
+from .bag import cdr
 from .params import LineParams, load_params, NODE_NAME, ParameterError, read_params_file
 from .simulator import default_config_dir, Output, Simulator
 
@@ -143,52 +143,19 @@ def particles_message(ns: int, frame_id: str, positions: np.ndarray):
     return pose_array(positions, frame_id, ns)
 
 
-# CDR (XCDR1, little endian) encapsulation header, as rclpy's serialize_message writes it.
-_CDR_LE = b'\x00\x01\x00\x00'
-
-
-def _header_cdr(ns: int, frame_id: str) -> bytes:
-    """Return a std_msgs/Header in CDR (after the encapsulation header), unpadded."""
-    sec, nanosec = divmod(int(ns), 1_000_000_000)
-    name = frame_id.encode('utf-8') + b'\x00'
-    return struct.pack('<iII', sec, nanosec, len(name)) + name
-
-
-def _pad(body: bytes, alignment: int) -> bytes:
-    # CDR alignment counts from the end of the encapsulation header; padding is zeros.
-    return body + bytes(-len(body) % alignment)
-
-
 def pose_stamped_cdr(ns: int, frame_id: str, position: Sequence[float]) -> bytes:
-    """
-    Return a PoseStamped at position, identity orientation, as CDR bytes.
-
-    The same bytes as serialize_message(pose_stamped(...)) except that padding is zero:
-    rclpy leaves padding bytes uninitialised, so equal messages could differ in bytes.
-    """
-    body = _pad(_header_cdr(ns, frame_id), 8)
-    pose = [float(v) for v in position] + [0.0, 0.0, 0.0, 1.0]
-    return _CDR_LE + body + struct.pack('<7d', *pose)
+    """Return pose_stamped(...) (identity orientation) as zero-padded CDR bytes (bag.cdr)."""
+    sec, nanosec = divmod(int(ns), 1_000_000_000)
+    return cdr.pose_stamped(sec, nanosec, frame_id, [*map(float, position), 0.0, 0.0, 0.0, 1.0])
 
 
 def particles_cdr(ns: int, frame_id: str, positions: np.ndarray) -> bytes:
-    """
-    Return particles_message(...) as CDR bytes, built with numpy.
-
-    The same bytes as serialize_message(particles_message(...)) except that padding is zero
-    (see pose_stamped_cdr), and much faster: building N+1 Pose objects and serialising them
-    costs more than the simulation steps of a short rope.
-
-    :param ns: header stamp [ns].
-    :param frame_id: header frame.
-    :param positions: particles (N+1, 3).
-    :returns: the CDR message.
-    """
+    """Return particles_message(...) as zero-padded CDR bytes, built with numpy (bag.cdr)."""
     from .ros.conversions import tangent_quaternions
     points = np.asarray(positions, dtype=float)
-    body = _pad(_pad(_header_cdr(ns, frame_id), 4) + struct.pack('<I', len(points)), 8)
-    poses = np.concatenate([points, tangent_quaternions(points)], axis=1)
-    return _CDR_LE + body + np.ascontiguousarray(poses, dtype='<f8').tobytes()
+    sec, nanosec = divmod(int(ns), 1_000_000_000)
+    return cdr.pose_array(sec, nanosec, frame_id,
+                          np.concatenate([points, tangent_quaternions(points)], axis=1))
 
 
 def wrench_message(force: Sequence[float], lever: Sequence[float] = (0.0, 0.0, 0.0)):

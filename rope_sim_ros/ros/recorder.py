@@ -29,70 +29,39 @@ arrives is still listed, with rclpy's default publisher profile.
 
 import logging
 import os
-import struct
 from typing import Any, Callable, Dict, Optional
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 import numpy as np
 
-from ..bag import BagError, BagWriter
+from ..bag import BagError, BagWriter, cdr
 from ..bag.metadata import QosSpec
 
 POSE_STAMPED = 'geometry_msgs/msg/PoseStamped'
 POSE_ARRAY = 'geometry_msgs/msg/PoseArray'
 WRENCH = 'geometry_msgs/msg/Wrench'
 
-# CDR (XCDR1, little endian) encapsulation header, as rclpy's serialize_message writes it.
-_CDR_LE = b'\x00\x01\x00\x00'
-
-
-def _pad(body: bytes, alignment: int) -> bytes:
-    # CDR aligns from the end of the encapsulation header; padding is zeros here.
-    return body + bytes(-len(body) % alignment)
-
-
-def _header(msg: Any) -> bytes:
-    name = msg.header.frame_id.encode('utf-8') + b'\x00'
-    stamp = msg.header.stamp
-    return struct.pack('<iII', stamp.sec, stamp.nanosec, len(name)) + name
-
 
 def pose_stamped_cdr(msg: PoseStamped) -> bytes:
-    """
-    Return a PoseStamped as CDR bytes with zero padding.
-
-    :param msg: the message.
-    :returns: what serialize_message returns, but with deterministic padding.
-    """
+    """Return a PoseStamped as CDR bytes with zero padding (see bag.cdr)."""
     p, q = msg.pose.position, msg.pose.orientation
-    return (_CDR_LE + _pad(_header(msg), 8)
-            + struct.pack('<7d', p.x, p.y, p.z, q.x, q.y, q.z, q.w))
+    stamp = msg.header.stamp
+    return cdr.pose_stamped(stamp.sec, stamp.nanosec, msg.header.frame_id,
+                            (p.x, p.y, p.z, q.x, q.y, q.z, q.w))
 
 
 def pose_array_cdr(msg: PoseArray) -> bytes:
-    """
-    Return a PoseArray as CDR bytes with zero padding, its poses packed by numpy.
-
-    :param msg: the message.
-    :returns: what serialize_message returns, but with deterministic padding.
-    """
-    poses = msg.poses
-    body = _pad(_pad(_header(msg), 4) + struct.pack('<I', len(poses)), 8)
-    values = np.array([(p.position.x, p.position.y, p.position.z, p.orientation.x,
-                        p.orientation.y, p.orientation.z, p.orientation.w) for p in poses],
-                      dtype='<f8')
-    return _CDR_LE + body + values.tobytes()
+    """Return a PoseArray as CDR bytes with zero padding (see bag.cdr)."""
+    poses = [(p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y,
+              p.orientation.z, p.orientation.w) for p in msg.poses]
+    stamp = msg.header.stamp
+    return cdr.pose_array(stamp.sec, stamp.nanosec, msg.header.frame_id, np.array(poses))
 
 
 def wrench_cdr(msg: Wrench) -> bytes:
-    """
-    Return a Wrench as CDR bytes (six doubles, no padding).
-
-    :param msg: the message.
-    :returns: the same bytes as serialize_message.
-    """
+    """Return a Wrench as CDR bytes (the same bytes as serialize_message)."""
     f, t = msg.force, msg.torque
-    return _CDR_LE + struct.pack('<6d', f.x, f.y, f.z, t.x, t.y, t.z)
+    return cdr.wrench((f.x, f.y, f.z), (t.x, t.y, t.z))
 
 
 # type name -> (message class, encoder, has a header)
