@@ -30,8 +30,9 @@ from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
 import rclpy
 from rclpy.clock import Clock, ClockType
 from rclpy.exceptions import ParameterException
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
+
+from .spinning import spin_until_shutdown
 
 NODE_NAME = 'line_monitor'
 HEADER = f'{"t [s]":>8}  {"fairlead [N]":>12}  {"bollard [N]":>11}  {"max strain":>10}  {"RTF":>5}'
@@ -114,9 +115,7 @@ def main(args=None) -> int:
         rclpy.try_shutdown()
         return 2
     try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
+        spin_until_shutdown(node)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()

@@ -46,7 +46,6 @@ import numpy as np
 from rcl_interfaces.msg import (
     FloatingPointRange, IntegerRange, ParameterDescriptor, SetParametersResult)
 import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile
@@ -54,6 +53,7 @@ from std_srvs.srv import Trigger
 
 from . import conversions
 from .recorder import POSE_ARRAY, POSE_STAMPED, Recorder, WRENCH
+from .spinning import spin_until_shutdown
 from .. import params
 from ..bag import BagError
 from ..runner import PARAMETERS_KEY, parameters_yaml
@@ -508,8 +508,8 @@ def main(args=None) -> int:
     Run the node until Ctrl-C or SIGTERM, then close its bag (if recording).
 
     rclpy.init installs handlers for SIGINT (which then raises KeyboardInterrupt) and
-    SIGTERM (which shuts the context down, so spin raises ExternalShutdownException): both
-    end in the same clean shutdown, exit code 0.
+    SIGTERM (which shuts the context down under spin): both end in the same clean shutdown,
+    exit code 0.
 
     :returns: 0, or 2 when a parameter is not allowed or record_path cannot be used.
     """
@@ -529,9 +529,7 @@ def main(args=None) -> int:
         return 0  # SIGTERM during start-up: rclpy shut the context down under us
     try:
         if rclpy.ok():  # else SIGTERM came between start-up and spinning
-            rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass  # Ctrl-C; SIGTERM, whose rclpy handler shuts the context down
+            spin_until_shutdown(node)
     finally:
         with _signals_ignored():  # a second Ctrl-C must not cut the bag short
             node.destroy_node()
