@@ -32,10 +32,12 @@ from rclpy.serialization import deserialize_message
 from rope_sim_ros.bag import bag_info, BagError, BagWriter, read_messages, recover
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
+import yaml
 
 T0 = 1_767_225_600_000_000_000
 STEP = 1_000_000  # 1 ms between messages: the k-th message is logged at T0 + k * STEP
 COUNT = 3000
+CUSTOM = {'rope_sim_ros.parameters': 'length: 40.0\n'}
 TOPIC = '/mooring_line/fairlead/pose'
 
 
@@ -61,7 +63,7 @@ def check_values(records):
 def complete(tmp_path_factory):
     """Return a closed bag of COUNT poses in 16 KiB chunks, and its chunk index."""
     path = tmp_path_factory.mktemp('complete') / 'run'
-    with BagWriter(path, chunk_size=16 * 1024) as bag:
+    with BagWriter(path, chunk_size=16 * 1024, custom_data=CUSTOM) as bag:
         bag.add_topic(TOPIC, 'geometry_msgs/msg/PoseStamped')
         for k in range(COUNT):
             assert bag.write(TOPIC, pose(k), T0 + k * STEP, T0 + k * STEP - 7)
@@ -122,6 +124,10 @@ def test_recover_in_place_makes_a_bag_rosbags_opens(complete, tmp_path):
 
     assert recover(path) == expected
     assert sorted(os.listdir(path)) == ['killed_0.mcap', 'metadata.yaml']
+    # custom_data (the parameters of a run) survives the kill: it opens the file
+    with open(path / 'metadata.yaml', encoding='utf-8') as stream:
+        info = yaml.safe_load(stream)['rosbag2_bagfile_information']
+    assert info['custom_data'] == CUSTOM
     assert bag_info(path).complete is True
     store = get_typestore(Stores.ROS2_JAZZY)
     with Reader(path) as reader, Reader(source) as original:

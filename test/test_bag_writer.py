@@ -221,8 +221,10 @@ def test_mcap_header_channels_and_metadata_record(recorded):
         'lifespan': {'sec': 9223372036, 'nsec': 854775807}, 'liveliness': 'automatic',
         'liveliness_lease_duration': {'sec': 9223372036, 'nsec': 854775807},
         'avoid_ros_namespace_conventions': False}
-    assert [r.name for r in records] == ['rosbag2']
-    embedded = yaml.safe_load(records[0].metadata['serialized_metadata'])
+    # custom_data first (so a killed recording keeps it), the rosbag2 record at close
+    assert [r.name for r in records] == ['rope_sim_ros.custom_data', 'rosbag2']
+    embedded = yaml.safe_load(records[1].metadata['serialized_metadata'])
+    assert records[0].metadata == embedded['custom_data']
     with open(recorded / 'metadata.yaml', encoding='utf-8') as stream:
         on_disk = yaml.safe_load(stream)
     assert embedded == on_disk['rosbag2_bagfile_information']

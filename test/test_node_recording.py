@@ -271,8 +271,10 @@ def test_sigint_metadata_counts_agree(sigint_run):
         on_disk = yaml.safe_load(stream)['rosbag2_bagfile_information']
     with open(bag / 'bag_0.mcap', 'rb') as stream:
         records = list(make_reader(stream).iter_metadata())
-    assert [r.name for r in records] == ['rosbag2']
-    embedded = yaml.safe_load(records[0].metadata['serialized_metadata'])
+    # custom_data first (so a killed recording keeps it), the rosbag2 record at close
+    assert [r.name for r in records] == ['rope_sim_ros.custom_data', 'rosbag2']
+    embedded = yaml.safe_load(records[1].metadata['serialized_metadata'])
+    assert records[0].metadata == embedded['custom_data']
     assert embedded == on_disk
     real = {topic: len(items) for topic, items in read_rosbags(bag).items()}
     counts = {t['topic_metadata']['name']: t['message_count']
@@ -348,6 +350,8 @@ def test_sigkill_leaves_a_recoverable_bag(colcon_install, colcon_env, tmp_path):
     with Reader(bag) as reader:
         assert reader.message_count == len(messages)
     assert bag_info(bag).complete
+    # the node's parameters survive the kill, so resim and plot still know the line
+    assert stored_parameters(bag)['segments'] == 20
 
 
 # ------------------------------------------------------------------- refusing to start

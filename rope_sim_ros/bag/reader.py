@@ -29,7 +29,7 @@ from typing import Any, Dict, Iterable, Iterator, List, NamedTuple, Optional, Tu
 
 from mcap.exceptions import McapError
 from mcap.reader import SeekingReader
-from mcap.records import Channel, Chunk, Message, Schema
+from mcap.records import Channel, Chunk, Message, Metadata, Schema
 from mcap.stream_reader import breakup_chunk, StreamReader
 from rclpy.serialization import deserialize_message
 
@@ -169,16 +169,16 @@ def _summary(stream: Any) -> Any:
         stream.seek(0)
 
 
-def stream_records(stream: Any) -> Iterator[Union[Schema, Channel, Message]]:
+def stream_records(stream: Any) -> Iterator[Union[Schema, Channel, Message, Metadata]]:
     """
-    Yield the schemas, channels and messages of an MCAP file in file order.
+    Yield the schemas, channels, messages and metadata records of an MCAP file in order.
 
     Reading stops quietly at the end of the last whole chunk: a missing footer or a
     chunk cut off or damaged by a kill ends the records, it is not an error.
 
     :param stream: The file, open for binary reading at its start.
 
-    :yields: Schema, Channel and Message records.
+    :yields: Schema, Channel, Message and Metadata records.
     """
     reader = StreamReader(stream, emit_chunks=True, record_size_limit=2**31)
     try:
@@ -189,7 +189,7 @@ def stream_records(stream: Any) -> Iterator[Union[Schema, Channel, Message]]:
                 for inner in breakup_chunk(record, validate_crc=True):
                     if isinstance(inner, (Schema, Channel, Message)):
                         yield inner
-            elif isinstance(record, (Schema, Channel, Message)):
+            elif isinstance(record, (Schema, Channel, Message, Metadata)):
                 yield record
     except _TRUNCATION:
         return
@@ -228,7 +228,7 @@ def _read_file(path: str, topics: Optional[frozenset]) -> Iterator[BagMessage]:
                 schemas[record.id] = record
             elif isinstance(record, Channel):
                 channels[record.id] = record
-            else:
+            elif isinstance(record, Message):
                 channel = channels.get(record.channel_id)
                 if channel is None or (topics is not None and channel.topic not in topics):
                     continue
@@ -295,7 +295,7 @@ def _file_info(path: str) -> Tuple[Dict[str, TopicInfo], int, int, int, bool]:
                     schemas[record.id] = record
                 elif isinstance(record, Channel):
                     channels[record.id] = record
-                elif record.channel_id in channels:
+                elif isinstance(record, Message) and record.channel_id in channels:
                     counts[record.channel_id] = counts.get(record.channel_id, 0) + 1
                     start = record.log_time if not total else min(start, record.log_time)
                     end = max(end, record.log_time)

@@ -23,7 +23,7 @@ and rosbag2 metadata record, and metadata.yaml is written beside it.
 import os
 from typing import Dict, List, Optional
 
-from mcap.records import Channel, Schema
+from mcap.records import Channel, Metadata, Schema
 
 from . import metadata as meta
 from . import storage
@@ -33,11 +33,22 @@ from .reader import bag_files, open_file, PathLike, stream_records
 _SUFFIX = '.recovering'
 
 
+def _custom_data(source: str) -> Optional[Dict[str, str]]:
+    """Return the custom_data the recorder wrote at the start of the file, if any."""
+    with open_file(source) as stream:
+        for record in stream_records(stream):
+            if isinstance(record, Metadata) and record.name == storage.CUSTOM_DATA_RECORD:
+                return dict(record.metadata)
+    return None
+
+
 def _copy(source: str, target: storage.McapFile) -> None:
     schemas: Dict[int, Schema] = {}
     topics: Dict[int, str] = {}
     with open_file(source) as stream:
         for record in stream_records(stream):
+            if isinstance(record, Metadata):
+                continue
             if isinstance(record, Schema):
                 schemas[record.id] = record
             elif isinstance(record, Channel):
@@ -83,13 +94,15 @@ def recover(path: PathLike, output: Optional[PathLike] = None) -> int:
         directory = storage.create_bag_directory(output)
         targets = [storage.new_file_name(directory, index) for index in range(len(sources))]
     files: List[storage.McapFile] = []
+    custom_data = _custom_data(sources[0]) if sources else None
     try:
         for source, target in zip(sources, targets):
             files.append(storage.McapFile(
                 target, chunk_size=storage.DEFAULT_CHUNK_SIZE,
-                name=os.path.basename(target if output is not None else source)))
+                name=os.path.basename(target if output is not None else source),
+                custom_data=custom_data))
             _copy(source, files[-1])
-        metadata = storage.metadata_for(files)
+        metadata = storage.metadata_for(files, custom_data)
         for storage_file in files:
             storage_file.close(metadata)
     except BaseException:

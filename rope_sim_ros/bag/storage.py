@@ -38,6 +38,9 @@ from .schema import SCHEMA_ENCODING
 PROFILE = 'ros2'
 #: Name and key of the MCAP metadata record rosbag2 reads its metadata from.
 METADATA_RECORD = 'rosbag2'
+# custom_data again, at the start of the file: a killed recording has no metadata.yaml, and
+# recover() takes it from here
+CUSTOM_DATA_RECORD = 'rope_sim_ros.custom_data'
 METADATA_RECORD_KEY = 'serialized_metadata'
 #: Channel metadata keys of rosbag2_storage_mcap.
 QOS_KEY = 'offered_qos_profiles'
@@ -121,7 +124,8 @@ class McapFile:
     :ivar topics: The TopicRecords by topic name, with their message counts so far.
     """
 
-    def __init__(self, path: str, *, chunk_size: int, name: Optional[str] = None) -> None:
+    def __init__(self, path: str, *, chunk_size: int, name: Optional[str] = None,
+                 custom_data: Optional[Mapping[str, str]] = None) -> None:
         """
         Create the file and write the MCAP header.
 
@@ -129,6 +133,7 @@ class McapFile:
         :param chunk_size: Bytes of messages after which a chunk is written out.
         :param name: The file's name in the bag's metadata, if it is written under another
             name first (default: the base name of path).
+        :param custom_data: The bag's custom_data, written at once as a metadata record.
 
         :raises BagError: the file exists or cannot be created.
         """
@@ -149,6 +154,8 @@ class McapFile:
         self._writer = Writer(
             self._stream, chunk_size=chunk_size, compression=CompressionType.NONE)
         self._writer.start(profile=PROFILE, library=LIBRARY)
+        if custom_data:
+            self._writer.add_metadata(CUSTOM_DATA_RECORD, dict(custom_data))
         self._stream.flush()
 
     def add_topic(self, topic: meta.TopicRecord, definition: str) -> None:

@@ -91,7 +91,8 @@ class BagWriter:
                 f'got {custom_data!r}')
         self._custom_data = dict(custom_data) if custom_data else None
         self._path = storage.create_bag_directory(path)
-        self._file = storage.McapFile(storage.new_file_name(self._path), chunk_size=chunk_size)
+        self._file = storage.McapFile(storage.new_file_name(self._path), chunk_size=chunk_size,
+                                      custom_data=self._custom_data)
         self._flush_interval = float(flush_interval)
         self._queue: 'queue.Queue[Any]' = queue.Queue(queue_size)
         # Topic name -> (type name, message class), filled by add_topic().
