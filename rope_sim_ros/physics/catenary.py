@@ -399,6 +399,14 @@ def _straight_line(end_a: np.ndarray, end_b: np.ndarray, segments: int) -> np.nd
     return end_a + np.outer(fraction, end_b - end_a)
 
 
+def _check_line(end_a, end_b, gravity, length, weight_per_length, axial_stiffness) -> tuple:
+    """Return the 3-D functions' line inputs checked (CatenaryError names a bad one)."""
+    return (_check_point('end_a', end_a), _check_point('end_b', end_b),
+            _check_point('gravity', gravity), _check_positive('length', length),
+            _check_non_negative('weight_per_length', weight_per_length),
+            _check_positive('axial_stiffness', axial_stiffness))
+
+
 def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
                     weight_per_length: float, axial_stiffness: float, gravity: ArrayLike,
                     s: ArrayLike) -> np.ndarray:
@@ -417,12 +425,8 @@ def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
 
     :raises CatenaryError: an input is invalid, or the catenary did not converge.
     """
-    end_a = _check_point('end_a', end_a)
-    end_b = _check_point('end_b', end_b)
-    gravity = _check_point('gravity', gravity)
-    length = _check_positive('length', length)
-    w = _check_non_negative('weight_per_length', weight_per_length)
-    ea = _check_positive('axial_stiffness', axial_stiffness)
+    end_a, end_b, gravity, length, w, ea = _check_line(
+        end_a, end_b, gravity, length, weight_per_length, axial_stiffness)
     s = np.asarray(s, dtype=float).reshape(-1)
     fraction = s / length
     if _is_weightless(w, gravity):
@@ -518,13 +522,9 @@ def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segment
     :raises CatenaryError: an input is invalid, or there is no equilibrium Newton can reach
         (for example a chain folded at a vertical hang, or too few segments to sag).
     """
-    end_a = _check_point('end_a', end_a)
-    end_b = _check_point('end_b', end_b)
-    gravity = _check_point('gravity', gravity)
-    length = _check_positive('length', length)
+    end_a, end_b, gravity, length, w, ea = _check_line(
+        end_a, end_b, gravity, length, weight_per_length, axial_stiffness)
     segments = _check_segments(segments)
-    w = _check_non_negative('weight_per_length', weight_per_length)
-    ea = _check_positive('axial_stiffness', axial_stiffness)
     if _is_weightless(w, gravity):
         return _weightless_chain(end_a, end_b, length, segments, ea)
     up, horizontal, span, rise = _vertical_frame(end_a, end_b, gravity)
@@ -568,13 +568,9 @@ def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: i
 
     :raises CatenaryError: an input is invalid (solver failures fall back instead).
     """
-    end_a = _check_point('end_a', end_a)
-    end_b = _check_point('end_b', end_b)
-    gravity = _check_point('gravity', gravity)
-    length = _check_positive('length', length)
+    end_a, end_b, gravity, length, w, ea = _check_line(
+        end_a, end_b, gravity, length, weight_per_length, axial_stiffness)
     segments = _check_segments(segments)
-    w = _check_non_negative('weight_per_length', weight_per_length)
-    ea = _check_positive('axial_stiffness', axial_stiffness)
     shapes = (
         lambda: chain_equilibrium(end_a, end_b, length, segments, w, ea, gravity).positions,
         lambda: catenary_points(end_a, end_b, length, w, ea, gravity,
