@@ -458,6 +458,14 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
     pairs = [(particles[k], wrench) for k, wrench in zip(
         client.sequence[id(client.fairlead)], client.fairlead) if k in particles]
     assert len(pairs) > 400, f'{len(pairs)} outputs in 10 s at 50 Hz'
+    # If this process stalled longer than the node's LIVE_INPUT while publishing, the node
+    # rightly went on without poses (README: Time) and the offline run cannot follow: compare
+    # up to the stall (seen once on a loaded machine, as a sudden 8 % step at 0.6 s).
+    gaps = [k for k in range(1, len(sent)) if sent[k][0] - sent[k - 1][0] > 0.2e9]
+    if gaps:
+        pairs = [pair for pair in pairs if _stamp_ns(pair[0][1]) <= sent[gaps[0] - 1][0]]
+        print(f'the test client stalled after pose {gaps[0]}: comparing {len(pairs)} outputs')
+    assert len(pairs) > 50, f'only {len(pairs)} outputs before the test client stalled'
 
     first, epoch = _first_sample(sent, _stamp_ns(pairs[0][0][1]), default_line())
     sim = offline_simulator(default_line())
