@@ -23,13 +23,14 @@ wall-clock time from each publish:
 - next tension: the first fairlead/tension message received after it (what a ship
   simulator waiting for a force sees);
 - simulated: the first rope/particles message whose state time has reached its stamp (to
-  within one time step: the node never steps past the newest pose of a live stream, so it
-  passes a pose's stamp only once the next pose has arrived).
+  within one time step). The node never steps past the second-newest pose of a live
+  stream, so it passes a pose's stamp only once the next pose has arrived, and its outputs
+  fall every 1 / publish_rate of simulated time.
 
 Queues grew if the effect latency of the last tenth of the poses is more than a publish
 period above that of the first tenth, or if outputs went missing.
 
-    python benchmarks/node_latency.py [--rate 50] [--count 1000]
+    python benchmarks/node_latency.py [--rate 50] [--count 1000] [--publish-rate 50]
 """
 
 import argparse
@@ -171,6 +172,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--rate', type=float, default=50.0, help='pose rate [Hz] (50)')
     parser.add_argument('--count', type=int, default=1000, help='poses measured (1000)')
+    parser.add_argument('--publish-rate', type=float, default=None,
+                        help="the node's publish_rate [Hz] (default: config/mooring_line.yaml)")
     parser.add_argument('--install', type=Path, default=REPO / 'install',
                         help='colcon install base (default <repo>/install)')
     args = parser.parse_args(argv)
@@ -180,9 +183,13 @@ def main(argv=None) -> int:
     os.environ['ROS_DOMAIN_ID'] = env['ROS_DOMAIN_ID']
     os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = env['ROS_AUTOMATIC_DISCOVERY_RANGE']
     params_file = prefix / 'share' / 'rope_sim_ros' / 'config' / 'mooring_line.yaml'
+    line = load_params(params_file)
+    if args.publish_rate is not None:
+        line = line.with_values({'publish_rate': args.publish_rate})
     node = subprocess.Popen(
         [str(prefix / 'lib' / 'rope_sim_ros' / 'mooring_line'), '--ros-args',
-         '--params-file', str(params_file), '-r', f'__ns:={NAMESPACE}'],
+         '--params-file', str(params_file), '-r', f'__ns:={NAMESPACE}',
+         '-p', f'publish_rate:={line.publish_rate}'],
         env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE, text=True)
     context = rclpy.Context()
@@ -199,7 +206,6 @@ def main(argv=None) -> int:
         thread.start()
         bench.spin_until(lambda: not thread.is_alive(), args.count / args.rate + 60.0)
         bench.spin_until(lambda: False, 0.5)  # the last outputs
-        line = load_params(params_file)
         time_step = Simulator(line, output_interval=1.0 / line.publish_rate).time_step
         code = analyse(bench, args.rate, line.publish_rate, time_step)
     finally:

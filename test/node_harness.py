@@ -14,9 +14,28 @@
 
 """The installed mooring_line executable as a child process, shared by the node tests."""
 
+import contextlib
+import gc
 from pathlib import Path
 import signal
 import subprocess
+
+
+@contextlib.contextmanager
+def no_gc_pauses():
+    """
+    Keep the cyclic garbage collector out of a timed publishing loop.
+
+    A full collection in a pytest process holding the messages of earlier tests took up to
+    0.13 s: long enough to look like a pose stream falling silent.
+    """
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 class NodeProcess:

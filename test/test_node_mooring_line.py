@@ -29,7 +29,7 @@ import time
 
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
-from node_harness import NodeProcess
+from node_harness import no_gc_pauses, NodeProcess
 import numpy as np
 import pytest
 import rclpy
@@ -142,6 +142,7 @@ class Client:
         (publisher or self.fairlead_pub).publish(msg)
         return stamp_ns
 
+    @no_gc_pauses()
     def drive(self, seconds: float, position, rate: float = 50.0) -> list:
         """
         Publish position(t) at `rate` for `seconds` (t from 0) while spinning.
@@ -390,21 +391,46 @@ def test_bad_input_is_dropped_and_output_stays_finite(line_node):
     assert len(log_lines(node, 'rope restarted on the catenary there')) >= 2
 
 
+def test_a_stalled_node_catches_up_on_the_poses_queued_meanwhile(line_node):
+    node, client = line_node
+    client.drive(0.5, lambda t: FAIRLEAD, rate=20.0)
+    client.clear()
+    logged = len(node.text().splitlines())
+    node.process.send_signal(signal.SIGSTOP)  # the node froze for 0.8 s; the poses go on
+    try:
+        client.drive(0.8, lambda t: FAIRLEAD, rate=20.0)
+    finally:
+        node.process.send_signal(signal.SIGCONT)
+    client.drive(1.0, lambda t: FAIRLEAD, rate=20.0)
+    # no skip, no restart, no stream taken for silent (nor a stamp skew warning, from 1 s):
+    # the outputs run on through the stall every 20 ms (the client may miss some of the
+    # burst that catches up)
+    assert node.text().splitlines()[logged:] == []
+    stamps = [_stamp_ns(msg) for _, msg in client.particles]
+    periods = np.diff(stamps) / 20e6
+    assert np.allclose(periods, np.round(periods), rtol=0.0, atol=1e-4), periods
+    assert np.round(periods).min() == 1 and (stamps[-1] - stamps[0]) * 1e-9 > 1.5
+    assert len(stamps) > 70 and all_finite(client)
+    assert abs(stamps[-1] * 1e-9 - time.time()) < 0.3
+
+
 def test_a_stalled_node_skips_ahead_instead_of_spiralling(line_node):
     node, client = line_node
     client.drive(0.5, lambda t: FAIRLEAD, rate=20.0)
-    node.process.send_signal(signal.SIGSTOP)  # the machine froze for 1.5 s
+    client.spin(0.5)  # the poses stop: the node warns and goes on with the clock
+    assert log_lines(node, 'fairlead/pose: no new pose for 0.25 s: the fairlead holds')
+    skipped = len(log_lines(node, 's behind the clock: skipped ahead'))
+    node.process.send_signal(signal.SIGSTOP)  # then it froze for 1.5 s: too far behind
     try:
-        client.drive(1.5, lambda t: FAIRLEAD, rate=20.0)
+        client.spin(1.5)
     finally:
         node.process.send_signal(signal.SIGCONT)
     client.clear()
     client.drive(1.0, lambda t: FAIRLEAD, rate=20.0)
-    assert len(log_lines(node, 's behind the clock: skipped ahead')) == 1
+    assert len(log_lines(node, 's behind the clock: skipped ahead')) == skipped + 1
     # back to real time at once: a whole second of outputs, stamped with the wall clock
     assert len(client.particles) > 35 and all_finite(client)
-    last = client.particles[-1][1].header.stamp
-    assert abs(last.sec + last.nanosec * 1e-9 - time.time()) < 0.3
+    assert abs(_stamp_ns(client.particles[-1][1]) * 1e-9 - time.time()) < 0.3
 
 
 def _stamp_ns(msg: PoseArray) -> int:
@@ -458,16 +484,22 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
     pairs = [(particles[k], wrench) for k, wrench in zip(
         client.sequence[id(client.fairlead)], client.fairlead) if k in particles]
     assert len(pairs) > 400, f'{len(pairs)} outputs in 10 s at 50 Hz'
-    # If this process stalled longer than the node's LIVE_INPUT while publishing, the node
-    # rightly went on without poses (README: Time) and the offline run cannot follow: compare
-    # up to the stall (seen once on a loaded machine, as a sudden 8 % step at 0.6 s).
-    gaps = [k for k in range(1, len(sent)) if sent[k][0] - sent[k - 1][0] > 0.2e9]
-    if gaps:
-        pairs = [pair for pair in pairs if _stamp_ns(pair[0][1]) <= sent[gaps[0] - 1][0]]
-        print(f'the test client stalled after pose {gaps[0]}: comparing {len(pairs)} outputs')
-    assert len(pairs) > 50, f'only {len(pairs)} outputs before the test client stalled'
-
+    # one output every 1 / publish_rate of simulated time (the poses' 50 Hz rate, too)
+    periods = np.diff([_stamp_ns(particles) for (_, particles), _ in pairs]) / 20e6
+    assert np.allclose(periods, np.round(periods), rtol=0.0, atol=1e-4), periods
+    print(f'{len(pairs)} outputs; {np.mean(np.round(periods) == 1):.1%} one period apart')
+    assert np.mean(np.round(periods) == 1) > 0.95, np.round(periods)
     first, epoch = _first_sample(sent, _stamp_ns(pairs[0][0][1]), default_line())
+    # If no pose reached the node for LIVE_INPUT (this process stalled while publishing;
+    # seen twice in full runs before drive() kept the GC out), the node rightly went on with
+    # the clock and says so (README: Time); the offline run cannot follow: compare up to it.
+    silent = log_lines(node, 'fairlead/pose: no new pose for')
+    if silent:
+        t_silent = float(silent[0].split('from t = ')[1].split()[0])
+        pairs = [pair for pair in pairs if _stamp_ns(pair[0][1]) - epoch <= t_silent * 1e9]
+        print(f'the pose stream fell silent at t = {t_silent} s: comparing {len(pairs)} outputs')
+    assert len(pairs) > 50, f'only {len(pairs)} outputs before the pose stream fell silent'
+
     sim = offline_simulator(default_line())
     for ns, p in sent[first:]:
         sim.push_fairlead((ns - epoch) * 1e-9, p)

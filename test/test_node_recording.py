@@ -31,7 +31,7 @@ import warnings
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 from mcap.reader import make_reader
-from node_harness import NodeProcess
+from node_harness import no_gc_pauses, NodeProcess
 import numpy as np
 import pytest
 import rclpy
@@ -150,6 +150,7 @@ class Client:
         self.bollard.clear()
         return sent
 
+    @no_gc_pauses()
     def drive(self, seconds: float, rate: float = 50.0, bollard_every: int = 5) -> dict:
         """
         Publish the fairlead motion at `rate` (and a fixed bollard) while spinning.
@@ -179,11 +180,15 @@ def force_values(msg) -> tuple:
     return (msg.force.x, msg.force.y, msg.force.z, msg.torque.x, msg.torque.y, msg.torque.z)
 
 
+def stamp_ns(msg) -> int:
+    """Return the header stamp of a message (rclpy or rosbags) in ns."""
+    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+
+
 def pose_values(msg) -> tuple:
     """Return a PoseStamped (rclpy or rosbags) as it is compared with what was sent."""
     p, q = msg.pose.position, msg.pose.orientation
-    return (msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec,
-            (p.x, p.y, p.z), (q.x, q.y, q.z, q.w))
+    return stamp_ns(msg), (p.x, p.y, p.z), (q.x, q.y, q.z, q.w)
 
 
 def record_run(colcon_install, colcon_env, tmp_path, namespace: str, signum: int,
@@ -296,8 +301,7 @@ def test_sigint_bag_reads_with_mcap_ros2_and_times(sigint_run):
                          [pose_values(m.ros_msg) for m in decoded[names['fairlead/pose']]])
     for topic in (names['fairlead/pose'], names['bollard/pose'], names['rope/particles']):
         for m in decoded[topic]:  # publish time = header stamp, log time = on receipt
-            stamp = m.ros_msg.header.stamp
-            assert m.publish_time_ns == stamp.sec * 1_000_000_000 + stamp.nanosec
+            assert m.publish_time_ns == stamp_ns(m.ros_msg)
     for m in decoded[names['fairlead/pose']]:
         assert m.log_time_ns >= m.publish_time_ns
     for m in decoded[names['fairlead/tension']]:
@@ -343,6 +347,35 @@ def test_node_bag_stores_parameters_and_rope_sim_reads_it(sigint_run, capsys):
     for name in resolved('/rec_int').values():
         assert name in out
     assert 'peak fairlead tension' in out
+
+
+def outputs_by_stamp(bag: Path, names: dict) -> dict:
+    """Return {particles stamp [ns]: fairlead force (x, y, z)} of a bag's outputs."""
+    messages = read_rosbags(bag)
+    particles = messages[names['rope/particles']]
+    tensions = messages[names['fairlead/tension']]
+    assert len(particles) == len(tensions)  # published together, one of each per output
+    return {stamp_ns(p): force_values(w)[:3] for (_, p), (_, w) in
+            zip(particles, tensions)}
+
+
+def test_resim_of_the_node_bag_gives_the_node_outputs(sigint_run, tmp_path):
+    # `rope_sim resim` with the parameters stored in the bag: outputs fall on the same
+    # stamps (every 1 / publish_rate from the first pose) with the same forces
+    names = resolved('/rec_int')
+    assert cli.main(['resim', str(sigint_run['bag']), '--out', str(tmp_path / 'resim')]) == 0
+    live = outputs_by_stamp(sigint_run['bag'], names)
+    offline = outputs_by_stamp(tmp_path / 'resim', names)
+    # the node ran on after the last pose (the stream went quiet): compare up to it
+    last_pose = sigint_run['sent']['fairlead/pose'][-1][0]
+    stamps = sorted(t for t in live if t <= last_pose - 40_000_000)
+    assert len(stamps) > 0.9 * 50 * 3.0, f'{len(stamps)} outputs in 3 s at 50 Hz'
+    assert set(stamps) <= set(offline), sorted(set(stamps) - set(offline))[:5]
+    difference = max(np.max(np.abs(np.subtract(live[t], offline[t]))) for t in stamps)
+    scale = max(np.max(np.abs(live[t])) for t in stamps)
+    print(f'node vs resim: {len(stamps)} outputs, largest difference {difference:.3g} N')
+    # round-off: 1e-13 m of stretch is 1e-6 N on this line (EA / segment length 9e6 N/m)
+    assert difference < 1e-6 * scale, f'node and resim differ by {difference:.3g} N'
 
 
 # ------------------------------------------------------------------ SIGTERM and SIGKILL

@@ -16,16 +16,18 @@
 The mooring_line node: one simulated mooring line between a bollard and a fairlead.
 
 ROS glue only. Parameters (params.SPECS) become ParameterDescriptors and then a Simulator;
-pose messages become end samples; a timer advances the simulator and publishes its output.
+pose messages become end samples; outputs are due every 1 / publish_rate of simulated time
+(from the first pose, as in `rope_sim run`) and are published as soon as the rope reaches
+them: in the pose callback that lets it, or in a timer tick when no pose stream is live.
 
-Time: the rope follows the node clock, so use_sim_time and /clock work. Each tick advances
-it to now, but while an end's pose stream is live never past that end's second-newest
-sample: how an end moves up to a sample depends on the sample after it (the side of the
-secant at the sample instant, the spline's tangent there), so one sample ahead the ends
-move exactly as in the offline runner, which knows the whole motion. Running ahead instead
+Time: the rope follows the node clock, so use_sim_time and /clock work. It advances to
+now, but while an end's pose stream is live never past that end's second-newest sample:
+how an end moves up to a sample depends on the sample after it (the side of the secant at
+the sample instant, the spline's tangent there), so one sample ahead the ends move exactly
+as in the offline runner, which knows the whole motion. Running ahead instead
 (extrapolating, then pulling the end back when the next pose arrives) costs a stiff line as
 much tension noise as the motion itself. When a stream falls silent for LIVE_INPUT seconds
-the end holds (after a short extrapolation) and the rope goes on to now.
+the end holds (after a short extrapolation), the rope goes on to now and a warning says so.
 
 Recording (record_path): every received pose and published message also goes to a bag
 through recorder.Recorder, which never blocks the tick; Ctrl-C and SIGTERM close the bag,
@@ -36,6 +38,7 @@ import array
 from collections import deque
 import contextlib
 import functools
+import gc
 import math
 import os
 import signal
@@ -115,8 +118,9 @@ def _as_declared(name: str, value: Any) -> Any:
 class MooringLineNode(Node):
     """One simulated mooring line; see the module docstring and DESIGN.md section 3."""
 
-    # A pose stream whose newest stamp is at most this old [s] is live: the rope waits for
-    # its next sample instead of guessing.
+    # A pose stream is live until the node has run this long [s] without a new sample of it:
+    # the rope waits for its next sample instead of guessing. Counted in ticks, not from the
+    # stamps, so that a node that was itself stalled first reads the poses queued meanwhile.
     LIVE_INPUT = 0.25
     # Falling further behind than this [s] restarts the rope at now instead of catching up.
     MAX_LAG = 1.0
@@ -150,9 +154,12 @@ class MooringLineNode(Node):
             raise StartupError(str(e)) from None
         self._epoch_ns: Optional[int] = None  # stamp of the first pose: simulator time 0
         self._levers = {'fairlead': np.zeros(3), 'bollard': np.zeros(3)}
-        # times [s] of the two newest accepted samples of each end
+        # times [s] of the two newest accepted samples of each end, and ticks since the newest
         self._recent = {'fairlead': deque(maxlen=2), 'bollard': deque(maxlen=2)}
-        self._fresh = False  # publish the next state even if time did not advance
+        self._quiet_ticks = {'fairlead': 0, 'bollard': 0}
+        self._fresh = False  # publish the state at once: the rope was (re)started
+        self._output_origin = 0.0  # simulator time [s] from which outputs are due
+        self._outputs_since_origin = 0
 
         qos = QoSProfile(depth=50)
         self._outputs = {
@@ -261,6 +268,7 @@ class MooringLineNode(Node):
         if event == 'teleport':
             self._recent['fairlead'].clear()
         self._recent['fairlead'].append(t)
+        self._quiet_ticks['fairlead'] = 0
         if not self.simulator.started:
             self.simulator.start(t)
             self._fresh = True
@@ -272,6 +280,7 @@ class MooringLineNode(Node):
                 f'fairlead jumped more than teleport_distance '
                 f'({self.simulator.params.teleport_distance:g} m) to {_fmt(end.point)}: '
                 'rope restarted on the catenary there')
+        self._advance()
 
     def _on_bollard_pose(self, msg: PoseStamped) -> None:
         self.record('bollard/pose', msg)
@@ -286,6 +295,9 @@ class MooringLineNode(Node):
             return
         self._levers['bollard'] = end.lever
         self._recent['bollard'].append(t)
+        self._quiet_ticks['bollard'] = 0
+        if self.simulator.started:
+            self._advance()
 
     def _sample(self, topic: str, msg: PoseStamped, offset) -> Optional[tuple]:
         """Return (time [s], PosePoint) of a pose message, or None if it was dropped."""
@@ -344,33 +356,69 @@ class MooringLineNode(Node):
         See the module docstring; a stream with a single sample so far holds at it.
         """
         target = now
-        for recent in self._recent.values():
-            if recent and now - recent[-1] <= self.LIVE_INPUT:
+        for end, recent in self._recent.items():
+            if self._live(end):
                 target = min(target, recent[0])
         return target
 
+    def _live(self, end: str) -> bool:
+        """Tell whether an end's pose stream is live (see LIVE_INPUT)."""
+        live_ticks = max(2, math.ceil(self.LIVE_INPUT * self.simulator.params.publish_rate))
+        return bool(self._recent[end]) and self._quiet_ticks[end] < live_ticks
+
     def _on_tick(self) -> None:
-        sim = self.simulator
-        if not sim.started:
+        """Go on to now when no pose stream is live (a live one advances on its poses)."""
+        if not self.simulator.started:
             return
+        for end in self._recent:
+            was_live = self._live(end)
+            self._quiet_ticks[end] += 1
+            if was_live and not self._live(end):
+                self._warn(f'{end}: silent', f'{end}/pose: no new pose for '
+                           f'{self.LIVE_INPUT:g} s: the {end} holds and the rope goes on with '
+                           f'the clock from t = {self.simulator.time:.3f} s')
+        self._advance()
+
+    def _advance(self) -> None:
+        """
+        Advance the rope towards the target time, publishing each output time it passes.
+
+        Outputs are due every 1 / publish_rate from the last (re)start, as in `rope_sim run`,
+        and go out as soon as the input reaches them: from a pose callback when a pose
+        stream is live, else from the tick. One call publishes at most PERIODS_PER_TICK of
+        them; a node further behind than MAX_LAG skips ahead instead of catching up.
+        """
+        sim = self.simulator
         now = self._seconds(self.get_clock().now().nanoseconds)
         if now < sim.time - self.MAX_LAG:
             self._clock_jumped_back(now)
             return
-        max_steps = max(1, math.ceil(
-            self.PERIODS_PER_TICK / (sim.params.publish_rate * sim.time_step)))
-        advance = sim.advance_to(self._target_time(now), max_steps)
-        if advance.restarted:
-            self.get_logger().error(
-                f'rope state turned {advance.restarted.split()[0]} at t = {sim.time:.3f} s: '
-                'restarted it on the catenary')
-        if advance.lag > self.MAX_LAG:
-            self._warn('lag', f'simulation fell {advance.lag:.2f} s behind the clock: '
+        target = self._target_time(now)
+        if target - sim.time > self.MAX_LAG:
+            self._warn('lag', f'simulation fell {target - sim.time:.2f} s behind the clock: '
                        'skipped ahead and restarted the rope on the catenary')
-            sim.skip_to(sim.time + advance.lag)
+            sim.skip_to(target)
             sim.restart()
             self._fresh = True
-        if advance.steps or self._fresh:
+        if self._fresh:
+            self._publish()
+        period, dt = 1.0 / sim.params.publish_rate, sim.time_step
+        for _ in range(math.ceil(self.PERIODS_PER_TICK)):
+            due = self._output_origin + (self._outputs_since_origin + 1) * period
+            steps = max(1, math.ceil((due - sim.time) / dt - 1e-9))
+            if sim.time + (steps - 1e-6) * dt > target:
+                return  # the input does not reach the next output time yet
+            advance = sim.advance_to(sim.time + (steps + 0.5) * dt, max_steps=steps)
+            self._outputs_since_origin += 1
+            if advance.restarted:
+                self.get_logger().error(
+                    f'rope state turned {advance.restarted.split()[0]} at t = '
+                    f'{sim.time:.3f} s: restarted it on the catenary')
+                self._fresh = True
+            elif abs(sim.time - due) < 1e-6 * dt:
+                # The state time is a running sum of steps: pin it to the output time, as
+                # `rope_sim run` does, so that rounding never adds up to a missed step.
+                sim.skip_to(due)
             self._publish()
 
     def _clock_jumped_back(self, now: float) -> None:
@@ -406,8 +454,11 @@ class MooringLineNode(Node):
             self.get_logger().error(
                 f'non-finite output at t = {out.t:.3f} s: not published; rope restarted')
             self.simulator.restart()
+            self._fresh = True
             return
-        self._fresh = False
+        if self._fresh:  # a (re)started rope: the next outputs are due from here
+            self._fresh = False
+            self._output_origin, self._outputs_since_origin = out.t, 0
         stamp_ns = self._epoch_ns + round(out.t * 1e9)
         messages = {
             'rope/particles': conversions.pose_array(
@@ -527,6 +578,9 @@ def main(args=None) -> int:
         if rclpy.ok():
             raise
         return 0  # SIGTERM during start-up: rclpy shut the context down under us
+    # What start-up allocated (rclpy, numpy, numba: ~1e5 objects) lives as long as the node:
+    # keep it out of the cyclic collector, whose full passes over it took ~45 ms mid-run.
+    gc.freeze()
     try:
         if rclpy.ok():  # else SIGTERM came between start-up and spinning
             spin_until_shutdown(node)
