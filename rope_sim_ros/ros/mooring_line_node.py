@@ -124,8 +124,9 @@ class MooringLineNode(Node):
     LIVE_INPUT = 0.25
     # Falling further behind than this [s] restarts the rope at now instead of catching up.
     MAX_LAG = 1.0
-    # A tick simulates at most this many publish periods.
-    PERIODS_PER_TICK = 2.0
+    # One tick or pose callback simulates and publishes at most this many outputs, so that
+    # a node catching up stays responsive (ticks and poses together catch up fast enough).
+    OUTPUTS_PER_CALL = 2
     # Pose stamps further than this from the node clock [s] are worth a warning.
     STAMP_SKEW_WARNING = 1.0
     THROTTLE = 5.0  # seconds between repeated warnings of one kind
@@ -367,7 +368,7 @@ class MooringLineNode(Node):
         return bool(self._recent[end]) and self._quiet_ticks[end] < live_ticks
 
     def _on_tick(self) -> None:
-        """Go on to now when no pose stream is live (a live one advances on its poses)."""
+        """Count a tick without poses for each end, then advance (to now if none is live)."""
         if not self.simulator.started:
             return
         for end in self._recent:
@@ -385,7 +386,7 @@ class MooringLineNode(Node):
 
         Outputs are due every 1 / publish_rate from the last (re)start, as in `rope_sim run`,
         and go out as soon as the input reaches them: from a pose callback when a pose
-        stream is live, else from the tick. One call publishes at most PERIODS_PER_TICK of
+        stream is live, else from the tick. One call publishes at most OUTPUTS_PER_CALL of
         them; a node further behind than MAX_LAG skips ahead instead of catching up.
         """
         sim = self.simulator
@@ -403,7 +404,7 @@ class MooringLineNode(Node):
         if self._fresh:
             self._publish()
         period, dt = 1.0 / sim.params.publish_rate, sim.time_step
-        for _ in range(math.ceil(self.PERIODS_PER_TICK)):
+        for _ in range(self.OUTPUTS_PER_CALL):
             due = self._output_origin + (self._outputs_since_origin + 1) * period
             steps = max(1, math.ceil((due - sim.time) / dt - 1e-9))
             if sim.time + (steps - 1e-6) * dt > target:
