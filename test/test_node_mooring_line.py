@@ -490,8 +490,8 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
     print(f'{len(pairs)} outputs; {np.mean(np.round(periods) == 1):.1%} one period apart')
     assert np.mean(np.round(periods) == 1) > 0.95, np.round(periods)
     first, epoch = _first_sample(sent, _stamp_ns(pairs[0][0][1]), default_line())
-    # If no pose reached the node for LIVE_INPUT (this process stalled while publishing;
-    # seen twice in full runs before drive() kept the GC out), the node rightly went on with
+    # If no pose reached the node for LIVE_INPUT (this process stalled while publishing, as
+    # seen in full runs; drive() now keeps the GC out of it), the node rightly went on with
     # the clock and says so (README: Time); the offline run cannot follow: compare up to it.
     silent = log_lines(node, 'fairlead/pose: no new pose for')
     if silent:

@@ -265,11 +265,9 @@ class MooringLineNode(Node):
         except TrajectoryError as e:
             self._drop('fairlead/pose', e)
             return
-        self._levers['fairlead'] = end.lever
         if event == 'teleport':
             self._recent['fairlead'].clear()
-        self._recent['fairlead'].append(t)
-        self._quiet_ticks['fairlead'] = 0
+        self._accepted('fairlead', t, end.lever)
         if not self.simulator.started:
             self.simulator.start(t)
             self._fresh = True
@@ -294,11 +292,15 @@ class MooringLineNode(Node):
         except TrajectoryError as e:
             self._drop('bollard/pose', e)
             return
-        self._levers['bollard'] = end.lever
-        self._recent['bollard'].append(t)
-        self._quiet_ticks['bollard'] = 0
+        self._accepted('bollard', t, end.lever)
         if self.simulator.started:
             self._advance()
+
+    def _accepted(self, end: str, t: float, lever: np.ndarray) -> None:
+        """Note a sample of `end` taken by the simulator: its time, its lever, a live stream."""
+        self._levers[end] = lever
+        self._recent[end].append(t)
+        self._quiet_ticks[end] = 0
 
     def _sample(self, topic: str, msg: PoseStamped, offset) -> Optional[tuple]:
         """Return (time [s], PosePoint) of a pose message, or None if it was dropped."""
