@@ -25,7 +25,7 @@ import math
 import os
 from pathlib import Path
 import sys
-from typing import Optional
+from typing import List, Optional
 
 import numpy as np
 
@@ -36,9 +36,13 @@ from .physics.integrators import automatic_time_step, implicit_bending, improved
 from .physics.materials import MaterialLibrary, MaterialProperties
 from .physics.rope import critical_axial_damping, Rope, RopeProperties
 from .physics.superelastic import adjust, MAX_ITERATIONS
-from .trajectory import EndTrajectory, TrajectoryError
+from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 
 CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
+# An end found further than END_TOLERANCE [m] off its trajectory (late samples changed the
+# trajectory under the rope) is brought back onto it over END_BLEND_TIME [s] (an EndBlend).
+END_TOLERANCE = 1e-6
+END_BLEND_TIME = 1.0  # see trajectory.py for what it costs
 
 
 def default_config_dir() -> Path:
@@ -158,6 +162,7 @@ class Simulator:
         self.bollard = EndTrajectory(keep=history, method=params.end_interpolation)
         self.rope: Optional[Rope] = None
         self.time = math.nan
+        self._blends: List[Optional[EndBlend]] = [None, None]  # bollard, fairlead
         self._inv_mass = np.ones(params.segments + 1)
         self._inv_mass[[0, -1]] = 0.0
 
@@ -253,6 +258,7 @@ class Simulator:
             return Advance(0, t - self.time)
         times = self.time + dt * np.arange(1, steps + 1)
         ends, velocities = self.ends_at(times)
+        self._blend_ends(times, ends, velocities)
         self._run(dt, ends, velocities)
         self.time = float(times[-1])
         finite = kernels.all_finite(self.rope.x, self.rope.v) if self.compiled else \
@@ -261,6 +267,30 @@ class Simulator:
             self.restart()
             return Advance(steps, t - self.time, 'non-finite state')
         return Advance(steps, t - self.time)
+
+    def _blend_ends(self, times: np.ndarray, ends: np.ndarray, velocities: np.ndarray) -> None:
+        """
+        Bring an end that is off its trajectory back onto it (in place), never by a jump.
+
+        Only a live node meets this: a pose stream that fell silent held the end, and its
+        late samples then moved the trajectory away from where the rope has the end.
+        The offline runner's ends are always on their trajectories: its numbers never
+        change here.
+        """
+        here, here_velocities = self.ends_at([self.time])
+        for k, particle in ((0, 0), (1, -1)):
+            offset = self.rope.x[particle] - here[0, k]
+            blend = self._blends[k]
+            if np.abs(offset).max() <= END_TOLERANCE:
+                self._blends[k] = None
+                continue
+            if blend is None or np.abs(blend.at([self.time])[0][0] - offset).max() > END_TOLERANCE:
+                # a new departure from the trajectory: fade it out from the rope's own motion
+                rate = self.rope.v[particle] - here_velocities[0, k]
+                blend = self._blends[k] = EndBlend(self.time, END_BLEND_TIME, offset, rate)
+            offsets, rates = blend.at(times)
+            ends[:, k] += offsets
+            velocities[:, k] += rates
 
     def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
         rope, props = self.rope, self.props

@@ -19,11 +19,19 @@ Timestamped positions of one rope end, interpolated between samples.
 every sample); 'cubic' uses a Catmull-Rom Hermite spline, whose velocity is continuous.
 Holding a pose until the next one (zero-order hold) would jerk a stiff line at every
 message, and so does a velocity step, more gently: a velocity jump dv launches an axial wave
-of dv sqrt(EA m) newtons. Past the newest sample the end moves on with its last velocity for
-at most `extrapolation` seconds, then holds.
+of dv sqrt(EA m) newtons. Past the newest sample the end coasts to a stop: its velocity
+falls linearly from the last one to zero over `coast_time` seconds, then it holds. A ship
+does not stop at once when its pose messages do, and a gentle stop and a gentle return (an
+EndBlend) when the messages resume jerk the line least: in a replayed surge with a 0.4 s gap
+the worst tension error was 105 N with 1 s for both, 2.1 kN with 0.1 s of coasting and a
+0.25 s return, and 11 kN with 0.1 s at full speed, a stop and a jump back.
+
+An EndBlend takes an end that is off its trajectory (the samples that arrived changed the
+trajectory under the rope) back onto it, with position and velocity continuous.
 """
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -36,17 +44,17 @@ class TrajectoryError(ValueError):
 class EndTrajectory:
     """A bounded buffer of (t, position) samples of one end."""
 
-    def __init__(self, extrapolation: float = 0.1, keep: float = 5.0,
+    def __init__(self, coast_time: float = 1.0, keep: float = 5.0,
                  method: str = 'linear'):
         """
         Create an empty trajectory.
 
-        :param extrapolation: how long [s] to move on with the last velocity past the newest
-            sample before holding.
+        :param coast_time: how long [s] the end takes to coast to a stop past the newest
+            sample.
         :param keep: how much history [s] to keep behind the newest sample.
         :param method: 'linear' or 'cubic'.
         """
-        self.extrapolation = extrapolation
+        self.coast_time = coast_time
         self.method = method
         self.keep = keep
         # samples live in [_first, _count) of arrays that grow by doubling: a push at 1 kHz
@@ -118,10 +126,10 @@ class EndTrajectory:
         Positions and velocities at `times`, shapes (n, 3) each.
 
         Before the first sample the end rests there; between samples it follows the chosen
-        interpolation; after the last one it extrapolates, then holds.
+        interpolation; after the last one it coasts to a stop, then holds.
         """
         times = np.ascontiguousarray(times, dtype=float)
-        return _sample(self._t, self._p, times, self.extrapolation, self.method == 'cubic')
+        return _sample(self._t, self._p, times, self.coast_time, self.method == 'cubic')
 
 
 @numba.njit(cache=True)
@@ -132,24 +140,28 @@ def _tangent(t, p, k):
 
 
 @numba.njit(cache=True)
-def _sample(t, p, times, extrapolation, cubic):
+def _sample(t, p, times, coast_time, cubic):
     positions = np.empty((len(times), 3))
     velocities = np.zeros((len(times), 3))
     last = len(t) - 1
     for n in range(len(times)):
-        tau = min(max(times[n], t[0]), t[last] + extrapolation)
-        moving = t[0] <= times[n] < t[last] + extrapolation and last > 0
+        tau = min(max(times[n], t[0]), t[last] + coast_time)
+        moving = t[0] <= times[n] < t[last] + coast_time and last > 0
         if last == 0:
             positions[n] = p[0]
             continue
-        if tau >= t[last]:  # past the newest sample: straight on with its velocity
+        if tau >= t[last]:  # past the newest sample: slow down evenly from its velocity
             if cubic:
                 m = _tangent(t, p, last)
             else:
                 m = (p[last] - p[last - 1]) / (t[last] - t[last - 1])
-            positions[n] = p[last] + m * (tau - t[last])
+            if coast_time <= 0.0:
+                positions[n] = p[last]
+                continue
+            coast = tau - t[last]
+            positions[n] = p[last] + m * (coast - coast * coast / (2.0 * coast_time))
             if moving:
-                velocities[n] = m
+                velocities[n] = m * (1.0 - coast / coast_time)
             continue
         i = min(max(np.searchsorted(t, tau, side='right') - 1, 0), last - 1)
         h = t[i + 1] - t[i]
@@ -168,3 +180,27 @@ def _sample(t, p, times, extrapolation, cubic):
             velocities[n] = ((6 * s2 - 6 * s) * p[i] + (3 * s2 - 4 * s + 1) * m0
                              + (6 * s - 6 * s2) * p[i + 1] + (3 * s2 - 2 * s) * m1) / h
     return positions, velocities
+
+
+class EndBlend(NamedTuple):
+    """
+    An offset from an end's trajectory that fades from (offset, rate) at `start` to zero.
+
+    The fade is a cubic Hermite curve over `duration` seconds, so the end keeps the position
+    and velocity the rope has at `start` and meets its trajectory with the trajectory's own
+    velocity: no jump and no velocity step, whose axial wave a stiff line would feel.
+    """
+
+    start: float
+    duration: float
+    offset: np.ndarray  # rope end minus trajectory at start [m]
+    rate: np.ndarray  # rope end velocity minus trajectory velocity at start [m/s]
+
+    def at(self, times) -> tuple:
+        """Offsets and their rates at `times`, shapes (n, 3) each; zero from start + duration."""
+        s = np.clip((np.asarray(times, dtype=float) - self.start) / self.duration, 0.0, 1.0)
+        s = s[:, np.newaxis]
+        slope = self.duration * self.rate
+        offsets = ((2 * s - 3) * s * s + 1) * self.offset + (s - 1) * (s - 1) * s * slope
+        rates = (6 * (s - 1) * s * self.offset + (3 * s - 1) * (s - 1) * slope) / self.duration
+        return offsets, rates

@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from rope_sim_ros.trajectory import EndTrajectory, TrajectoryError
+from rope_sim_ros.trajectory import EndBlend, EndTrajectory, TrajectoryError
 
 
 def _filled(method, step=0.02):
@@ -55,11 +55,39 @@ def test_before_first_and_past_last_sample():
     positions, velocities = trajectory.sample(np.array([-1.0, 2.05, 10.0]))
     assert positions[0] == pytest.approx([0.0, 0.0, 0.0])
     assert velocities[0] == pytest.approx([0.0, 0.0, 0.0])
-    # extrapolated for 0.05 s with the last tangent, then held still
-    assert positions[1, 1] == pytest.approx(4.1)
-    assert velocities[1, 1] == pytest.approx(2.0)
-    assert positions[2, 1] == pytest.approx(4.0 + 2.0 * trajectory.extrapolation)
+    # coasting from 2 m/s to a stop over 1 s: 5 % of the way there at 95 % of the speed ...
+    assert trajectory.coast_time == 1.0
+    assert positions[1, 1] == pytest.approx(4.0 + 2.0 * (0.05 - 0.05 ** 2 / 2.0))
+    assert velocities[1, 1] == pytest.approx(1.9)
+    # ... then held still, 1 m on
+    assert positions[2, 1] == pytest.approx(5.0)
     assert velocities[2] == pytest.approx([0.0, 0.0, 0.0])
+
+
+def test_coasting_is_continuous():
+    trajectory = _filled('linear')
+    end = 2.0 + trajectory.coast_time
+    times = np.array([2.0 - 1e-9, 2.0 + 1e-9, end - 1e-9, end + 1e-9])
+    positions, velocities = trajectory.sample(times)
+    assert np.abs(np.diff(positions[:2], axis=0)).max() < 1e-8
+    assert np.abs(np.diff(positions[2:], axis=0)).max() < 1e-8
+    assert np.abs(np.diff(velocities[:2], axis=0)).max() < 1e-6
+    assert np.abs(velocities[2:]).max() < 1e-6
+
+
+def test_blend_starts_at_the_offset_and_rate_and_fades_out_smoothly():
+    offset, rate = np.array([0.04, 0.0, -0.01]), np.array([-0.15, 0.0, 0.0])
+    blend = EndBlend(start=3.0, duration=0.25, offset=offset, rate=rate)
+    times = np.linspace(3.0, 3.5, 5001)
+    offsets, rates = blend.at(times)
+    assert offsets[0] == pytest.approx(offset)
+    assert rates[0] == pytest.approx(rate)
+    after = times >= 3.25
+    assert np.abs(offsets[after]).max() == 0.0 and np.abs(rates[after]).max() == 0.0
+    # the rate is the derivative of the offset, and the position never overshoots far
+    numeric = np.gradient(offsets, times, axis=0)
+    assert np.abs(numeric - rates).max() < 1e-3
+    assert np.abs(offsets[:, 0]).max() < 0.04 + 0.25 * 0.15
 
 
 def test_bad_samples_are_refused_and_change_nothing():
