@@ -588,6 +588,86 @@ def test_use_sim_time_follows_the_clock_topic(colcon_install, colcon_env, tmp_pa
     assert all(b > a for a, b in zip(stamps, stamps[1:]))
 
 
+def test_sim_time_without_a_clock_follows_the_poses(colcon_install, colcon_env, tmp_path):
+    # use_sim_time, poses stamped from 1000 s, no /clock: the rope keeps one pose behind
+    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'noclock.log', '/noclock',
+                       '-p', 'use_sim_time:=true')
+    client = Client('/noclock')
+    try:
+        client.wait_for_node(node)
+        client.spin(0.5)
+        with no_gc_pauses():
+            for k in range(51):
+                client.publish_pose(FAIRLEAD, stamp_ns=1000 * 1_000_000_000 + k * 20_000_000)
+                client.spin(0.02)
+        client.spin(0.5)
+    finally:
+        client.close()
+        node.interrupt()
+    stamps = [_stamp_ns(msg) * 1e-9 - 1000.0 for _, msg in client.particles]
+    assert len(stamps) >= 40 and stamps[-1] == pytest.approx(0.98), (stamps, node.text())
+    assert np.allclose(np.diff(stamps), 0.02), stamps
+    assert log_lines(node, 'no /clock message has come'), node.text()
+
+
+def test_poses_late_past_the_silence_limit_rejoin_without_a_jerk(
+        colcon_install, colcon_env, tmp_path):
+    # A 5 s surge at up to 0.16 m/s in sim time (/clock and poses from this test, 50 Hz);
+    # the poses of [2.5, 2.9) s are held back and sent at once at 2.9 s, as a transport
+    # hiccup does. The node goes on without them (silent stream), then must bring the
+    # fairlead back onto its track smoothly: stepping straight back cost 11 kN.
+    def motion(t):
+        return FAIRLEAD + 0.5 * (1.0 - math.cos(2.0 * math.pi * t / 10.0)) * CHORD
+
+    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'late.log', '/late',
+                       '-p', 'use_sim_time:=true')
+    client = Client('/late')
+    clock = client.node.create_publisher(Clock, '/clock', 10)
+    start_ns, held, sent = 1000 * 1_000_000_000, [], []
+    try:
+        client.wait_for_node(node)
+        client.wait_for(lambda: clock.get_subscription_count() > 0, 10.0, '/clock')
+        client.spin(0.5)
+        with no_gc_pauses():
+            wall = time.monotonic()
+            for k in range(251):
+                t = k / 50.0
+                while time.monotonic() - wall < t:
+                    client.executor.spin_once(timeout_sec=0.002)
+                ns = start_ns + round(t * 1e9)
+                clock.publish(Clock(clock=conversions_stamp(ns)))
+                held.append((ns, motion(t)))
+                if not 2.5 <= t < 2.9:
+                    for pose_ns, p in held:
+                        client.publish_pose(p, stamp_ns=pose_ns)
+                    sent += held
+                    held = []
+        client.spin(0.5)
+    finally:
+        client.close()
+        node.interrupt()
+    assert log_lines(node, 'fairlead/pose: no new pose for'), node.text()
+    live = {_stamp_ns(msg): fairlead_tension(w) for (_, msg), (_, w) in zip(
+        client.particles, client.fairlead)}
+    assert len(live) > 200, node.text()
+    sim = offline_simulator(default_line())
+    for ns, p in sent:
+        sim.push_fairlead((ns - start_ns) * 1e-9, p)
+    sim.start(0.0)
+    errors = []
+    for ns in sorted(live):
+        sim.advance_to((ns - start_ns) * 1e-9 + 0.5 * sim.time_step)
+        errors.append((ns * 1e-9 - 1000.0, live[ns] - sim.output().fairlead_tension))
+    times, errors = np.array(errors).T
+    worst = np.argmax(np.abs(errors))
+    print(f'late poses: worst tension error {errors[worst]:+.0f} N at t = {times[worst]:.2f} '
+          f's; RMS {np.sqrt(np.mean(errors ** 2)):.1f} N over {len(errors)} outputs')
+    # up to the last output that had the pose after it (the velocity at a sample instant is
+    # that of the interval after it), the node is the offline run
+    assert np.abs(errors[times < 2.47]).max() < 1e-3, 'the node differs before the gap'
+    assert np.abs(errors).max() < 300.0, node.text()
+
+
 def conversions_stamp(ns: int):
     """Return integer nanoseconds as a builtin_interfaces/Time."""
     sec, nanosec = divmod(ns, 1_000_000_000)

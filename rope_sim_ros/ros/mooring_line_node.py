@@ -27,7 +27,9 @@ the sample instant, the spline's tangent there), so one sample ahead the ends mo
 as in the offline runner, which knows the whole motion. Running ahead instead
 (extrapolating, then pulling the end back when the next pose arrives) costs a stiff line as
 much tension noise as the motion itself. When a stream falls silent for LIVE_INPUT seconds
-the end holds (after a short extrapolation), the rope goes on to now and a warning says so.
+the end coasts to a stop, the rope goes on to now and a warning says so; poses that come
+late bring the end back onto its track smoothly (Simulator._blend_ends). Under
+use_sim_time, until the first /clock message the poses alone set the pace.
 
 Recording (record_path): every received pose and published message also goes to a bag
 through recorder.Recorder, which never blocks the tick; Ctrl-C and SIGTERM close the bag,
@@ -392,11 +394,19 @@ class MooringLineNode(Node):
         them; a node further behind than MAX_LAG skips ahead instead of catching up.
         """
         sim = self.simulator
-        now = self._seconds(self.get_clock().now().nanoseconds)
+        clock_ns = self.get_clock().now().nanoseconds
+        # With use_sim_time the clock reads 0 until the first /clock message: until then
+        # the poses alone say how far the rope may go.
+        now = self._seconds(clock_ns) if clock_ns else math.inf
+        if not clock_ns:
+            self._warn('no clock', 'use_sim_time is true but no /clock message has come: '
+                       'the rope follows the pose stamps alone')
         if now < sim.time - self.MAX_LAG:
             self._clock_jumped_back(now)
             return
         target = self._target_time(now)
+        if math.isinf(target):
+            return
         if target - sim.time > self.MAX_LAG:
             self._warn('lag', f'simulation fell {target - sim.time:.2f} s behind the clock: '
                        'skipped ahead and restarted the rope on the catenary')
