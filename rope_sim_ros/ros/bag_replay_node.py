@@ -25,7 +25,9 @@ re-runs the recording::
     ros2 run rope_sim_ros bag_replay run1 --rate 1.0
 
 Before playing it waits (at most ``--wait`` seconds) until every topic it plays and /clock
-have a subscriber, so the first poses are not lost to discovery. Remap topics with the usual
+have a subscriber, then ``--delay`` seconds more: DDS matches the two sides of a connection
+one after the other, and what is sent before the subscriber's side has matched is lost (a
+node on a loaded machine missed the first 0.32 s of poses). Remap topics with the usual
 ``--ros-args -r /fairlead/pose:=/ship/line1/fairlead/pose``.
 """
 
@@ -71,7 +73,7 @@ class BagReplay(Node):
 
     def __init__(self, path: str, rate: float = 1.0, loop: bool = False,
                  clock_rate: float = 100.0, wait: float = 5.0,
-                 topics: Optional[List[str]] = None, **kwargs) -> None:
+                 topics: Optional[List[str]] = None, delay: float = 0.5, **kwargs) -> None:
         """
         Read the bag and create one publisher per played topic and /clock.
 
@@ -82,12 +84,15 @@ class BagReplay(Node):
         :param wait: the longest wait [s] for subscribers (played topics, /clock) before
             playing.
         :param topics: topics to play; None = the input topics (fairlead/pose, bollard/pose).
+        :param delay: how long [s] to wait after the subscribers appeared before playing.
         :raises BagError: unreadable bag, or nothing to play.
-        :raises ValueError: a non-positive rate or clock rate.
+        :raises ValueError: a non-positive rate or clock rate, or a negative delay.
         """
         super().__init__(NODE_NAME, **kwargs)
         if not rate > 0.0 or not clock_rate > 0.0:
             raise ValueError(f'--rate {rate} and --clock-rate {clock_rate} must be > 0')
+        if not 0.0 <= delay < float('inf'):
+            raise ValueError(f'--delay {delay} must be >= 0 seconds')
         info = bag_info(path)
         wanted = input_topics(path) if topics is None else list(topics)
         missing = [t for t in wanted if t not in info.topics]
@@ -107,6 +112,8 @@ class BagReplay(Node):
         self.rate = rate
         self.loop = loop
         self.wait = wait
+        self.delay = delay
+        self._found_at: Optional[float] = None  # when the subscribers were found
         self._start_ns = self._messages[0][0]
         self._end_ns = self._messages[-1][0]
         self._next = 0
@@ -136,12 +143,16 @@ class BagReplay(Node):
         if self._done_at is not None:
             return
         if self._wall_start is None:
-            if not self._subscribed() and now - self._created < self.wait:
+            if self._found_at is None:
+                if not self._subscribed() and now - self._created < self.wait:
+                    return
+                if not self._subscribed():
+                    self.get_logger().warning(
+                        f'not every played topic and /clock has a subscriber after '
+                        f'{self.wait:g} s: playing anyway')
+                self._found_at = now
+            if now - self._found_at < self.delay:
                 return
-            if not self._subscribed():
-                self.get_logger().warning(
-                    f'not every played topic and /clock has a subscriber after {self.wait:g} s: '
-                    'playing anyway')
             self._wall_start = now
             self._clock_publisher.publish(_ns_to_clock(self._start_ns))
         bag_now = self._start_ns + int((now - self._wall_start) * self.rate * 1e9)
@@ -177,6 +188,9 @@ def parse_args(argv: List[str]) -> argparse.Namespace:
                         help='/clock messages per second between bag messages (default 100)')
     parser.add_argument('--wait', type=float, default=5.0, metavar='S',
                         help='wait up to S seconds for subscribers before playing (default 5)')
+    parser.add_argument('--delay', type=float, default=0.5, metavar='S',
+                        help='then wait S seconds more, until the subscribers have matched '
+                        'too (default 0.5)')
     parser.add_argument('--topics', nargs='+', metavar='TOPIC',
                         help='topics to play (default: the fairlead/pose and bollard/pose '
                         'topics)')
@@ -190,7 +204,7 @@ def main(args=None) -> int:
     rclpy.init(args=argv)
     try:
         node = BagReplay(options.bag, options.rate, options.loop, options.clock_rate,
-                         options.wait, options.topics)
+                         options.wait, options.topics, options.delay)
     except (BagError, ValueError) as e:
         print(f'{NODE_NAME}: error: {e}', file=sys.stderr)
         rclpy.try_shutdown()
