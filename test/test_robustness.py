@@ -110,3 +110,49 @@ def test_teleport_restarts_at_the_new_place():
     out = sim.output()
     assert out.positions[-1] == pytest.approx([20.0, 10.0, 8.0])
     assert np.linalg.norm(out.positions[0]) == pytest.approx(0.0)
+
+
+def _surge_with_late_samples(gap):
+    """
+    Run a node's way through a surge (up to 0.31 m/s) whose samples of [3, 3 + gap) s are late.
+
+    While samples come the state stays one sample behind the newest; when none has come for
+    0.25 s it runs on with the clock; the late ones all come at 3 + gap s. Returns the
+    fairlead positions and tensions at every 10 ms output.
+    """
+    def motion(t):
+        return [36.0 + 0.5 * (1.0 - math.cos(2.0 * math.pi * t / 10.0)), 0.0, 8.0]
+
+    sim = Simulator(from_values({}), output_interval=0.01)
+    times = np.round(np.arange(0.0, 6.0 + 1e-9, 0.01), 2)
+    sim.push_fairlead(0.0, motion(0.0))
+    sim.start(0.0)
+    pushed, positions, tensions = 1, [], []
+    for now in times[1:]:
+        late = 3.0 <= times[pushed] < 3.0 + gap and now < 3.0 + gap
+        while not late and pushed < len(times) and times[pushed] <= now:
+            sim.push_fairlead(times[pushed], motion(times[pushed]))
+            pushed += 1
+        newest = times[pushed - 1]
+        target = times[pushed - 2] if now - newest < 0.25 else now
+        while sim.time + 0.01 <= target + 1e-9:
+            sim.advance_to(sim.time + 0.01 + 0.5 * sim.time_step)
+            positions.append(sim.rope.x[-1, 0])
+            tensions.append(sim.output().fairlead_tension)
+    return np.array(positions), np.array(tensions)
+
+
+def test_late_samples_bring_the_end_back_without_a_jump():
+    x, tensions = _surge_with_late_samples(0.0)
+    late_x, late_tensions = _surge_with_late_samples(0.4)
+    # the end coasted to a stop and was 2.7 cm short of its track when the samples came
+    assert 0.02 < np.abs(late_x - x).max() < 0.035
+    # it came back no faster than the surge itself moves, and with no jump (a 2.7 cm jump
+    # in one 10 ms output would be an acceleration of 270 m/s^2; the surge's own is 0.2)
+    speed, late_speed = np.diff(x) / 0.01, np.diff(late_x) / 0.01
+    assert np.abs(late_speed).max() < 1.01 * np.abs(speed).max()
+    assert np.abs(np.diff(late_speed)).max() / 0.01 < 1.0
+    # stepping straight back had cost 11 kN; the smooth return costs 63 N on ~1.1 kN
+    assert np.abs(late_tensions - tensions).max() < 150.0
+    # a second after the return the end is on its track again
+    assert np.abs(late_x[-100:] - x[-100:]).max() < 1e-12
