@@ -163,6 +163,7 @@ class Simulator:
         self.rope: Optional[Rope] = None
         self.time = math.nan
         self._blends: List[Optional[EndBlend]] = [None, None]  # bollard, fairlead
+        self._off_track = False  # a sample or a skip may have moved an end's track under it
         self._inv_mass = np.ones(params.segments + 1)
         self._inv_mass[[0, -1]] = 0.0
 
@@ -194,8 +195,9 @@ class Simulator:
 
         :raises TrajectoryError: non-finite or not newer than the last sample (state unchanged).
         """
-        last = self.fairlead.last_position
+        last, settled = self.fairlead.last_position, self.fairlead.settled_until
         self.fairlead.push(t, position)
+        self._off_track |= self.started and self.time > settled
         if self.started and math.dist(position, last) > self.params.teleport_distance:
             self.fairlead.clear()
             self.fairlead.push(t, position)
@@ -205,7 +207,9 @@ class Simulator:
 
     def push_bollard(self, t: float, position) -> None:
         """Add a bollard sample (see push_fairlead)."""
+        settled = self.bollard.settled_until
         self.bollard.push(t, position)
+        self._off_track |= self.started and self.time > settled
 
     def ends_at(self, times: np.ndarray) -> tuple:
         """End positions and velocities at `times`: arrays (n, 2, 3), bollard first."""
@@ -277,6 +281,9 @@ class Simulator:
         The offline runner's ends are always on their trajectories: its numbers never
         change here.
         """
+        if not self._off_track and self._blends[0] is None and self._blends[1] is None:
+            return  # the common case, and the offline runner's only one: nothing to check
+        self._off_track = False
         here, here_velocities = self.ends_at([self.time])
         for k, particle in ((0, 0), (1, -1)):
             offset = self.rope.x[particle] - here[0, k]
@@ -315,9 +322,11 @@ class Simulator:
         """
         Move the state time to t without simulating.
 
-        The particles stay where they are, so after more than rounding the ends jump at the
-        next step to where they are at t: follow a long skip with restart().
+        The particles stay where they are, so after more than rounding the ends are brought
+        back onto their tracks over END_BLEND_TIME: follow a long skip with restart().
         """
+        if abs(t - self.time) > 1e-6 * self.time_step:  # more than pinning an output time
+            self._off_track = True
         self.time = t
 
     def output(self) -> Output:

@@ -82,6 +82,18 @@ class EndTrajectory:
         return float(self._times[self._count - 1]) if len(self) else -math.inf
 
     @property
+    def settled_until(self) -> float:
+        """
+        Time up to which a new sample cannot change the track (-inf when empty).
+
+        The second-newest sample's: a spline's tangent at the newest sample waits for the
+        next one. With a single sample, that sample's time.
+        """
+        if not len(self):
+            return -math.inf
+        return float(self._times[max(self._count - 2, self._first)])
+
+    @property
     def last_position(self):
         """Newest sample position, or None."""
         return self._points[self._count - 1].copy() if len(self) else None
