@@ -308,7 +308,7 @@ class MooringLineNode(Node):
         """Return (time [s], PosePoint) of a pose message, or None if it was dropped."""
         stamp_ns = conversions.stamp_to_ns(msg.header.stamp)
         now_ns = self.get_clock().now().nanoseconds
-        if stamp_ns == 0:
+        if stamp_ns == 0 and now_ns:  # (a bag replayed from time 0 has both at 0 at first)
             stamp_ns = now_ns
             self._warn(f'{topic}: unstamped', f'{topic}: header.stamp is zero: using the '
                        'receive time as the sample time')
@@ -398,7 +398,7 @@ class MooringLineNode(Node):
         # With use_sim_time the clock reads 0 until the first /clock message: until then
         # the poses alone say how far the rope may go.
         now = self._seconds(clock_ns) if clock_ns else math.inf
-        if not clock_ns:
+        if not clock_ns and self.simulator.fairlead.last_time > self.LIVE_INPUT:
             self._warn('no clock', 'use_sim_time is true but no /clock message has come: '
                        'the rope follows the pose stamps alone')
         if now < sim.time - self.MAX_LAG:
