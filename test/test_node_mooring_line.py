@@ -615,7 +615,7 @@ def test_poses_late_past_the_silence_limit_rejoin_without_a_jerk(
     # A 5 s surge at up to 0.31 m/s in sim time (/clock and poses from this test, 50 Hz);
     # the poses of [2.5, 2.9) s are held back and sent at once at 2.9 s, as a transport
     # hiccup does. The node goes on without them (silent stream), then must bring the
-    # fairlead back onto its track smoothly: stepping straight back cost 11 kN.
+    # fairlead back onto its track smoothly: stepping straight back cost 11 kN (100 Hz poses).
     def motion(t):
         return FAIRLEAD + 0.5 * (1.0 - math.cos(2.0 * math.pi * t / 10.0)) * CHORD
 
