@@ -142,6 +142,7 @@ class MooringLineNode(Node):
         super().__init__(NODE_NAME, **kwargs)
         self._last_log: Dict[str, float] = {}
         self.dropped: Dict[str, int] = {}
+        self.skips = 0  # times the rope skipped ahead (MAX_LAG)
         # A Recorder while recording (record_path): gets every message via record().
         self.recorder: Optional[Recorder] = None
         self.simulator: Optional[Simulator] = None
@@ -408,8 +409,12 @@ class MooringLineNode(Node):
         if math.isinf(target):
             return
         if target - sim.time > self.MAX_LAG:
-            self._warn('lag', f'simulation fell {target - sim.time:.2f} s behind the clock: '
-                       'skipped ahead and restarted the rope on the catenary')
+            # Not throttled: each skip is a restart, a step in the published tension, and
+            # there is at most one per MAX_LAG.
+            self.skips += 1
+            self.get_logger().warning(
+                f'simulation fell {target - sim.time:.2f} s behind the clock: skipped ahead '
+                f'and restarted the rope on the catenary (skips so far: {self.skips})')
             sim.skip_to(target)
             sim.restart()
             self._fresh = True
