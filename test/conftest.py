@@ -37,6 +37,8 @@ import pytest
 REPO_ROOT = Path(__file__).resolve().parent.parent
 PACKAGE_NAME = 'rope_sim_ros'
 
+_TEST_START = pytest.StashKey[float]()
+
 # Highest ROS_DOMAIN_ID whose DDS ports stay below Linux's ephemeral port range.
 MAX_SAFE_DOMAIN_ID = 101
 
@@ -68,6 +70,21 @@ def pytest_configure(config):
     # 'linter') and ament_copyright are not installed here.
     config.addinivalue_line('markers', 'linter: marks tests that run a linter')
     config.addinivalue_line('markers', 'copyright: marks tests checking copyright headers')
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """Attach the log of every node that ran during a failed test: timing faults need it."""
+    outcome = yield
+    report = outcome.get_result()
+    if report.when == 'setup':
+        item.stash[_TEST_START] = time.monotonic()
+    if not report.failed or 'node_harness' not in sys.modules:
+        return
+    start = item.stash.get(_TEST_START, 0.0)
+    for node in sys.modules['node_harness'].STARTED:
+        if node.started >= start or node.process.poll() is None:
+            report.sections.append((f'node log {node.log}', _tail(node.log, 80)))
 
 
 def pytest_report_header(config):

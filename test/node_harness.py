@@ -19,6 +19,11 @@ import gc
 from pathlib import Path
 import signal
 import subprocess
+import time
+from typing import List
+
+# Every node started in this test session, for the failure report (conftest.py).
+STARTED: List['NodeProcess'] = []
 
 
 @contextlib.contextmanager
@@ -45,6 +50,7 @@ class NodeProcess:
         """Start the node in namespace with extra --ros-args (e.g. '-p', 'length:=40')."""
         self.log = log
         self.namespace = namespace
+        self.started = time.monotonic()
         command = [
             str(install / 'lib' / 'rope_sim_ros' / 'mooring_line'), '--ros-args',
             '--params-file', str(install / 'share' / 'rope_sim_ros' / 'config' /
@@ -53,6 +59,7 @@ class NodeProcess:
         with open(log, 'w') as f:
             self.process = subprocess.Popen(
                 command, env=env, stdin=subprocess.DEVNULL, stdout=f, stderr=subprocess.STDOUT)
+        STARTED.append(self)
 
     def text(self) -> str:
         """Return the node's output so far."""
