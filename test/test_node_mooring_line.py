@@ -45,6 +45,7 @@ from std_srvs.srv import Trigger
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])
 CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
+SIM_START = 1000 * 1_000_000_000  # [ns] where the tests' sim time starts
 START_TIMEOUT = 60.0  # the first node of a fresh install compiles the kernels (~10 s)
 PARAMS_FILE = Path(__file__).resolve().parent.parent / 'config' / 'mooring_line.yaml'
 VECTORS = [name for name, spec in params.SPECS.items() if isinstance(spec.default, list)]
@@ -64,6 +65,7 @@ class Client:
         self.executor.add_node(self.node)
         self.fairlead_pub = self.node.create_publisher(PoseStamped, 'fairlead/pose', 10)
         self.bollard_pub = self.node.create_publisher(PoseStamped, 'bollard/pose', 10)
+        self.clock_pub = self.node.create_publisher(Clock, '/clock', 10)
         # (receive time, message) and the writer's sequence number of each message
         self.particles, self.fairlead, self.bollard = [], [], []
         self.sequence = {id(self.particles): [], id(self.fairlead): [], id(self.bollard): []}
@@ -163,6 +165,33 @@ class Client:
             p = np.asarray(position((stamp_ns - start_ns) * 1e-9), dtype=float)
             sent.append((self.publish_pose(p, stamp_ns), p))
             k += 1
+        return sent
+
+    def drive_sim_time(self, seconds: float, position, rate: float = 50.0,
+                       held_back=lambda t: False) -> list:
+        """
+        Publish /clock and position(t) at `rate` for `seconds` of sim time from SIM_START.
+
+        Sim time runs with this process, so a stall here pauses the node as well: the node
+        sees a steady stream whatever the machine does. Poses for which held_back(t) is true
+        wait and go out with the next one that is not, as after a transport hiccup.
+
+        :returns: [(stamp_ns, position)] of every published pose, in publishing order.
+        """
+        self.wait_for(lambda: self.clock_pub.get_subscription_count() > 0, 10.0, '/clock')
+        sent, held = [], []
+        with no_gc_pauses():
+            wall = time.monotonic()
+            for k in range(round(seconds * rate) + 1):
+                t = k / rate
+                while time.monotonic() - wall < t:
+                    self.executor.spin_once(timeout_sec=0.002)
+                ns = SIM_START + round(t * 1e9)
+                self.clock_pub.publish(Clock(clock=conversions_stamp(ns)))
+                held.append((ns, np.asarray(position(t), dtype=float)))
+                if not held_back(t):
+                    sent += [(self.publish_pose(p, pose_ns), p) for pose_ns, p in held]
+                    held = []
         return sent
 
 
@@ -393,19 +422,28 @@ def test_bad_input_is_dropped_and_output_stays_finite(line_node):
 
 def test_a_stalled_node_catches_up_on_the_poses_queued_meanwhile(line_node):
     node, client = line_node
-    client.drive(0.5, lambda t: FAIRLEAD, rate=20.0)
-    client.clear()
-    logged = len(node.text().splitlines())
-    node.process.send_signal(signal.SIGSTOP)  # the node froze for 0.8 s; the poses go on
-    try:
-        client.drive(0.8, lambda t: FAIRLEAD, rate=20.0)
-    finally:
-        node.process.send_signal(signal.SIGCONT)
-    client.drive(1.0, lambda t: FAIRLEAD, rate=20.0)
+    # A loaded machine may stall this process and leave a gap in the poses, which the node
+    # rightly takes for a silent stream past 0.25 s: such an attempt is tried again.
+
+    def drive(seconds):
+        return client.drive(seconds, lambda t: FAIRLEAD, rate=20.0)
+
+    gaps = []
+    for _ in range(3):
+        before = drive(0.5)
+        client.clear()
+        logged = len(node.text().splitlines())
+        during = _frozen(node, 0.8, lambda: drive(0.8))
+        gaps.append(np.diff([ns for ns, _ in before + during + drive(1.0)]).max() * 1e-9)
+        if gaps[-1] < 0.2:
+            break
+    else:
+        pytest.fail(f'this process stalled in every attempt: longest gaps between poses '
+                    f'{gaps} s')
     # no skip, no restart, no stream taken for silent (nor a stamp skew warning, from 1 s):
     # the outputs run on through the stall every 20 ms (the client may miss some of the
     # burst that catches up)
-    assert node.text().splitlines()[logged:] == []
+    assert node.text().splitlines()[logged:] == [], f'longest gaps between poses {gaps} s'
     stamps = [_stamp_ns(msg) for _, msg in client.particles]
     periods = np.diff(stamps) / 20e6
     assert np.allclose(periods, np.round(periods), rtol=0.0, atol=1e-4), periods
@@ -419,18 +457,36 @@ def test_a_stalled_node_skips_ahead_instead_of_spiralling(line_node):
     client.drive(0.5, lambda t: FAIRLEAD, rate=20.0)
     client.spin(0.5)  # the poses stop: the node warns and goes on with the clock
     assert log_lines(node, 'fairlead/pose: no new pose for 0.25 s: the fairlead holds')
-    skipped = len(log_lines(node, 's behind the clock: skipped ahead'))
-    node.process.send_signal(signal.SIGSTOP)  # then it froze for 1.5 s: too far behind
-    try:
-        client.spin(1.5)
-    finally:
-        node.process.send_signal(signal.SIGCONT)
+    skips = log_lines(node, 's behind the clock: skipped ahead')
+    _frozen(node, 1.5, lambda: client.spin(1.5))  # too far behind: skip
     client.clear()
     client.drive(1.0, lambda t: FAIRLEAD, rate=20.0)
-    assert len(log_lines(node, 's behind the clock: skipped ahead')) == skipped + 1
+    # every skip is logged (each restarts the rope), with a count
+    new = log_lines(node, 's behind the clock: skipped ahead')[len(skips):]
+    assert len(new) == 1, new
+    assert f'(skips so far: {len(skips) + 1})' in new[0], new[0]
+    lag = float(new[0].split('simulation fell ')[1].split()[0])
+    assert 1.5 < lag < 2.0, new[0]
     # back to real time at once: a whole second of outputs, stamped with the wall clock
     assert len(client.particles) > 35 and all_finite(client)
     assert abs(_stamp_ns(client.particles[-1][1]) * 1e-9 - time.time()) < 0.3
+
+
+def _frozen(node: NodeProcess, seconds: float, action):
+    """
+    Stop the node (SIGSTOP) for `seconds` while running action(); return its result.
+
+    Another process sends the SIGCONT: publishing to a stopped node at times blocks this
+    process for 1.0 s (Fast DDS; 32 of 100 freezes of 0.3 s, 0 of 160 with this waker),
+    and such a block once stretched a freeze of 0.8 s to 3.1 s in CI.
+    """
+    node.process.send_signal(signal.SIGSTOP)
+    waker = subprocess.Popen(['sh', '-c', f'sleep {seconds}; kill -CONT {node.process.pid}'])
+    try:
+        return action()
+    finally:
+        waker.wait()
+        node.process.send_signal(signal.SIGCONT)
 
 
 def _stamp_ns(msg: PoseArray) -> int:
@@ -464,15 +520,18 @@ def _first_sample(sent: list, first_output_ns: int, line: params.LineParams) -> 
 def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_env, tmp_path):
     # 0.2 m at 0.5 Hz along the chord after a 2 s ramp, 50 Hz stamped poses, 10 s; the
     # offline Simulator gets the same stamped samples (later: `rope_sim run` on them).
+    # In sim time: on the wall clock a stall of this process past LIVE_INPUT (seen in CI)
+    # rightly makes the node go on without poses, which the offline run cannot follow.
     def motion(t):
         return FAIRLEAD + 0.2 * math.sin(math.pi * t) * smooth_step(t, 0.0, 2.0) * CHORD
 
-    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'motion.log', '/motion')
+    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'motion.log', '/motion',
+                       '-p', 'use_sim_time:=true')
     client = Client('/motion')
     try:
         client.wait_for_node(node)
         client.spin(0.5)  # let discovery settle both ways: the first pose must not be lost
-        sent = client.drive(10.0, motion)
+        sent = client.drive_sim_time(10.0, motion)
         assert node.interrupt() == 0
         client.spin(0.3)  # everything the node published has arrived
     finally:
@@ -490,15 +549,6 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
     print(f'{len(pairs)} outputs; {np.mean(np.round(periods) == 1):.1%} one period apart')
     assert np.mean(np.round(periods) == 1) > 0.95, np.round(periods)
     first, epoch = _first_sample(sent, _stamp_ns(pairs[0][0][1]), default_line())
-    # If no pose reached the node for LIVE_INPUT (this process stalled while publishing, as
-    # seen in full runs; drive() now keeps the GC out of it), the node rightly went on with
-    # the clock and says so (README: Time); the offline run cannot follow: compare up to it.
-    silent = log_lines(node, 'fairlead/pose: no new pose for')
-    if silent:
-        t_silent = float(silent[0].split('from t = ')[1].split()[0])
-        pairs = [pair for pair in pairs if _stamp_ns(pair[0][1]) - epoch <= t_silent * 1e9]
-        print(f'the pose stream fell silent at t = {t_silent} s: comparing {len(pairs)} outputs')
-    assert len(pairs) > 50, f'only {len(pairs)} outputs before the pose stream fell silent'
 
     sim = offline_simulator(default_line())
     for ns, p in sent[first:]:
@@ -522,7 +572,7 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
     assert nrmse < 0.02, (
         f'NRMSE {nrmse:.4f} between node and offline tension series; they differ from output '
         f'{differ[0]} of {len(live)} on ({live[differ[0]]:.1f} N vs {offline[differ[0]]:.1f} N)')
-    assert 'dropped' not in node.text() and 'behind' not in node.text(), node.text()
+    assert '[WARN]' not in node.text() and '[ERROR]' not in node.text(), node.text()
 
 
 def test_sigint_ends_the_node_cleanly(colcon_install, colcon_env, tmp_path):
@@ -568,15 +618,13 @@ def test_use_sim_time_follows_the_clock_topic(colcon_install, colcon_env, tmp_pa
     node = NodeProcess(colcon_install, colcon_env, tmp_path / 'sim.log', '/simtime',
                        '-p', 'use_sim_time:=true')
     client = Client('/simtime')
-    clock = client.node.create_publisher(Clock, '/clock', 10)
-    start_ns = 1000 * 1_000_000_000
     try:
         client.wait_for_node(node)
-        client.wait_for(lambda: clock.get_subscription_count() > 0, 10.0, '/clock')
+        client.wait_for(lambda: client.clock_pub.get_subscription_count() > 0, 10.0, '/clock')
         wall = time.monotonic()
         while time.monotonic() - wall < 2.0:
-            now_ns = start_ns + int(2e9 * (time.monotonic() - wall))
-            clock.publish(Clock(clock=conversions_stamp(now_ns)))
+            now_ns = SIM_START + int(2e9 * (time.monotonic() - wall))
+            client.clock_pub.publish(Clock(clock=conversions_stamp(now_ns)))
             client.publish_pose(FAIRLEAD, stamp_ns=now_ns)
             client.spin(0.01)
     finally:
@@ -622,26 +670,10 @@ def test_poses_late_past_the_silence_limit_rejoin_without_a_jerk(
     node = NodeProcess(colcon_install, colcon_env, tmp_path / 'late.log', '/late',
                        '-p', 'use_sim_time:=true')
     client = Client('/late')
-    clock = client.node.create_publisher(Clock, '/clock', 10)
-    start_ns, held, sent = 1000 * 1_000_000_000, [], []
     try:
         client.wait_for_node(node)
-        client.wait_for(lambda: clock.get_subscription_count() > 0, 10.0, '/clock')
         client.spin(0.5)
-        with no_gc_pauses():
-            wall = time.monotonic()
-            for k in range(251):
-                t = k / 50.0
-                while time.monotonic() - wall < t:
-                    client.executor.spin_once(timeout_sec=0.002)
-                ns = start_ns + round(t * 1e9)
-                clock.publish(Clock(clock=conversions_stamp(ns)))
-                held.append((ns, motion(t)))
-                if not 2.5 <= t < 2.9:
-                    for pose_ns, p in held:
-                        client.publish_pose(p, stamp_ns=pose_ns)
-                    sent += held
-                    held = []
+        sent = client.drive_sim_time(5.0, motion, held_back=lambda t: 2.5 <= t < 2.9)
         client.spin(0.5)
     finally:
         client.close()
@@ -652,11 +684,11 @@ def test_poses_late_past_the_silence_limit_rejoin_without_a_jerk(
     assert len(live) > 200, node.text()
     sim = offline_simulator(default_line())
     for ns, p in sent:
-        sim.push_fairlead((ns - start_ns) * 1e-9, p)
+        sim.push_fairlead((ns - SIM_START) * 1e-9, p)
     sim.start(0.0)
     errors = []
     for ns in sorted(live):
-        sim.advance_to((ns - start_ns) * 1e-9 + 0.5 * sim.time_step)
+        sim.advance_to((ns - SIM_START) * 1e-9 + 0.5 * sim.time_step)
         errors.append((ns * 1e-9 - 1000.0, live[ns] - sim.output().fairlead_tension))
     times, errors = np.array(errors).T
     worst = np.argmax(np.abs(errors))
