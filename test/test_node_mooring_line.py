@@ -477,7 +477,7 @@ def _frozen(node: NodeProcess, seconds: float, action):
     Stop the node (SIGSTOP) for `seconds` while running action(); return its result.
 
     Another process sends the SIGCONT: publishing to a stopped node at times blocks this
-    process for 1.0 s (Fast DDS; 32 of 100 freezes of 0.3 s, 0 of 160 with this waker),
+    process for 1.0 s (Fast DDS; 32 of 100 freezes of 0.3 s, 0 of 220 with this waker),
     and such a block once stretched a freeze of 0.8 s to 3.1 s in CI.
     """
     node.process.send_signal(signal.SIGSTOP)
