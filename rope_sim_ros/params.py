@@ -31,6 +31,7 @@ NODE_NAME = 'mooring_line'
 MATERIALS = ('nylon', 'polyester', 'hmpe', 'steel_wire', 'manila')
 INTEGRATORS = ('improved_euler', 'implicit_euler')
 DAMPING_MODELS = ('axial', 'seed')
+RELIABILITIES = ('reliable', 'best_effort')
 
 
 class ParameterError(ValueError):
@@ -115,6 +116,10 @@ SPECS: Mapping[str, Spec] = {
         5.0, 'm', 'a fairlead jump larger than this restarts the rope on the catenary',
         0.0, 1.0e6, low_open=True, read_only=False),
     'record_path': Spec('', '', 'bag directory to record to; empty = no recording'),
+    'pose_reliability': Spec(
+        'reliable', '', 'QoS reliability of the pose subscriptions: reliable (every pose, in '
+        'order; reaches reliable publishers only) or best_effort (REP-2003 sensor data: '
+        'reaches every publisher, may lose a pose under load)', choices=RELIABILITIES),
 }
 
 
@@ -211,6 +216,7 @@ class LineParams:
     publish_rate: float = SPECS['publish_rate'].default
     teleport_distance: float = SPECS['teleport_distance'].default
     record_path: str = SPECS['record_path'].default
+    pose_reliability: str = SPECS['pose_reliability'].default
 
     def with_values(self, values: Mapping[str, Any]) -> 'LineParams':
         """

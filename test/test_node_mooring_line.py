@@ -36,6 +36,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter, parameter_value_to_python
 from rclpy.parameter_client import AsyncParameterClient
+from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros import params
 from rope_sim_ros.physics import catenary
@@ -573,6 +574,42 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
         f'NRMSE {nrmse:.4f} between node and offline tension series; they differ from output '
         f'{differ[0]} of {len(live)} on ({live[differ[0]]:.1f} N vs {offline[differ[0]]:.1f} N)')
     assert '[WARN]' not in node.text() and '[ERROR]' not in node.text(), node.text()
+
+
+def test_best_effort_poses_need_pose_reliability_best_effort(
+        colcon_install, colcon_env, tmp_path):
+    # A best-effort publisher (REP-2003 sensor data) cannot reach a reliable subscription:
+    # the default node says so and what to set; a best_effort node takes its poses.
+    reliable = NodeProcess(colcon_install, colcon_env, tmp_path / 'reliable.log', '/qos_r')
+    best = NodeProcess(colcon_install, colcon_env, tmp_path / 'best.log', '/qos_b',
+                       '-p', 'pose_reliability:=best_effort')
+    client = Client('/qos_b')
+    qos = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
+    publishers = [client.node.create_publisher(PoseStamped, f'/{ns}/fairlead/pose', qos)
+                  for ns in ('qos_r', 'qos_b')]
+    try:
+        client.wait_for_node(best)
+        client.wait_for(lambda: publishers[1].get_subscription_count() > 0
+                        and log_lines(reliable, 'waiting for the first pose'), 30.0,
+                        'both nodes')
+        client.spin(0.5)
+        with no_gc_pauses():
+            for _ in range(75):
+                for publisher in publishers:
+                    client.publish_pose(FAIRLEAD, publisher=publisher)
+                client.spin(0.02)
+    finally:
+        client.close()
+        best.interrupt()
+        reliable.interrupt()
+    assert len(client.fairlead) > 40, best.text()
+    mean = np.mean([fairlead_tension(w) for _, w in client.fairlead[-20:]])
+    assert abs(mean - 993.0) < 10.0, mean
+    assert 'first fairlead pose' not in reliable.text(), reliable.text()
+    warning = log_lines(reliable, '/qos_r/fairlead/pose: a best-effort publisher cannot')
+    assert warning, reliable.text()  # once per 5 s while it lasts
+    assert warning[0].endswith('set pose_reliability:=best_effort'), warning[0]
+    assert 'bollard/pose' not in reliable.text()  # no publisher there
 
 
 def test_sigint_ends_the_node_cleanly(colcon_install, colcon_env, tmp_path):
