@@ -179,7 +179,7 @@ class MooringLineNode(Node):
         self._bollard_sub = self.create_subscription(
             PoseStamped, 'bollard/pose', self._on_bollard_pose, qos)
         if line.pose_reliability == 'reliable':
-            # rclpy's incompatible-QoS event was missed at start-up 1 run in 2; the graph is
+            # rclpy's incompatible-QoS event was missed in 1 of 6 start-ups; the graph is
             # not. On the steady clock: under use_sim_time there may be no /clock yet.
             self._qos_timer = self.create_timer(
                 1.0, self._check_pose_publishers, clock=Clock(clock_type=ClockType.STEADY_TIME))
