@@ -683,7 +683,7 @@ def test_sim_time_without_a_clock_follows_the_poses(colcon_install, colcon_env, 
         client.spin(0.5)
         with no_gc_pauses():
             for k in range(51):
-                client.publish_pose(FAIRLEAD, stamp_ns=1000 * 1_000_000_000 + k * 20_000_000)
+                client.publish_pose(FAIRLEAD, stamp_ns=SIM_START + k * 20_000_000)
                 client.spin(0.02)
         client.spin(0.5)
     finally:
