@@ -457,7 +457,7 @@ def test_a_stalled_node_skips_ahead_instead_of_spiralling(line_node):
     node, client = line_node
     client.drive(0.5, lambda t: FAIRLEAD, rate=20.0)
     client.spin(0.5)  # the poses stop: the node warns and goes on with the clock
-    assert log_lines(node, 'fairlead/pose: no new pose for 0.25 s: the fairlead holds')
+    assert log_lines(node, 'fairlead/pose: no new pose for 0.25 s: the fairlead coasts to a stop')
     skips = log_lines(node, 's behind the clock: skipped ahead')
     _frozen(node, 1.5, lambda: client.spin(1.5))  # too far behind: skip
     client.clear()
@@ -700,7 +700,8 @@ def test_poses_late_past_the_silence_limit_rejoin_without_a_jerk(
     # A 5 s surge at up to 0.31 m/s in sim time (/clock and poses from this test, 50 Hz);
     # the poses of [2.5, 2.9) s are held back and sent at once at 2.9 s, as a transport
     # hiccup does. The node goes on without them (silent stream), then must bring the
-    # fairlead back onto its track smoothly: stepping straight back cost 11 kN (100 Hz poses).
+    # fairlead back onto its track smoothly: stepping straight back cost 11 kN (on the
+    # replay test's motion with 100 Hz poses).
     def motion(t):
         return FAIRLEAD + 0.5 * (1.0 - math.cos(2.0 * math.pi * t / 10.0)) * CHORD
 

@@ -398,8 +398,8 @@ class MooringLineNode(Node):
             self._quiet_ticks[end] += 1
             if was_live and not self._live(end):
                 self._warn(f'{end}: silent', f'{end}/pose: no new pose for '
-                           f'{self.LIVE_INPUT:g} s: the {end} holds and the rope goes on with '
-                           f'the clock from t = {self.simulator.time:.3f} s')
+                           f'{self.LIVE_INPUT:g} s: the {end} coasts to a stop and the rope goes '
+                           f'on with the clock from t = {self.simulator.time:.3f} s')
         self._advance()
 
     def _advance(self) -> None:
@@ -416,7 +416,7 @@ class MooringLineNode(Node):
         # With use_sim_time the clock reads 0 until the first /clock message: until then
         # the poses alone say how far the rope may go.
         now = self._seconds(clock_ns) if clock_ns else math.inf
-        if not clock_ns and self.simulator.fairlead.last_time > self.LIVE_INPUT:
+        if not clock_ns and sim.fairlead.last_time > self.LIVE_INPUT:
             self._warn('no clock', 'use_sim_time is true but no /clock message has come: '
                        'the rope follows the pose stamps alone')
         if now < sim.time - self.MAX_LAG:
