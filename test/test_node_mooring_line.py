@@ -598,6 +598,11 @@ def test_best_effort_poses_need_pose_reliability_best_effort(
                 for publisher in publishers:
                     client.publish_pose(FAIRLEAD, publisher=publisher)
                 client.spin(0.02)
+        # the graph check runs once a second, after discovery has shown the publisher
+        start = time.monotonic()
+        client.wait_for(lambda: log_lines(reliable, 'a best-effort publisher cannot'), 10.0,
+                        'the QoS warning of the reliable node')
+        print(f'QoS warning after {time.monotonic() - start:.2f} s more')
     finally:
         client.close()
         best.interrupt()
