@@ -15,7 +15,7 @@
 """
 Speed and accuracy of this model against MoorDyn, side by side, in one run.
 
-The reference dynamic case of ../shared/reference (a 40 m line in air, bollard at the
+The reference dynamic case of test/data (a 40 m line in air, bollard at the
 origin, fairlead at (36, 0, 8) surging 2 m along the chord with a 10 s period after a 10 s
 ramp), for polyester (the reference), steel wire (d 40 mm, EA 1e8) and HMPE (MoorPy 48 mm),
 N = 20, 50, 100. Both models get the same motion, each through its own interface:
@@ -144,7 +144,7 @@ def moordyn_step(case, segments):
     """
     Choose the RK2 step of MoorDyn: a quarter of an axial wave's segment crossing time.
 
-    Its automatic (CFL) step blew up on these stiff lines (reference/README.md); a quarter
+    Its automatic (CFL) step blew up on these stiff lines (test/data/README.md); a quarter
     of l0 sqrt(m/EA) matches the largest stable steps found there, rounded down.
     """
     _, mass, ea, _ = _case(case)

@@ -101,19 +101,12 @@ def repo_root():
 @pytest.fixture(scope='session')
 def reference_dir():
     """
-    Return the shared reference data directory.
+    Return test/data: the MoorDyn, MoorPy and analytic catenary numbers to check against.
 
-    ``$ROPE_SIM_REFERENCE`` when set, else ``<repo>/../shared/reference`` (CI clones the
-    repository with ``shared/`` beside it).
+    The repository carries them, so a plain clone tests itself; test/data/README.md says how
+    each file was made.
     """
-    configured = os.environ.get('ROPE_SIM_REFERENCE')
-    path = Path(configured) if configured else REPO_ROOT.parent / 'shared' / 'reference'
-    if not path.is_dir():
-        source = ('$ROPE_SIM_REFERENCE' if configured
-                  else 'default <repo>/../shared/reference; set ROPE_SIM_REFERENCE to override')
-        pytest.fail('reference data directory {} does not exist ({})'.format(path, source),
-                    pytrace=False)
-    return path.resolve()
+    return REPO_ROOT / 'test' / 'data'
 
 
 def _tail(path, lines=60):

@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""The reference mooring line of ../shared/reference/, as simulator parameters and motions."""
+"""The reference mooring line of test/data/, as simulator parameters and motions."""
 
 import csv
 import math

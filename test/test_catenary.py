@@ -12,11 +12,10 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Elastic catenary and lumped-chain statics against shared/reference (MoorPy, MoorDyn)."""
+"""Elastic catenary and lumped-chain statics against test/data (MoorPy, MoorDyn)."""
 
 import csv
 import math
-import os
 from pathlib import Path
 import time
 
@@ -26,7 +25,7 @@ from rope_sim_ros.physics.catenary import (
     catenary_points, catenary_profile, CatenaryError, chain_equilibrium, initial_shape,
     solve_catenary)
 
-# The base case of shared/reference/README.md.
+# The base case of test/data/README.md.
 END_A = np.zeros(3)
 END_B = np.array([36.0, 0.0, 8.0])
 LENGTH = 40.0
@@ -35,19 +34,12 @@ EA = {'polyester': 5e7, 'wire': 1e8}
 W_POLYESTER = 25.467341
 
 
-def _reference_dir() -> Path:
-    override = os.environ.get('ROPE_SIM_REFERENCE')
-    if override:
-        return Path(override)
-    # /work/main/test/this.py -> /work/shared/reference; CI clones keep shared/ beside main.
-    return Path(__file__).resolve().parents[2] / 'shared' / 'reference'
+# Read at collection time (parametrize), so the conftest fixture cannot serve them.
+REFERENCE_DIR = Path(__file__).resolve().parent / 'data'
 
 
 def _rows(name: str) -> list:
-    path = _reference_dir() / name
-    if not path.is_file():
-        pytest.fail(f'reference data {path} not found: set ROPE_SIM_REFERENCE to its folder')
-    with open(path, newline='') as stream:
+    with open(REFERENCE_DIR / name, newline='') as stream:
         return list(csv.DictReader(stream))
 
 

@@ -15,7 +15,7 @@
 """
 Static shapes of a mooring line: Irvine's elastic catenary and the lumped-mass chain.
 
-Planar convention (shared/reference/README.md): end A at (0, 0), end B at (span, rise), x
+Planar convention (test/data/README.md): end A at (0, 0), end B at (span, rise), x
 horizontal from A to B, z up. The line pulls A with (+H, V_A) and B with (-H, -V_B), so
 V_B - V_A = w L. The tension at unstretched arc length s from A is (H, V_A + w s), and a
 segment of unstretched length ds stretches to ds (1 + T / EA).
