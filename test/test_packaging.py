@@ -20,12 +20,15 @@ The build itself is the session fixture ``colcon_build`` (test/conftest.py): a f
 """
 
 import ast
+import json
 import os
 from pathlib import Path
+import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
 import pytest
+from rope_sim_ros import precompile
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = 'rope_sim_ros'
@@ -36,6 +39,40 @@ SHARE_FILES = (
     'config/materials.yaml',
     'launch/mooring_line.launch.py',
 )
+
+
+# Kernels the node and the runner cannot do without: the two steps, the end forces (the
+# tensions) and the end trajectories. Any other kernel they call must not compile either.
+ENTRY_KERNELS = tuple('rope_sim_ros.' + name for name in (
+    'physics.kernels.implicit_euler_run', 'physics.kernels.improved_euler_run',
+    'physics.kernels.end_forces', 'trajectory._sample'))
+
+# Runs the runner (both integrators) and the node's warm-up from the installed package, then
+# prints numba's statistics of every dispatcher: what came from the cache, what compiled.
+KERNEL_PROBE = r"""
+import json, sys
+from numba.core.dispatcher import Dispatcher
+import rope_sim_ros
+from rope_sim_ros import cli
+from rope_sim_ros.params import LineParams
+from rope_sim_ros.ros.mooring_line_node import _warm_up
+motion, out = sys.argv[1:]
+codes = [cli.main(['run', '--motion', motion, '--out', out, '--quiet', '--set', 'segments=50',
+                   '--set', 'material=steel_wire', '--set', 'integrator=' + name])
+         for name in ('implicit_euler', 'improved_euler')]
+said = []
+_warm_up(LineParams(), said.append)
+stats = {}
+for name, module in list(sys.modules.items()):
+    for attribute, value in vars(module or object).items():
+        if name.startswith('rope_sim_ros') and isinstance(value, Dispatcher) \
+                and value.py_func.__module__ == name:
+            stats[name + '.' + attribute] = {
+                'loaded': sum(value.stats.cache_hits.values()),
+                'compiled': sum(value.stats.cache_misses.values())}
+print(json.dumps({'file': rope_sim_ros.__file__, 'codes': codes, 'said': said,
+                  'stats': stats}))
+"""
 
 
 def test_colcon_build_duration(colcon_build):
@@ -85,6 +122,92 @@ def test_python_package_installed(colcon_install):
             path, _listing(site_packages))
     assert not (site_packages / 'test').exists(), 'test/ was installed as a package'
     assert not (site_packages / 'benchmarks').exists(), 'benchmarks/ was installed as a package'
+
+
+def test_installed_kernels_load_from_the_install_tree(colcon_env, colcon_install, tmp_path):
+    # The first start after the build, with HOME on an empty folder: every kernel the runner
+    # and the node use loads from the cache the build left next to the installed sources.
+    motion = tmp_path / 'motion.csv'
+    lines = (REPO_ROOT / 'examples' / 'surge.csv').read_text().splitlines()
+    motion.write_text('\n'.join(lines[:11]) + '\n')  # 1 s
+    home = tmp_path / 'home'
+    home.mkdir()
+    env = dict(colcon_env, HOME=str(home))
+    for name in ('NUMBA_CACHE_DIR', 'XDG_CACHE_HOME'):
+        env.pop(name, None)
+    result = subprocess.run(
+        [sys.executable, '-c', KERNEL_PROBE, str(motion), str(tmp_path / 'out.csv')],
+        cwd=str(tmp_path), env=env, stdin=subprocess.DEVNULL, capture_output=True, text=True,
+        timeout=600)
+    assert result.returncode == 0, result.stderr[-3000:]
+    report = json.loads(result.stdout.splitlines()[-1])
+    assert Path(report['file']).is_relative_to(colcon_install), report['file']
+    assert report['codes'] == [0, 0]
+    stats = report['stats']
+    compiled = {name: s['compiled'] for name, s in stats.items() if s['compiled']}
+    assert compiled == {}, 'compiled at the first start after the build: {}'.format(
+        ', '.join(sorted(compiled)))
+    assert {name: stats.get(name, {}).get('loaded', 0) for name in ENTRY_KERNELS} == \
+        {name: 1 for name in ENTRY_KERNELS}
+    assert report['said'] == [], 'the node said it was compiling: {}'.format(report['said'])
+    assert list(home.iterdir()) == [], 'numba wrote to HOME: {}'.format(_listing(home))
+
+
+def test_install_tree_holds_the_kernel_cache(colcon_install):
+    package = colcon_install / 'lib' / 'python{}.{}'.format(
+        *sys.version_info[:2]) / 'site-packages' / PACKAGE
+    for name in ENTRY_KERNELS:
+        module, function = name[len(PACKAGE) + 1:].rsplit('.', 1)
+        directory = (package / module.replace('.', '/')).parent / '__pycache__'
+        pattern = '{}.{}-*.nbi'.format(module.rsplit('.', 1)[-1], function)
+        assert list(directory.glob(pattern)), '{} missing in {}: {}'.format(
+            pattern, directory, _listing(directory))
+    fingerprint = package / '__pycache__' / precompile.FINGERPRINT_NAME
+    assert fingerprint.is_file(), 'the build compiled no kernels: no {}'.format(fingerprint)
+    recorded = fingerprint.read_text().strip()
+    assert recorded == precompile.sources_fingerprint(package)
+
+
+def test_stale_kernel_cache_is_removed_when_a_compiled_source_changes(tmp_path):
+    package = tmp_path / 'pkg'
+    cache = package / 'physics' / '__pycache__'
+    cache.mkdir(parents=True)
+    (package / 'physics' / 'kernels.py').write_text('import numba\n')
+    (package / 'trajectory.py').write_text('import numba\n')
+    (package / 'cli.py').write_text('import sys\n')
+    files = [cache / 'kernels.run-10.py311.nbi', cache / 'kernels.run-10.py311.1.nbc']
+    for path in files + [cache / 'kernels.cpython-311.pyc']:
+        path.write_bytes(b'x')
+    fingerprint = precompile.sources_fingerprint(package)
+    precompile.record_fingerprint(package, fingerprint)
+    assert precompile.refresh_in_tree_cache(package, fingerprint) == 0
+    (package / 'cli.py').write_text('import os\n')  # compiled code cannot come from here
+    assert precompile.sources_fingerprint(package) == fingerprint
+    (package / 'trajectory.py').write_text('import numba  # changed\n')
+    changed = precompile.sources_fingerprint(package)
+    assert changed != fingerprint
+    assert precompile.refresh_in_tree_cache(package, changed) == 2
+    assert sorted(p.name for p in cache.iterdir()) == ['kernels.cpython-311.pyc']
+
+
+def test_compile_notice_only_when_numba_compiles():
+    import numba
+
+    @numba.njit
+    def twice(x):
+        return 2 * x
+
+    said = []
+    with precompile.announce_compilation(said.append):
+        assert twice(3) == 6
+        assert twice(4) == 8
+    assert len(said) == 2, said
+    assert said[0] == precompile.START_MESSAGE
+    assert said[1].startswith('physics kernels ready, compiled in ')
+    said.clear()
+    with precompile.announce_compilation(said.append):
+        assert twice(5) == 10  # compiled already
+    assert said == []
 
 
 def test_package_xml():

@@ -1,0 +1,219 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Compile the numba kernels once, ahead of the first start, into numba's cache.
+
+numba compiles a kernel on its first call and, with ``cache=True``, keeps the machine code in
+``__pycache__`` next to the source file, keyed by a hash of that file's content and the CPU.
+Compiling every kernel the node and the offline runner use took 7.7 s on a quiet 2-core
+machine, and a node's first tension came 44 s after its start on a loaded one. setup.py runs
+this module right after installing (``colcon build``, with or without ``--symlink-install``),
+so the cache lands beside the installed sources and every start, whatever HOME is, only
+loads it (0.4 s).
+
+numba uses that cache only where it may also write: in a read-only install tree (another
+user's) it caches in ``~/.cache/numba`` instead and compiles at the first start; a wheel
+(``pip install .``) holds no compiled code, built for one CPU. Then run, as that user::
+
+    python3 -m rope_sim_ros.precompile
+"""
+
+import argparse
+from contextlib import contextmanager
+import hashlib
+import math
+from pathlib import Path
+import re
+import sys
+import time
+from typing import Callable, Dict, Iterator, List, Optional
+
+PACKAGE_DIR = Path(__file__).resolve().parent
+# Beside the cache: which sources it was compiled from (see refresh_in_tree_cache).
+FINGERPRINT_NAME = 'numba-kernels.sha256'
+CACHE_SUFFIXES = ('.nbi', '.nbc')  # numba's index and data files
+USES_NUMBA = re.compile(rb'^\s*(?:import|from)\s+numba\b', re.MULTILINE)
+
+# Every kernel specialisation comes from one run of each integrator: all the other parameters
+# (material, bending, interpolation, superelastic_adjustment) change values, not types.
+CONFIGURATIONS = (
+    {'integrator': 'implicit_euler', 'end_interpolation': 'cubic'},
+    {'integrator': 'improved_euler', 'end_interpolation': 'linear'},
+)
+
+START_MESSAGE = ('preparing the physics kernels: numba is compiling them (its cache holds none '
+                 'for this install yet), about 10 s, a minute on a loaded machine; later starts '
+                 'load them from the cache (python3 -m rope_sim_ros.precompile prepares them '
+                 'ahead)')
+
+
+class _CompileNotice:
+    """Listens to numba's compile events: says START_MESSAGE at the first one."""
+
+    def __init__(self, say: Optional[Callable[[str], None]]):
+        self.say = say
+        self.started = math.nan  # time.monotonic() of the first compilation, if any
+
+    def on_start(self, event) -> None:
+        if math.isnan(self.started):
+            self.started = time.monotonic()
+            if self.say is not None:
+                self.say(START_MESSAGE)
+
+    def on_end(self, event) -> None:
+        pass
+
+
+@contextmanager
+def announce_compilation(say: Optional[Callable[[str], None]]) -> Iterator[_CompileNotice]:
+    """
+    Within the block, say once that the kernels are being compiled, if numba compiles any.
+
+    Loading kernels from numba's cache says nothing; compiling says so when it starts (it may
+    take a minute under load) and when the block ends.
+
+    :param say: called with each message (a logger's info, a print to stderr), or None.
+    :returns: (as the context) the listener; its ``started`` is NaN while nothing compiled.
+    """
+    from numba.core import event
+
+    class Listener(_CompileNotice, event.Listener):
+        pass
+
+    notice = Listener(say)
+    with event.install_listener('numba:compile', notice):
+        yield notice
+    if not math.isnan(notice.started) and say is not None:
+        say(f'physics kernels ready, compiled in {time.monotonic() - notice.started:.1f} s')
+
+
+def exercise(values: dict) -> None:
+    """Run a short line with these parameter values through every compiled path it has."""
+    import numpy as np
+    from .params import LineParams
+    from .simulator import Simulator
+
+    line = LineParams().with_values(values)
+    sim = Simulator(line)
+    fairlead = np.add(line.bollard_position, [0.9 * line.length, 0.0, 0.0])
+    sim.push_fairlead(0.0, fairlead)
+    sim.push_fairlead(0.1, fairlead + [0.01, 0.0, 0.0])
+    sim.push_bollard(0.0, line.bollard_position)  # the bollard's trajectory too
+    sim.start(0.0)
+    sim.advance_to(3.0 * sim.time_step)
+    sim.output()
+
+
+def dispatchers() -> Dict[str, object]:
+    """Return the numba dispatchers of the loaded rope_sim_ros modules by qualified name."""
+    from numba.core.dispatcher import Dispatcher
+
+    found = {}
+    for name, module in list(sys.modules.items()):
+        if module is None or not (name == __package__ or name.startswith(__package__ + '.')):
+            continue
+        for attribute, value in vars(module).items():
+            if isinstance(value, Dispatcher) and value.py_func.__module__ == name:
+                found[f'{name}.{attribute}'] = value
+    return found
+
+
+def compiled_sources(package_dir: Path) -> List[Path]:
+    """Return the files compiled code can come from: physics/, modules importing numba."""
+    return [path for path in sorted(package_dir.rglob('*.py'))
+            if path.parent.name == 'physics' or USES_NUMBA.search(path.read_bytes())]
+
+
+def sources_fingerprint(package_dir: Path) -> str:
+    """Hash the compiled sources, with the numba and Python versions."""
+    import numba
+
+    digest = hashlib.sha256(f'{numba.__version__} {sys.version}'.encode())
+    for path in compiled_sources(package_dir):
+        digest.update(str(path.relative_to(package_dir)).encode() + b'\0')
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def refresh_in_tree_cache(package_dir: Path, fingerprint: str) -> int:
+    """
+    Remove numba's cache files next to the sources unless made from these very sources.
+
+    numba checks a cached kernel against its own file only: implicit_euler_run holds a
+    compiled copy of superelastic.adjust (and its constants), which would stay stale when
+    only superelastic.py changed. Without a fingerprint the files' origin is unknown: they go.
+
+    :returns: files removed (none where the tree is not writable: numba then caches in the
+        user's cache directory, not ours to clear).
+    """
+    try:
+        recorded = (package_dir / '__pycache__' / FINGERPRINT_NAME).read_text().strip()
+    except OSError:
+        recorded = ''
+    if recorded == fingerprint:
+        return 0
+    removed = 0
+    for path in package_dir.rglob('__pycache__/*'):
+        if path.suffix in CACHE_SUFFIXES:
+            try:
+                path.unlink()
+                removed += 1
+            except OSError:
+                pass
+    return removed
+
+
+def record_fingerprint(package_dir: Path, fingerprint: str) -> None:
+    """Note which sources the cache next to them now comes from (nothing if read-only)."""
+    try:
+        (package_dir / '__pycache__').mkdir(exist_ok=True)
+        (package_dir / '__pycache__' / FINGERPRINT_NAME).write_text(fingerprint + '\n')
+    except OSError:
+        pass
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    """Compile (or load) every kernel specialisation; print what it did and where."""
+    parser = argparse.ArgumentParser(
+        prog='python3 -m rope_sim_ros.precompile',
+        description="Compile the numba kernels of rope_sim_ros into numba's cache, so that "
+        'the first start of the node or the runner does not wait for them.')
+    parser.parse_args(argv)
+    try:
+        import numba  # noqa: F401
+    except ImportError as e:
+        print(f'rope_sim_ros: cannot compile the kernels: {e}', file=sys.stderr)
+        return 1
+    start = time.monotonic()
+    fingerprint = sources_fingerprint(PACKAGE_DIR)
+    removed = refresh_in_tree_cache(PACKAGE_DIR, fingerprint)
+    for values in CONFIGURATIONS:
+        exercise(values)
+    found = dispatchers()
+    compiled = sum(sum(d.stats.cache_misses.values()) for d in found.values())
+    loaded = sum(sum(d.stats.cache_hits.values()) for d in found.values())
+    record_fingerprint(PACKAGE_DIR, fingerprint)
+    # where numba put them: next to the sources, or the user's cache if that is read-only
+    places = sorted({str(getattr(getattr(d, '_cache', None), 'cache_path', '?'))
+                     for d in found.values() if d.signatures})
+    stale = f'; removed {removed} stale cache files first' if removed else ''
+    print(f'rope_sim_ros: numba kernels: {compiled} specialisations compiled, {loaded} loaded '
+          f'from the cache, in {time.monotonic() - start:.1f} s{stale}; cache: '
+          + ', '.join(places))
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
