@@ -24,6 +24,10 @@ node created in this run (in-process or as a subprocess) sees the same settings:
 - ``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``: discovery never leaves this machine.
 - ``AMENT_PREFIX_PATH`` includes ``sys.prefix``, where the PyPI ROS wheels put their share/.
 - The repository root is on ``sys.path`` so tests import the source tree.
+- numba's cache in the source tree is dropped when a compiled source changed since it was
+  made: numba checks a kernel against its own file only, and implicit_euler_run holds a
+  compiled copy of superelastic.adjust, so an edit of superelastic.py alone would otherwise
+  be tested with the old code.
 """
 
 import os
@@ -63,6 +67,16 @@ def _configure_environment():
 
 
 _configure_environment()
+
+
+def _refresh_kernel_cache():
+    from rope_sim_ros import precompile
+    fingerprint = precompile.sources_fingerprint(precompile.PACKAGE_DIR)
+    precompile.refresh_in_tree_cache(precompile.PACKAGE_DIR, fingerprint)
+    precompile.record_fingerprint(precompile.PACKAGE_DIR, fingerprint)
+
+
+_refresh_kernel_cache()
 
 
 def pytest_configure(config):
