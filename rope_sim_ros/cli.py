@@ -163,6 +163,13 @@ def _progress(quiet: bool):
     return None if quiet else Progress()
 
 
+def _compiling_notice(quiet: bool):
+    """Say on stderr when numba compiles the kernels (where the build left none: ~10 s)."""
+    from .precompile import announce_compilation
+    return announce_compilation(
+        None if quiet else lambda message: print(f'{PROG}: {message}', file=sys.stderr))
+
+
 def _cmd_run(args) -> int:
     from .motion import read_motion
     from .runner import resolve_params, run_motion
@@ -172,13 +179,18 @@ def _cmd_run(args) -> int:
     motion = read_motion(args.motion)
     progress = _progress(args.quiet)
     try:
-        summary = run_motion(params, motion, args.out, args.rate, args.bag, progress)
+        with _compiling_notice(args.quiet):
+            summary = run_motion(params, motion, args.out, args.rate, args.bag, progress)
     finally:
         if progress is not None:
             progress.finish()
-    for t in summary.restarts:
-        print(f'{PROG}: warning: the state turned non-finite {t:.3f} s into the run; the '
-              'rope was restarted on the catenary', file=sys.stderr)
+    for t, distance in summary.beyond_reach:
+        print(f'{PROG}: warning: {t:.3f} s into the run the ends were up to {distance:.4g} m '
+              f"apart, beyond the line's reach of {summary.reach:.4g} m (length x (1 + "
+              'max_strain)): the rope held the fairlead at the reach', file=sys.stderr)
+    for t, reason in summary.restarts:
+        print(f'{PROG}: warning: {t:.3f} s into the run the rope was restarted at rest on the '
+              f'catenary: {reason}', file=sys.stderr)
     if summary.dropped:
         print(f'{PROG}: warning: {summary.dropped} bag messages were not recorded',
               file=sys.stderr)
@@ -202,7 +214,8 @@ def _cmd_resim(args) -> int:
     params = _bag_params(args)
     progress = _progress(args.quiet)
     try:
-        result = resim(args.bag, args.out, params, args.rate, args.namespace, progress)
+        with _compiling_notice(args.quiet):
+            result = resim(args.bag, args.out, params, args.rate, args.namespace, progress)
     finally:
         if progress is not None:
             progress.finish()

@@ -33,9 +33,9 @@ from .bag import bag_info, BagError, deserialize, read_messages
 from .bag.metadata import load_metadata, METADATA_FILE
 from .params import LineParams
 from .ros.conversions import pose_point, PoseError, stamp_to_ns
-from .runner import (BagSink, BOLLARD_POSE, DEFAULT_RATE, EndSamples, FAIRLEAD_POSE,
-                     parameters_from_yaml, PARAMETERS_KEY, PARTICLES, POSE_TYPE, RunSummary,
-                     simulate, topic_name)
+from .runner import (BagSink, BOLLARD_POSE, check_line, DEFAULT_RATE, EndSamples,
+                     FAIRLEAD_POSE, parameters_from_yaml, PARAMETERS_KEY, PARTICLES, POSE_TYPE,
+                     RunSummary, simulate, topic_name)
 
 
 @dataclass
@@ -210,6 +210,7 @@ def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
         topics[bollard_topic] = POSE_TYPE
     fairlead_samples = fairlead.samples(base_ns)
     bollard_samples = bollard.samples(base_ns)
+    check_line(params, rate)  # a refused line leaves no bag behind
     sink = BagSink(out_path, params, fairlead.raw + bollard.raw, topics, namespace,
                    fairlead_samples, bollard_samples, base_ns=base_ns)
     try:

@@ -210,7 +210,12 @@ class RunSummary:
     :param start: first output time [s].
     :param end: last output time [s].
     :param time_step: integration step [s].
-    :param restarts: simulated times at which a non-finite state restarted the rope.
+    :param restarts: (simulated time, reason) of every restart of the rope at rest
+        (Advance.restarted: 'non-finite state', 'unphysical state', 'back within reach').
+    :param beyond_reach: (simulated time, largest distance [m]) of every stretch of outputs
+        during which the ends were farther apart than the line's reach (the rope held the
+        fairlead at the reach).
+    :param reach: the line's reach, L (1 + max_strain) [m].
     :param dropped: bag messages not recorded.
     :param wall: wall-clock seconds.
     """
@@ -219,7 +224,9 @@ class RunSummary:
     start: float = math.nan
     end: float = math.nan
     time_step: float = math.nan
-    restarts: List[float] = field(default_factory=list)
+    restarts: List[Tuple[float, str]] = field(default_factory=list)
+    beyond_reach: List[Tuple[float, float]] = field(default_factory=list)
+    reach: float = math.nan
     dropped: int = 0
     wall: float = 0.0
 
@@ -318,17 +325,27 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     if bollard is not None:
         ends.append(_Feed(sim.push_bollard, bollard))
     times = output_times(float(fairlead.t[0]), float(fairlead.t[-1]), rate).tolist()
-    summary = RunSummary(start=times[0], end=times[-1], time_step=sim.time_step)
+    summary = RunSummary(start=times[0], end=times[-1], time_step=sim.time_step,
+                         reach=sim.reach)
     for end in ends:
         end.feed(times[0])
     sim.start(times[0])
     dt = sim.time_step
     total = len(times)
+    held = False
     for k, t in enumerate(times):
         for end in ends:
             end.feed(t)
-        if sim.advance_to(t).restarted:
-            summary.restarts.append(t)
+        advance = sim.advance_to(t)
+        if advance.restarted:
+            summary.restarts.append((t, advance.restarted))
+        if advance.beyond_reach:
+            if held:
+                summary.beyond_reach[-1] = (summary.beyond_reach[-1][0], max(
+                    summary.beyond_reach[-1][1], advance.beyond_reach))
+            else:
+                summary.beyond_reach.append((t, advance.beyond_reach))
+        held = advance.beyond_reach > 0.0
         if abs(sim.time - t) < 1e-6 * dt:
             # The state time is a running sum of steps; pin it to the exact output time
             # so rounding never accumulates into a missed step on long runs.
@@ -341,6 +358,19 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
             progress(k + 1, total, t)
     summary.wall = time.monotonic() - wall
     return summary
+
+
+def check_line(params: LineParams, rate: float = DEFAULT_RATE, materials: Any = None) -> None:
+    """
+    Refuse a line or an output rate that simulate() would refuse; call it before any output.
+
+    :raises ParameterError: rate is not a positive finite number, or the time step is not
+        allowed for the line (e.g. above improved_euler's stability limit).
+    :raises MaterialError: the material cannot be built.
+    """
+    if not (math.isfinite(rate) and rate > 0.0):
+        raise ParameterError(f'output rate {rate!r} Hz is not allowed: must be > 0')
+    Simulator(params, materials, output_interval=1.0 / rate)  # raises what simulate() would
 
 
 class _Feed:
@@ -489,6 +519,7 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
     :raises OSError: OUT.csv cannot be written.
     """
     from .motion import MotionError, OutWriter
+    check_line(params, rate)  # before OUT.csv or the bag exists
     fairlead_offset = np.asarray(params.fairlead_offset, dtype=float)
     bollard_offset = np.asarray(params.bollard_offset, dtype=float)
     # Simulated time runs from 0 at the first row; the rows' exact nanoseconds give the

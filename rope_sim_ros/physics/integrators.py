@@ -22,9 +22,12 @@ so it lives on the line's damping: the automatic step is the largest one for whi
 axial mode of the chain, with its damping, is stable, times a safety factor.
 """
 
+import numba
 import numpy as np
 
+from . import kernels
 from .rope import Rope, RopeProperties
+from .superelastic import MAX_ITERATIONS
 
 SAFETY_FACTOR = 0.8
 
@@ -133,3 +136,169 @@ def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler
 def implicit_bending(props: RopeProperties, dt: float) -> bool:
     """Whether the implicit step must include the bending springs in its matrix."""
     return dt * dt * props.bending_stiffness / props.particle_mass > IMPLICIT_BENDING_THRESHOLD
+
+
+@numba.njit(cache=True)
+def motion_spread(v, end_velocities):
+    """
+    Bound the speeds of a step (for the simulator's step division and state check).
+
+    :param v: particle velocities (N+1, 3) [m/s].
+    :param end_velocities: velocities of the ends over the step (n, 2, 3) [m/s].
+    :returns: sqrt(3) times the largest component of (the particles' and the ends'
+        velocities against the bollard's first one; the ends' velocities; the particles' and
+        the ends' velocities): bounds on the speeds.
+    """
+    reference = end_velocities[0, 0]
+    spread = 0.0
+    ends = 0.0
+    for i in range(v.shape[0]):
+        for p in range(3):
+            spread = max(spread, abs(v[i, p] - reference[p]))
+            ends = max(ends, abs(v[i, p]))  # the particles' own, for now
+    particles = ends
+    ends = 0.0
+    for k in range(end_velocities.shape[0]):
+        for e in range(2):
+            for p in range(3):
+                spread = max(spread, abs(end_velocities[k, e, p] - reference[p]))
+                ends = max(ends, abs(end_velocities[k, e, p]))
+    root3 = np.sqrt(3.0)
+    return root3 * spread, root3 * ends, root3 * max(particles, ends)
+
+
+@numba.njit(cache=True)
+def end_distances(ends):
+    """Return the distance between the two ends of each sample, ends (n, 2, 3) -> (n,) [m]."""
+    out = np.empty(ends.shape[0])
+    for k in range(ends.shape[0]):
+        out[k] = np.sqrt((ends[k, 1, 0] - ends[k, 0, 0]) ** 2
+                         + (ends[k, 1, 1] - ends[k, 0, 1]) ** 2
+                         + (ends[k, 1, 2] - ends[k, 0, 2]) ** 2)
+    return out
+
+
+@numba.njit(cache=True)
+def largest_load(x, v, coefficients, axial_stiffness):
+    """
+    Return whether the state is finite, and the largest end force or EA times strain [N].
+
+    The load is NaN or inf where finite numbers overflow.
+    """
+    if not kernels.all_finite(x, v):
+        return False, np.inf
+    forces = np.empty((2, 3))
+    kernels.end_forces(x, v, coefficients, forces)
+    largest = axial_stiffness * kernels.max_strain(x, coefficients[0])
+    for e in range(2):
+        load = np.sqrt(forces[e, 0] ** 2 + forces[e, 1] ** 2 + forces[e, 2] ** 2)
+        if np.isnan(load) or np.isnan(largest):
+            return True, np.nan
+        largest = max(largest, load)
+    return True, largest
+
+
+# Bringing a start shape to rest (relax): pseudo-steps until no particle moves more than
+# RELAX_TOLERANCE * L in one, first Newton-like ones of NEWTON_STEP from rest (at most
+# NEWTON_STEPS), then, where a fold is left, steps of the line's own motion, of its
+# automatic implicit step, over at most FOLD_TIME and FOLD_WORK particle steps (about 0.5 s
+# of computing). Kinetic damping took up to 35 s at N = 1001 (7e6 particle steps, 0.34 s);
+# steps of 20 ms or more cycled without settling.
+RELAX_TOLERANCE = 1e-9
+NEWTON_STEP = 1.0
+NEWTON_STEPS = 200
+FOLD_TIME = 60.0
+FOLD_WORK = 1.0e7
+# A bending spring shorter than this fraction of its rest length 2 l0 marks a fold (an angle
+# sharper than 128 degrees between its segments); the default line hanging between ends 20 m
+# apart stays above 0.977.
+FOLD_LENGTH = 0.9
+# The fold is nudged sideways by this fraction of a segment: the Newton-like steps stop on a
+# balanced fold (an unstable rest), which only a nudge shows to be one.
+FOLD_NUDGE = 1e-3
+
+
+def relax(props: RopeProperties, x: np.ndarray, coefficients: np.ndarray,
+          inv_mass: np.ndarray) -> bool:
+    """
+    Move the free particles of x (in place) to rest under the line's own forces, ends fixed.
+
+    The catenary is the rest shape of a chain without bending springs. With them it is
+    nearly so wherever the line is smooth (they move the settled tension of the reference
+    line by 0.05 %), but not where it folds: ends at one point hang the two halves of the
+    chain on top of each other, and the bending spring across the fold, pushed from its
+    rest length 2 l0 to nothing, kicks it open with 2 r_s EA (3.5 kN on the default line,
+    whose weight is 1.1 kN) and a stored 7 kJ that axial damping never takes out of the
+    swinging halves: the end tension rang between 2 N and 4.4 kN for 14 s.
+
+    Newton-like pseudo-steps (an implicit Euler step of NEWTON_STEP from rest) settle a
+    smooth line in about 7 and that fold in 37. They also stop on a fold held in balance,
+    as with an odd N, where the two middle particles meet (the bending springs then push
+    along the line): that rest is unstable, and the line rang between 318 N and 981 N.
+    A fold left after them, or a line they could not settle, is nudged and settled by the
+    line's own motion, stopped at every peak of its kinetic energy (kinetic damping), which
+    only ends in a stable rest. (A line with its ends at its reach has no rest: straight at
+    its strain limit, it cannot carry its weight. Do not relax it: 200 pseudo-steps of N =
+    2000 then cost 0.7 s, and the line's own motion 40 s.)
+
+    :returns: whether x came to rest (else it is where the steps left it).
+    """
+    ends = x[[0, -1]][None].copy()
+    v = np.zeros_like(x)
+    settled = _settle(props, x, v, ends, coefficients, inv_mass, NEWTON_STEP, NEWTON_STEPS,
+                      True)
+    if settled and not _folded(props, x):
+        return True
+    x += FOLD_NUDGE * props.segment_length * _sideways(props, x)
+    v[:] = 0.0
+    step = automatic_time_step(props, 'implicit_euler')
+    steps = int(min(np.ceil(FOLD_TIME / step), FOLD_WORK / len(x)))
+    return _settle(props, x, v, ends, coefficients, inv_mass, step, steps, False)
+
+
+def _settle(props, x, v, ends, coefficients, inv_mass, step, steps, from_rest) -> bool:
+    """Take pseudo-steps until x stops moving; return whether it did."""
+    end_velocities = np.zeros_like(ends)
+    bending = implicit_bending(props, step)
+    tolerance = RELAX_TOLERANCE * props.length
+    peak = 0.0
+    for _ in range(steps):
+        before = x.copy()
+        if from_rest:
+            v[:] = 0.0
+        kernels.implicit_euler_run(
+            x, v, ends, end_velocities, step, coefficients, inv_mass, props.max_strain,
+            props.superelastic_adjustment, MAX_ITERATIONS, bending)
+        kinetic = float(np.einsum('ij,ij->', v, v))
+        if not np.isfinite(kinetic):
+            return False
+        if kinetic < peak:  # past a peak of kinetic energy: stop there
+            v[:] = 0.0
+            kinetic = 0.0
+        peak = kinetic
+        if np.abs(x - before).max() <= tolerance:
+            return True
+    return False
+
+
+def _folded(props: RopeProperties, x: np.ndarray) -> bool:
+    """Tell whether a bending spring is folded shorter than FOLD_LENGTH of its rest length."""
+    if props.bending_stiffness <= 0.0 or len(x) < 3:
+        return False
+    d = x[2:] - x[:-2]
+    return bool(np.einsum('ij,ij->i', d, d).min()
+                < (FOLD_LENGTH * 2.0 * props.segment_length) ** 2)
+
+
+def _sideways(props: RopeProperties, x: np.ndarray) -> np.ndarray:
+    """Return a smooth, lopsided sideways displacement of size 1 (0 at the ends), (N+1, 3)."""
+    gravity = np.asarray(props.gravity, dtype=float)
+    up = -gravity / np.linalg.norm(gravity) if np.any(gravity) else np.array([0.0, 0.0, 1.0])
+    chord = x[-1] - x[0]
+    side = chord - (chord @ up) * up
+    if np.linalg.norm(side) < 1e-9 * props.length:  # a vertical chord: any level direction
+        side = np.zeros(3)
+        side[int(np.argmin(np.abs(up)))] = 1.0
+        side -= (side @ up) * up
+    s = np.linspace(0.0, np.pi, len(x))
+    return np.outer(np.sin(s) * (1.0 + 0.5 * np.cos(s)), side / np.linalg.norm(side))

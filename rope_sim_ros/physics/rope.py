@@ -21,6 +21,7 @@ Hooke springs (eq. 2), spring damping (eq. 3), gravity (eq. 4) and quadratic air
 """
 
 from dataclasses import dataclass
+import math
 
 import numpy as np
 
@@ -91,6 +92,51 @@ class RopeProperties:
     def weight_per_length(self) -> float:
         """Weight per length w = mass per length * |g| [N/m]."""
         return self.mass_per_length * float(np.linalg.norm(self.gravity))
+
+    @property
+    def reach(self) -> float:
+        """Farthest the ends can be apart, every segment at its limit: L (1 + max_strain) [m]."""
+        return self.length * (1.0 + self.max_strain)
+
+    @property
+    def wave_speed(self) -> float:
+        """Speed of an axial wave, c = sqrt(EA / m) [m/s]."""
+        return math.sqrt(self.axial_stiffness / self.mass_per_length)
+
+
+def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
+    """
+    Largest force [N] the line can put on an end; a state past it is a numerical artefact.
+
+    Every term of the end force (Rope.end_forces) is bounded:
+
+    - springs: a structural spring is never longer than l0 (1 + max_strain) (the
+      superelastic adjustment, with the ends held within reach), so it pulls at most
+      EA max_strain; a bending spring (i, i+2) then pulls at most 2 r_s EA max_strain and,
+      folded flat, pushes 2 r_s EA (r_s = bending_stiffness_ratio);
+    - a wave reflected at the end doubles the strain: the spring terms count twice, which
+      also covers a line without the adjustment overshooting its limit (1.5 to 2 times);
+    - dampers: neighbouring particles part at most at 2 v*, twice the fastest a particle
+      moves against its neighbours: v* = c max_strain (an axial wave at the strain limit,
+      c = sqrt(EA / m)) + sqrt(2 |g| L) (a fall of the whole length) + the ends' speed.
+      A segment's damper then pulls at most 2 BA v* / l0, its bending damper
+      4 r_d BA v* / l0 (r_d = bending_damping_ratio);
+    - the weight of the whole line, w L.
+
+    The reference polyester line (EA 50 MN, max_strain 0.25) at rest gives 28 MN, where its
+    converged peak under a 3 m jerk in 0.5 s is 0.12 MN and an unstable step overflows to
+    1e153 N. A line-parting model (tension past the breaking load) acts far below this
+    bound and would take its place.
+
+    :param end_speed: the largest speed of an end [m/s].
+    """
+    ea, strain = props.axial_stiffness, props.max_strain
+    r_s, r_d = props.bending_stiffness_ratio, props.bending_damping_ratio
+    fall = math.sqrt(2.0 * math.hypot(*props.gravity) * props.length)
+    v_star = props.wave_speed * strain + fall + end_speed
+    springs = 2.0 * ea * strain * (1.0 + 2.0 * r_s) + 2.0 * r_s * ea
+    dampers = 2.0 * props.axial_damping * v_star / props.segment_length * (1.0 + 2.0 * r_d)
+    return springs + dampers + props.weight_per_length * props.length
 
 
 def critical_axial_damping(length: float, mass_per_length: float, axial_stiffness: float,
