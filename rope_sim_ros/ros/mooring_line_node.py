@@ -31,6 +31,13 @@ the end coasts to a stop, the rope goes on to now and a warning says so; poses t
 late bring the end back onto its track smoothly (Simulator._blend_ends). Under
 use_sim_time, until the first /clock message the poses alone set the pace.
 
+Inputs: a pose stamped more than STAMP_AHEAD_LIMIT ahead of the node clock or
+STAMP_BEHIND_LIMIT behind it is dropped and counted, like a non-finite one; a jump of either
+end larger than teleport_distance restarts the rope there (the simulator's rule, so the
+offline runner follows it too). The pose queues hold POSE_QUEUE_DEPTH poses; poses DDS lost
+before they reached the node are counted (message_lost). publish_rate changed at run time
+applies from the next output on.
+
 Recording (record_path): every received pose and published message also goes to a bag
 through recorder.Recorder, which never blocks the tick; Ctrl-C and SIGTERM close the bag,
 after SIGKILL `rope_sim recover` completes it.
@@ -45,6 +52,7 @@ import math
 import os
 import signal
 from typing import Any, Dict, List, Optional
+import warnings
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 import numpy as np
@@ -52,9 +60,12 @@ from rcl_interfaces.msg import (
     FloatingPointRange, IntegerRange, ParameterDescriptor, SetParametersResult)
 import rclpy
 from rclpy.clock import Clock, ClockType
+from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
+from rclpy.exceptions import ParameterException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.qos import HistoryPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
+from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions
 from std_srvs.srv import Trigger
 
 from . import conversions
@@ -73,6 +84,13 @@ POSE_RELIABILITY = {'reliable': ReliabilityPolicy.RELIABLE,
                     'best_effort': ReliabilityPolicy.BEST_EFFORT}
 _OUTPUT_TYPES = {'rope/particles': POSE_ARRAY, 'fairlead/tension': WRENCH,
                  'bollard/tension': WRENCH}
+# History depth of the pose subscriptions (KEEP_LAST). A full queue drops its oldest pose
+# without a trace (DDS reports no loss for it): at depth 50 a burst of 10,000 poses reached
+# the node as 747 to 887, a 1 kHz stream for 30 s lost 3.5 %. This holds a whole burst, or
+# 10 s at 1 kHz, for about 2.5 MB more memory per topic once full.
+POSE_QUEUE_DEPTH = 10000
+QOS_OVERRIDES_ALLOWED = ('reliability reliable or best_effort, history keep_last or keep_all, '
+                         'depth >= 1 for keep_last')
 
 
 class StartupError(Exception):
@@ -129,11 +147,25 @@ class MooringLineNode(Node):
     LIVE_INPUT = 0.25
     # Falling further behind than this [s] restarts the rope at now instead of catching up.
     MAX_LAG = 1.0
-    # One tick or pose callback simulates and publishes at most this many outputs, so that
-    # a node catching up stays responsive (ticks and poses together catch up fast enough).
+    # One tick or pose callback simulates and publishes at most this many output periods of
+    # a tick, so that a node catching up stays responsive (ticks and poses together catch up
+    # fast enough).
     OUTPUTS_PER_CALL = 2
-    # Pose stamps further than this from the node clock [s] are worth a warning.
-    STAMP_SKEW_WARNING = 1.0
+    # The timer ticks at publish_rate, but no faster than this [Hz]; faster rates publish
+    # several outputs per tick, their stamps still 1 / rate apart. At publish_rate 1000 with
+    # 50 Hz poses the node took 54 % of a core with 1 kHz ticks, 38 % with these (both
+    # delivered 1000 outputs a second).
+    MAX_TICK_RATE = 200.0
+    # A pose stamped further than this [s] ahead of the node clock is dropped. One stamped
+    # 1 h ahead froze the fairlead for the hour (every later pose was not after the newest
+    # one), one 15 s ahead for 15 s, then a 335 kN spike. Poses do not come from the future:
+    # this allows for clocks a little out of sync (NTP keeps them within milliseconds).
+    STAMP_AHEAD_LIMIT = 1.0
+    # ... or further than this [s] behind it. A late pose is mostly harmless (the rope
+    # follows the stream, late), but a stream that late holds the outputs back as long
+    # after each silence. Poses wait for the node in transport and in its queue: the node
+    # took the last of a burst of 10,000 1.9 s after its stamp (3.7 s while recording).
+    STAMP_BEHIND_LIMIT = 10.0
     THROTTLE = 5.0  # seconds between repeated warnings of one kind
 
     def __init__(self, **kwargs):
@@ -144,7 +176,11 @@ class MooringLineNode(Node):
         """
         super().__init__(NODE_NAME, **kwargs)
         self._last_log: Dict[str, float] = {}
+        # per pose topic: messages taken, dropped (bad or far-off stamps, see _drop) and lost
+        # before they reached the node (DDS's message_lost count)
+        self.received = {'fairlead/pose': 0, 'bollard/pose': 0}
         self.dropped: Dict[str, int] = {}
+        self.lost = {'fairlead/pose': 0, 'bollard/pose': 0}
         self.skips = 0  # times the rope skipped ahead (MAX_LAG)
         # A Recorder while recording (record_path): gets every message via record().
         self.recorder: Optional[Recorder] = None
@@ -156,7 +192,7 @@ class MooringLineNode(Node):
         try:
             line = params.from_values(values)
             self.simulator = self._new_simulator(line)
-            _warm_up(line)
+            _warm_up(line, self.get_logger().info)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise StartupError(str(e)) from None
         self._epoch_ns: Optional[int] = None  # stamp of the first pose: simulator time 0
@@ -168,23 +204,27 @@ class MooringLineNode(Node):
         self._output_origin = 0.0  # simulator time [s] from which outputs are due
         self._outputs_since_origin = 0
 
-        qos = QoSProfile(depth=50, reliability=POSE_RELIABILITY[line.pose_reliability])
         self._outputs = {
             'rope/particles': self.create_publisher(PoseArray, 'rope/particles', 10),
             'fairlead/tension': self.create_publisher(Wrench, 'fairlead/tension', 10),
             'bollard/tension': self.create_publisher(Wrench, 'bollard/tension', 10),
         }
-        self._fairlead_sub = self.create_subscription(
-            PoseStamped, 'fairlead/pose', self._on_fairlead_pose, qos)
-        self._bollard_sub = self.create_subscription(
-            PoseStamped, 'bollard/pose', self._on_bollard_pose, qos)
-        if line.pose_reliability == 'reliable':
+        self._fairlead_sub = self._pose_subscription('fairlead/pose', self._on_fairlead_pose)
+        self._bollard_sub = self._pose_subscription('bollard/pose', self._on_bollard_pose)
+        for name in getattr(self, '_parameter_overrides', {}):
+            if name.startswith('qos_overrides.') and not self.has_parameter(name):
+                self.get_logger().warning(
+                    f'ignoring unknown parameter {name!r}: the pose subscriptions take '
+                    f'qos_overrides.{self._fairlead_sub.topic_name}.subscription.reliability '
+                    '(and .history, .depth; the same for bollard/pose)')
+        if any(s.qos_profile.reliability == ReliabilityPolicy.RELIABLE
+               for s in (self._fairlead_sub, self._bollard_sub)):
             # rclpy's incompatible-QoS event was missed in 1 of 6 start-ups; the graph is
             # not. On the steady clock: under use_sim_time there may be no /clock yet.
             self._qos_timer = self.create_timer(
                 1.0, self._check_pose_publishers, clock=Clock(clock_type=ClockType.STEADY_TIME))
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
-        self._timer = self.create_timer(1.0 / line.publish_rate, self._on_tick)
+        self._timer = self.create_timer(_tick_period(line.publish_rate), self._on_tick)
         self._start_recording()
         props = self.simulator.props
         self.get_logger().info(
@@ -245,6 +285,12 @@ class MooringLineNode(Node):
                     params.check(p.name, _plain(p.value))
                 except params.ParameterError as e:
                     return SetParametersResult(successful=False, reason=str(e))
+        values = {p.name: _plain(p.value) for p in parameters if p.name in params.SPECS}
+        if self.simulator is not None and values:
+            try:  # e.g. less damping under a fixed improved_euler step: unstable
+                self.simulator.check_update(values)
+            except params.ParameterError as e:
+                return SetParametersResult(successful=False, reason=str(e))
         return SetParametersResult(successful=True)
 
     def _apply_parameters(self, parameters: List[Parameter]) -> None:
@@ -260,12 +306,47 @@ class MooringLineNode(Node):
             self.get_logger().error(f'could not apply {values}: {e}')
             return
         if 'publish_rate' in values:
-            self._timer.timer_period_ns = int(1e9 / self.simulator.params.publish_rate)
+            self._set_output_rate(self.simulator.params.publish_rate)
         self.get_logger().info('set ' + ', '.join(f'{k} = {v}' for k, v in values.items()))
 
     # -- inputs -------------------------------------------------------------------------
 
+    def _pose_subscription(self, topic: str, callback):
+        """
+        Subscribe to a pose topic: pose_reliability, POSE_QUEUE_DEPTH, losses counted.
+
+        The standard parameters qos_overrides.<topic>.subscription.reliability / history /
+        depth (read-only, <topic> resolved, e.g. /line_1/fairlead/pose) override them.
+
+        :raises StartupError: an override is not a valid QoS value.
+        """
+        qos = QoSProfile(depth=POSE_QUEUE_DEPTH,
+                         reliability=POSE_RELIABILITY[self.simulator.params.pose_reliability])
+        overrides = QoSOverridingOptions(
+            (QoSPolicyKind.RELIABILITY, QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH),
+            callback=_check_pose_qos)
+        events = SubscriptionEventCallbacks(message_lost=functools.partial(self._on_lost, topic))
+        try:
+            with warnings.catch_warnings():  # rclpy warns of depth 0; _check_pose_qos says it
+                warnings.simplefilter('ignore', UserWarning)
+                return self.create_subscription(PoseStamped, topic, callback, qos,
+                                                event_callbacks=events,
+                                                qos_overriding_options=overrides)
+        except (InvalidQosOverridesError, ParameterException, RuntimeError) as e:
+            # rclpy says 'Unexpected QoS override for policy `reliability`: `fast`'
+            raise StartupError(f'qos_overrides of {self.resolve_topic_name(topic)}: {e}; '
+                               f'allowed: {QOS_OVERRIDES_ALLOWED}') from None
+
+    def _on_lost(self, topic: str, info: QoSMessageLostInfo) -> None:
+        """Count and report poses DDS lost before they reached this node (message_lost)."""
+        self.lost[topic] = info.total_count
+        self._warn(f'{topic}: lost', f'{topic}: {info.total_count_change} pose(s) lost on the '
+                   f'way ({info.total_count} so far): the queue of their publisher overflowed '
+                   'before they were sent, or the network dropped them (a deeper publisher '
+                   'queue or a lower rate keeps them)')
+
     def _on_fairlead_pose(self, msg: PoseStamped) -> None:
+        self.received['fairlead/pose'] += 1
         self.record('fairlead/pose', msg)
         sample = self._sample('fairlead/pose', msg, self.simulator.params.fairlead_offset)
         if sample is None:
@@ -277,35 +358,45 @@ class MooringLineNode(Node):
             self._drop('fairlead/pose', e)
             return
         if event == 'teleport':
-            self._recent['fairlead'].clear()
+            self._jumped('fairlead', end.point)
         self._accepted('fairlead', t, end.lever)
         if not self.simulator.started:
             self.simulator.start(t)
             self._fresh = True
             self.get_logger().info(
                 f'first fairlead pose: rope started on the catenary to {_fmt(end.point)}')
-        elif event == 'teleport':
-            self._fresh = True
-            self.get_logger().info(
-                f'fairlead jumped more than teleport_distance '
-                f'({self.simulator.params.teleport_distance:g} m) to {_fmt(end.point)}: '
-                'rope restarted on the catenary there')
         self._advance()
 
     def _on_bollard_pose(self, msg: PoseStamped) -> None:
+        self.received['bollard/pose'] += 1
         self.record('bollard/pose', msg)
         sample = self._sample('bollard/pose', msg, self.simulator.params.bollard_offset)
         if sample is None:
             return
         t, end = sample
         try:
-            self.simulator.push_bollard(t, end.point)
+            event = self.simulator.push_bollard(t, end.point)
         except TrajectoryError as e:
             self._drop('bollard/pose', e)
             return
+        if event == 'teleport':
+            self._jumped('bollard', end.point)
         self._accepted('bollard', t, end.lever)
         if self.simulator.started:
             self._advance()
+
+    def _jumped(self, end: str, point: np.ndarray) -> None:
+        """
+        Say that `end` jumped past teleport_distance, so the simulator restarted the rope.
+
+        It restarted at the state time, the last output's: the next output shows it.
+        """
+        self._recent[end].clear()  # its samples before the jump are gone
+        # Not throttled: each jump is a restart, a step in the published tension.
+        self.get_logger().warning(
+            f'{end} jumped {self.simulator.last_jump:.2f} m, more than teleport_distance '
+            f'({self.simulator.params.teleport_distance:g} m), to {_fmt(point)}: rope '
+            'restarted on the catenary there')
 
     def _accepted(self, end: str, t: float, lever: np.ndarray) -> None:
         """Note a sample of `end` taken by the simulator: its time, its lever, a live stream."""
@@ -334,16 +425,23 @@ class MooringLineNode(Node):
             self._warn(f'{topic}: frame', f'{topic}: header.frame_id is '
                        f'{msg.header.frame_id!r}, not {frame_id!r}: taken as {frame_id!r} '
                        '(no tf lookup)')
-        if now_ns and abs(stamp_ns - now_ns) > self.STAMP_SKEW_WARNING * 1e9:
-            self._warn(f'{topic}: skew', f'{topic}: stamps are {(now_ns - stamp_ns) * 1e-9:+.3f}'
-                       ' s behind the node clock: are the clocks in sync (use_sim_time)?')
+        # Under use_sim_time the clock reads 0 until the first /clock: nothing to compare.
+        skew = (stamp_ns - now_ns) * 1e-9
+        if now_ns and not -self.STAMP_BEHIND_LIMIT <= skew <= self.STAMP_AHEAD_LIMIT:
+            side, limit = (('ahead of', self.STAMP_AHEAD_LIMIT) if skew > 0
+                           else ('behind', self.STAMP_BEHIND_LIMIT))
+            self._drop(topic, ValueError(
+                f'stamp {side} the node clock by {abs(skew):.3f} s, more than {limit:g} s: '
+                'are the clocks in sync (use_sim_time)?'))
+            return None
         if self._epoch_ns is None:
             self._epoch_ns = stamp_ns
         return self._seconds(stamp_ns), end
 
     def _check_pose_publishers(self) -> None:
         """Warn of best-effort pose publishers: they cannot reach a reliable subscription."""
-        for topic in (self._fairlead_sub.topic_name, self._bollard_sub.topic_name):
+        for topic in (s.topic_name for s in (self._fairlead_sub, self._bollard_sub)
+                      if s.qos_profile.reliability == ReliabilityPolicy.RELIABLE):
             if any(info.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
                    for info in self.get_publishers_info_by_topic(topic)):
                 self._warn(f'{topic}: qos', f'{topic}: a best-effort publisher cannot reach '
@@ -386,8 +484,24 @@ class MooringLineNode(Node):
 
     def _live(self, end: str) -> bool:
         """Tell whether an end's pose stream is live (see LIVE_INPUT)."""
-        live_ticks = max(2, math.ceil(self.LIVE_INPUT * self.simulator.params.publish_rate))
+        live_ticks = max(2, math.ceil(self.LIVE_INPUT / _tick_period(
+            self.simulator.params.publish_rate)))
         return bool(self._recent[end]) and self._quiet_ticks[end] < live_ticks
+
+    def _set_output_rate(self, rate: float) -> None:
+        """
+        Make a new publish_rate take effect with the next output: no gap, no burst.
+
+        The next output is due 1 / rate after the last one (the state time: outputs are
+        published as the rope reaches them), and the step is chosen again to divide the new
+        period. Counting on from the first output at the old period put the next one up to
+        seconds away (a skip-ahead) or in the past (a burst).
+        """
+        sim = self.simulator
+        sim.set_output_interval(1.0 / rate)
+        if sim.started and not self._fresh:
+            self._output_origin, self._outputs_since_origin = sim.time, 0
+        self._timer.timer_period_ns = round(_tick_period(rate) * 1e9)
 
     def _on_tick(self) -> None:
         """Count a tick without poses for each end, then advance (to now if none is live)."""
@@ -408,8 +522,9 @@ class MooringLineNode(Node):
 
         Outputs are due every 1 / publish_rate from the last (re)start, as in `rope_sim run`,
         and go out as soon as the input reaches them: from a pose callback when a pose
-        stream is live, else from the tick. One call publishes at most OUTPUTS_PER_CALL of
-        them; a node further behind than MAX_LAG skips ahead instead of catching up.
+        stream is live, else from the tick. One call publishes at most OUTPUTS_PER_CALL
+        ticks' worth of them; a node further behind than MAX_LAG skips ahead instead of
+        catching up.
         """
         sim = self.simulator
         clock_ns = self.get_clock().now().nanoseconds
@@ -437,15 +552,25 @@ class MooringLineNode(Node):
             self._fresh = True
         if self._fresh:
             self._publish()
-        period, dt = 1.0 / sim.params.publish_rate, sim.time_step
-        for _ in range(self.OUTPUTS_PER_CALL):
+        rate, dt = sim.params.publish_rate, sim.time_step
+        period = 1.0 / rate
+        for _ in range(self.OUTPUTS_PER_CALL * math.ceil(rate * _tick_period(rate) - 1e-9)):
             due = self._output_origin + (self._outputs_since_origin + 1) * period
             steps = max(1, math.ceil((due - sim.time) / dt - 1e-9))
             if sim.time + (steps - 1e-6) * dt > target:
                 return  # the input does not reach the next output time yet
             advance = sim.advance_to(sim.time + (steps + 0.5) * dt, max_steps=steps)
             self._outputs_since_origin += 1
-            if advance.restarted:
+            if advance.beyond_reach:
+                self._warn('reach', f'the ends are {advance.beyond_reach:.1f} m apart, beyond '
+                           f"the line's reach of {sim.reach:.1f} m (length x (1 + max_strain)):"
+                           ' the fairlead is held at the reach')
+            if advance.restarted == 'back within reach':
+                self.get_logger().warning(
+                    f'the ends came back within reach at t = {sim.time:.3f} s: rope restarted '
+                    'at rest on the catenary')
+                self._fresh = True
+            elif advance.restarted:
                 self.get_logger().error(
                     f'rope state turned {advance.restarted.split()[0]} at t = '
                     f'{sim.time:.3f} s: restarted it on the catenary')
@@ -553,6 +678,11 @@ class MooringLineNode(Node):
         # In this order the closing lines are not sent to /rosout, whose publisher is gone
         # after a signal shut the context down (rcl would complain about each line).
         super().destroy_node()
+        self.get_logger().info('poses: ' + ('; '.join(
+            f'{topic}: {count} received, {self.dropped.get(topic, 0)} dropped, '
+            f'{self.lost[topic]} lost on the way'
+            for topic, count in self.received.items() if count or self.lost[topic])
+            or 'none received'))
         self.close_recording()
 
     def record(self, topic: str, msg: Any) -> None:
@@ -576,13 +706,36 @@ class MooringLineNode(Node):
             self.get_logger().warning(text)
 
 
-def _warm_up(line: params.LineParams) -> None:
-    """Run a few steps of a throw-away line, so the compiled kernels load before spinning."""
-    sim = Simulator(line)
-    sim.push_fairlead(0.0, np.add(line.bollard_position, [0.9 * line.length, 0.0, 0.0]))
-    sim.start(0.0)
-    sim.advance_to(3.0 * sim.time_step)
-    sim.output()
+def _warm_up(line: params.LineParams, say=None) -> None:
+    """
+    Run a few steps of a throw-away line, so the compiled kernels load before spinning.
+
+    The build leaves them compiled in numba's cache (0.4 s to load); where it could not
+    (read-only install, pip install), numba compiles them here, ~10 s to a minute: say(message)
+    tells when that starts and ends.
+    """
+    from ..precompile import announce_compilation
+    with announce_compilation(say):
+        sim = Simulator(line)
+        sim.push_fairlead(0.0, np.add(line.bollard_position, [0.9 * line.length, 0.0, 0.0]))
+        sim.start(0.0)
+        sim.advance_to(3.0 * sim.time_step)
+        sim.output()
+
+
+def _tick_period(rate: float) -> float:
+    """Return the timer period [s] at publish_rate `rate` (see MAX_TICK_RATE)."""
+    return 1.0 / min(rate, MooringLineNode.MAX_TICK_RATE)
+
+
+def _check_pose_qos(qos: QoSProfile) -> SetParametersResult:
+    """Refuse pose subscription QoS overrides that would keep no pose or never get one."""
+    if qos.history != HistoryPolicy.KEEP_ALL and qos.depth < 1:
+        return SetParametersResult(successful=False, reason=f'depth {qos.depth} keeps no pose')
+    if qos.reliability not in POSE_RELIABILITY.values():
+        return SetParametersResult(successful=False,
+                                   reason=f'reliability {qos.reliability.name.lower()}')
+    return SetParametersResult(successful=True)
 
 
 def _fmt(point) -> str:
