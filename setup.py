@@ -91,11 +91,11 @@ setup(
     cmdclass={'install': InstallAndPrecompile, 'develop': DevelopAndPrecompile},
     entry_points={
         'console_scripts': [
-            'rope_sim = rope_sim_ros.cli:main',
-            'mooring_line = rope_sim_ros.ros.mooring_line_node:main',
-            'ship_motion = rope_sim_ros.ros.ship_motion_node:main',
-            'line_monitor = rope_sim_ros.ros.line_monitor_node:main',
-            'bag_replay = rope_sim_ros.ros.bag_replay_node:main',
+            'rope_sim = rope_sim_ros.ros.executables:rope_sim',
+            'mooring_line = rope_sim_ros.ros.executables:mooring_line',
+            'ship_motion = rope_sim_ros.ros.executables:ship_motion',
+            'line_monitor = rope_sim_ros.ros.executables:line_monitor',
+            'bag_replay = rope_sim_ros.ros.executables:bag_replay',
         ],
     },
 )
