@@ -186,7 +186,7 @@ def test_chain_converges_to_catenary_end_tension():
     errors = [abs(np.linalg.norm(chain_equilibrium(END_A, END_B, LENGTH, n, w, ea,
                                                    GRAVITY).force_b) - exact.tension_b)
               for n in (20, 40)]
-    # Second order in N (DESIGN.md): halving the segment length quarters the error.
+    # Second order in N: halving the segment length quarters the error.
     assert errors[1] == pytest.approx(errors[0] / 4.0, rel=0.05)
 
 

@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Material presets reproduce the MoorPy fits and the MEG4 limits of DESIGN.md."""
+"""Material presets reproduce the MoorPy fits and the OCIMF MEG4 working load limits."""
 
 import pytest
 
@@ -21,7 +21,7 @@ from rope_sim_ros.physics.materials import MaterialError
 from rope_sim_ros.simulator import load_materials, Simulator
 
 D = 0.064
-# DESIGN.md section 2, written out independently of config/materials.yaml
+# MoorPy and MEG4 values, written out independently of config/materials.yaml
 EXPECTED = {
     'nylon': (585 * D**2, 5 * (230e6 * D**3 + 207e6 * D**2), 230e6 * D**3 + 207e6 * D**2, 0.50),
     'polyester': (679 * D**2, 14 * 308e6 * D**2, 308e6 * D**2, 0.50),

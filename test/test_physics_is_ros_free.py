@@ -13,14 +13,13 @@
 # limitations under the License.
 
 """
-The physics layer never imports ROS (DESIGN.md section 1).
+The physics layer never imports ROS.
 
 Two independent checks: a static one (every import statement, and every
 ``importlib.import_module`` / ``__import__`` call with a literal name, in every .py file under
 rope_sim_ros/physics/) and a dynamic one (import the package and all its modules in a fresh
 interpreter and look at ``sys.modules``). The static check also refuses imports of the rooms
-above physics (simulator, node, bag, CLI): STYLE.md, "physics imports nothing of ours above
-it".
+above physics (simulator, node, bag, CLI): physics imports nothing of ours above it.
 """
 
 import ast

@@ -139,7 +139,7 @@ def _as_declared(name: str, value: Any) -> Any:
 
 
 class MooringLineNode(Node):
-    """One simulated mooring line; see the module docstring and DESIGN.md section 3."""
+    """One simulated mooring line; see the module docstring and the README's ROS section."""
 
     # A pose stream is live until the node has run this long [s] without a new sample of it:
     # the rope waits for its next sample instead of guessing. Counted in ticks, not from the
