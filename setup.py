@@ -17,11 +17,43 @@ import os
 import subprocess
 import sys
 
-from setuptools import find_packages, setup
+from setuptools import Distribution, find_packages, setup
 from setuptools.command.develop import develop
 from setuptools.command.install import install
 
 package_name = 'rope_sim_ros'
+
+# setuptools' own build_scripts (the one of its bundled distutils), whichever version it is
+build_scripts = Distribution().get_command_class('build_scripts')
+
+# The executables (ros2 run rope_sim_ros <name>) are the launchers in bin/, not console scripts:
+# a console script's preamble (importlib.metadata, 50 ms) runs before any code of the package,
+# so Ctrl-C in it printed a KeyboardInterrupt traceback (80 of 140 tries in the first 75 ms).
+# A launcher takes SIGINT over in its first statements; see bin/mooring_line.
+EXECUTABLES = ('mooring_line', 'ship_motion', 'line_monitor', 'bag_replay', 'rope_sim')
+
+# Before those statements the interpreter starts (1 to 10 ms) and turns a Ctrl-C into a
+# KeyboardInterrupt whose traceback it prints (1 of 60 tries in the first 10 ms). GNU env (8.31 and
+# later) starts it with SIGINT held back, which the launcher lets through once it has taken
+# SIGINT over; a Ctrl-C before env holds it back ends the process by the signal, silently.
+ENV = '/usr/bin/env'
+SHEBANG_MAX = 127  # bytes of '#!' line Linux reads (before 5.1; 255 since)
+
+
+def launcher_interpreter(python):
+    """Return what the launchers' first line runs: python behind env, where env can do it."""
+    held = '{} -S --block-signal=INT {}'.format(ENV, python)
+    if not os.path.isabs(python) or len('#!{} -S'.format(held)) > SHEBANG_MAX:
+        return python  # a wheel: pip writes the first line ('#!python') on installing it
+    try:
+        # exactly what the kernel runs for the first line '#!<held> -S'
+        works = subprocess.run([ENV, held[len(ENV) + 1:] + ' -S -c pass'],
+                               stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL, timeout=60).returncode == 0
+    except (OSError, subprocess.TimeoutExpired):
+        works = False
+    return held if works else python
+
 
 # Compiling the numba kernels took 7.7 s (quiet 2 cores) to 44 s (loaded) at the first start
 # after every fresh build; compiled here, right after installing, numba's cache lands next to
@@ -62,6 +94,14 @@ class InstallAndPrecompile(install):
         precompile(os.path.abspath(self.install_lib))
 
 
+class BuildLaunchers(build_scripts):
+    """Copy the launchers in bin/ with a first line that runs them behind env if it can."""
+
+    def finalize_options(self):
+        super().finalize_options()
+        self.executable = launcher_interpreter(self.executable)
+
+
 class DevelopAndPrecompile(develop):
     """setup.py develop (colcon build --symlink-install), then compile the kernels."""
 
@@ -69,6 +109,18 @@ class DevelopAndPrecompile(develop):
         super().run()
         if not self.uninstall:
             precompile(os.path.abspath(self.egg_path))
+
+    def install_script(self, dist, script_name, script_text, dev_path=None):
+        """Install a launcher as it is: no wrapper importing pkg_resources before it runs."""
+        # setuptools' development wrapper imports pkg_resources (0.2 s) before the launcher
+        # can take SIGINT over, and cannot import it at all under the launcher's -S.
+        if dev_path is None or script_name not in EXECUTABLES:
+            return super().install_script(dist, script_name, script_text, dev_path)
+        interpreter = self.get_finalized_command('build_scripts').executable
+        first, _, body = script_text.partition('\n')
+        options = first.partition('python')[2]  # ' -S'
+        self.write_script(script_name, '#!{}{}\n{}'.format(interpreter, options, body).encode(),
+                          'b')
 
 
 setup(
@@ -88,14 +140,7 @@ setup(
     description='Real-time mooring line simulation (mass-spring rope) for ROS 2 Jazzy.',
     license='Apache-2.0',
     tests_require=['pytest'],
-    cmdclass={'install': InstallAndPrecompile, 'develop': DevelopAndPrecompile},
-    entry_points={
-        'console_scripts': [
-            'rope_sim = rope_sim_ros.ros.executables:rope_sim',
-            'mooring_line = rope_sim_ros.ros.executables:mooring_line',
-            'ship_motion = rope_sim_ros.ros.executables:ship_motion',
-            'line_monitor = rope_sim_ros.ros.executables:line_monitor',
-            'bag_replay = rope_sim_ros.ros.executables:bag_replay',
-        ],
-    },
+    cmdclass={'build_scripts': BuildLaunchers, 'install': InstallAndPrecompile,
+              'develop': DevelopAndPrecompile},
+    scripts=['bin/' + name for name in EXECUTABLES],
 )

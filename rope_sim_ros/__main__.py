@@ -13,10 +13,10 @@
 # limitations under the License.
 
 
-"""``python -m rope_sim_ros``: the rope_sim command line."""
+"""``python -m rope_sim_ros``: the rope_sim command line, quiet on Ctrl-C as rope_sim is."""
 
 import sys
 
-from .cli import main
+from .ros.executables import rope_sim
 
-sys.exit(main())
+sys.exit(rope_sim())

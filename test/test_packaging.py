@@ -23,6 +23,7 @@ import ast
 import json
 import os
 from pathlib import Path
+import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -32,7 +33,7 @@ from rope_sim_ros import precompile
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = 'rope_sim_ros'
-EXECUTABLES = ('mooring_line', 'ship_motion', 'rope_sim', 'line_monitor', 'bag_replay')
+EXECUTABLES = ('mooring_line', 'ship_motion', 'line_monitor', 'bag_replay', 'rope_sim')
 SHARE_FILES = (
     'package.xml',
     'config/mooring_line.yaml',
@@ -89,9 +90,31 @@ def test_executable_installed_for_ros2_run(colcon_install, name):
     assert os.access(str(path), os.X_OK), '{} is not executable'.format(path)
     first_line = path.read_text(errors='replace').splitlines()[0]
     assert first_line.startswith('#!'), '{} has no shebang: {!r}'.format(path, first_line)
-    interpreter = first_line[2:].strip().split()[0]
-    assert os.access(interpreter, os.X_OK), \
-        '{} runs {}, which is not an executable interpreter'.format(path, interpreter)
+    # '#!<python> -S' or, where env can hold SIGINT back, '#!/usr/bin/env -S ... <python> -S'
+    programs = [word for word in first_line[2:].split() if word.startswith('/')]
+    assert programs and programs[-1].startswith(sys.prefix), first_line
+    for interpreter in programs:
+        assert os.access(interpreter, os.X_OK), \
+            '{} runs {}, which is not an executable interpreter'.format(path, interpreter)
+    assert first_line.endswith(' -S'), first_line  # site runs under the launcher's handler
+    assert path.read_text().split('\n', 1)[1] == \
+        (REPO_ROOT / 'bin' / name).read_text().split('\n', 1)[1]
+
+
+def test_launchers_differ_in_their_executable_only():
+    # one launcher per executable in bin/, all alike: setup.py installs what is there
+    names = sorted(p.name for p in (REPO_ROOT / 'bin').iterdir())
+    assert names == sorted(EXECUTABLES)
+    assert _setup_py_constant('EXECUTABLES') == EXECUTABLES
+    texts = {name: (REPO_ROOT / 'bin' / name).read_text() for name in names}
+    # alike but for the name and the summary line of the docstring ('Start the ...')
+    alike = {'\n'.join(line for line in re.sub(r'\b{}\b'.format(name), 'NAME', text).split('\n')
+                       if not line.startswith('Start ')) for name, text in texts.items()}
+    assert len(alike) == 1, 'the launchers in bin/ differ in more than their executable'
+    for name, text in texts.items():
+        assert text.startswith('#!python -S\n'), name
+        assert text.endswith('from rope_sim_ros.ros.executables import {0}  # noqa: E402, I100'
+                             '\n\nsys.exit({0}())\n'.format(name)), name
 
 
 @pytest.mark.parametrize('relative', SHARE_FILES)
@@ -234,6 +257,14 @@ def _setup_py_version():
         if isinstance(node, ast.keyword) and node.arg == 'version' and \
                 isinstance(node.value, ast.Constant):
             return node.value.value
+    return None
+
+
+def _setup_py_constant(name):
+    tree = ast.parse((REPO_ROOT / 'setup.py').read_text())
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and [t.id for t in node.targets] == [name]:
+            return ast.literal_eval(node.value)
     return None
 
 

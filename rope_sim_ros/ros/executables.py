@@ -13,14 +13,15 @@
 # limitations under the License.
 
 """
-The console-script entry points: Ctrl-C at any moment of start-up ends quietly.
+The entry points of the executables: Ctrl-C at any moment of start-up ends quietly.
 
-A console script imports its module before it calls main(): for the nodes rclpy, numpy
-and numba, up to 0.7 s in which Ctrl-C raised KeyboardInterrupt out of an import and
-printed a traceback (6 of 6 tries in the first 0.5 s). These entry points import only the
-standard library; each imports its module and runs its main() inside a try, so that a
-Ctrl-C that main() does not handle itself exits with 130 (128 + SIGINT, what a shell
-reports for Ctrl-C) and no traceback. main() handles the later ones as before (exit 0).
+The launchers in bin/ (what colcon installs, what ros2 run runs) take SIGINT over in their
+first statements and call these. Each imports its module before it calls main(): for the
+nodes rclpy, numpy and numba, up to 0.7 s in which Ctrl-C raised KeyboardInterrupt out of
+an import and printed a traceback (6 of 6 tries in the first 0.5 s). These entry points
+import only the standard library; each imports its module and runs its main() inside a
+try, so that a Ctrl-C that main() does not handle itself exits with 130 (128 + SIGINT, what
+a shell reports for Ctrl-C) and no traceback. main() handles the later ones as before (exit 0).
 
 A Ctrl-C can also surface as another error: rclpy's signal handler shuts its context down
 first, so a node being created or rclpy.try_shutdown() racing it raised RCLError ('the
@@ -37,8 +38,7 @@ ignored in: <function RcutilsLogger.__del__ ...>' with a traceback and goes on (
 ran on). Here it is kept quiet, and the signal is sent again REDELIVERY s later, out of the
 destructor, unless main() is over.
 
-Before this module runs, the console script's own preamble (importlib.metadata, about
-50 ms after the process starts) is not covered.
+Before this module runs, the launcher's handler ends a Ctrl-C with 130; see bin/mooring_line.
 """
 
 import importlib
