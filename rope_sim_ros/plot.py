@@ -26,7 +26,8 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .bag import bag_info, BagError, BagInfo, deserialize, read_messages
+from .bag import bag_info, BagError, BagInfo, read_messages
+from .bag.cdr import decode_pose_array, decode_wrench
 from .params import LineParams
 from .runner import BOLLARD_TENSION, FAIRLEAD_TENSION, PARTICLES, topic_name
 from .simulator import load_materials
@@ -78,9 +79,9 @@ def read_tensions(path, namespace: str = '') -> Dict[str, TensionSeries]:
         topic = topic_name(namespace, _TENSION_TOPICS[end])
         times, values = [], []
         for message in read_messages(path, [topic]):
-            force = deserialize(message).force
+            force, _ = decode_wrench(message.data)
             times.append(message.log_time_ns)
-            values.append(float(np.linalg.norm([force.x, force.y, force.z])))
+            values.append(float(np.linalg.norm(force)))
         series[end] = TensionSeries(topic, np.array(times, dtype=np.int64),
                                     np.array(values, dtype=float))
     return series
@@ -130,11 +131,10 @@ def _shapes(path, namespace: str, count: int,
     picks = sorted(set(np.linspace(0, len(messages) - 1, count).round().astype(int).tolist()))
     shapes = []
     for i in picks:
-        msg = deserialize(messages[i])
+        poses = decode_pose_array(messages[i].data)[3]
         # on the tension plot's time axis (a node bag's stamps are epoch times)
         stamp = (messages[i].log_time_ns - start_ns) / 1e9
-        shapes.append((stamp, np.array(
-            [[p.position.x, p.position.y, p.position.z] for p in msg.poses])))
+        shapes.append((stamp, poses[:, :3]))
     return shapes
 
 

@@ -45,8 +45,7 @@ import signal
 import sys
 import time
 
-from geometry_msgs.msg import Wrench
-from rope_sim_ros.bag import BagWriter
+from rope_sim_ros.bag import BagWriter, cdr
 
 signal.signal(signal.SIGINT, signal.default_int_handler)
 bag = BagWriter(sys.argv[1])
@@ -55,8 +54,7 @@ print('recording', flush=True)
 k = 0
 try:
     while True:
-        message = Wrench()
-        message.force.x = float(k)
+        message = cdr.wrench((float(k), 0.0, 0.0), (0.0, 0.0, 0.0))
         # Ctrl-C between the write and the count would make them disagree by one
         signal.pthread_sigmask(signal.SIG_BLOCK, {{signal.SIGINT}})
         bag.write('{topic}', message, time.time_ns())

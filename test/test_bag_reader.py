@@ -29,7 +29,7 @@ from geometry_msgs.msg import PoseStamped
 from mcap.reader import make_reader
 import pytest
 from rclpy.serialization import deserialize_message
-from rope_sim_ros.bag import bag_info, BagError, BagWriter, read_messages, recover
+from rope_sim_ros.bag import bag_info, BagError, BagWriter, cdr, read_messages, recover
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
 import yaml
@@ -42,11 +42,8 @@ TOPIC = '/mooring_line/fairlead/pose'
 
 
 def pose(k):
-    message = PoseStamped()
-    message.header.frame_id = 'ship'
-    message.pose.position.x = float(k)
-    message.pose.position.z = -0.5 * k
-    return message
+    """Return the CDR bytes of a PoseStamped at x = k, z = -k / 2."""
+    return cdr.pose_stamped(0, 0, 'ship', (float(k), 0.0, -0.5 * k, 0.0, 0.0, 0.0, 1.0))
 
 
 def check_values(records):

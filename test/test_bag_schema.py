@@ -15,6 +15,10 @@
 """
 The schema text and type hash rope_sim_ros.bag embeds, against the files and two decoders.
 
+rope_sim_ros.bag carries its own copy of the .msg texts and hashes (bag/definitions.py) so
+that it needs no ROS; rope_sim_ros.ros2bag.schema reads the installed ones. The copy is
+checked here against the installed files, so it cannot go stale unnoticed.
+
 The expected PoseStamped text is spelled out by hand from rosbag2_storage_mcap's rule (root
 file, then each nested type once, depth-first, in sorted order) so that a change of order
 or delimiter shows here, not in somebody's replay tool.
@@ -30,6 +34,7 @@ import pytest
 from rclpy.serialization import serialize_message
 from rope_sim_ros.bag import BagError
 from rope_sim_ros.bag import schema
+from rope_sim_ros.ros2bag import schema as installed
 from rosbags.typesys import get_types_from_msg, get_typestore, Stores
 
 with warnings.catch_warnings():
@@ -147,3 +152,41 @@ def test_bad_type_names_are_refused(bad):
 def test_unknown_package_is_named():
     with pytest.raises(BagError, match='no_such_msgs'):
         schema.type_hash('no_such_msgs/msg/Thing')
+    with pytest.raises(BagError, match='no_such_msgs.*not in the ament index'):
+        installed.type_hash('no_such_msgs/msg/Thing')
+
+
+def test_a_type_not_carried_is_left_to_the_ros_side():
+    with pytest.raises(BagError, match="'sensor_msgs/msg/Imu' is not one.*RosBagWriter"):
+        schema.message_definition('sensor_msgs/msg/Imu')
+    text = installed.message_definition('sensor_msgs/msg/Imu')
+    assert text.startswith(msg_file('sensor_msgs', 'Imu'))
+    assert DELIMITER + 'MSG: geometry_msgs/Quaternion\n' in text
+
+
+def test_definitions_py_is_what_is_installed():
+    """bag/definitions.py is exactly what `python -m rope_sim_ros.ros2bag` prints now."""
+    path = os.path.join(os.path.dirname(schema.__file__), 'definitions.py')
+    with open(path, encoding='utf-8') as stream:
+        current = stream.read()
+    assert current == installed.definitions_source(), (
+        'rope_sim_ros/bag/definitions.py differs from the installed message definitions; '
+        'regenerate it: python -m rope_sim_ros.ros2bag > rope_sim_ros/bag/definitions.py')
+
+
+@pytest.mark.parametrize('type_name', installed.RECORDED_TYPES)
+def test_carried_types_equal_the_installed_ones(type_name):
+    assert set(installed.closure([type_name])) <= set(schema.known_types())
+    assert schema.message_definition(type_name) == installed.message_definition(type_name)
+    assert schema.type_hash(type_name) == installed.type_hash(type_name)
+    # every field of the Python class is in the text (the class and the files agree)
+    package, _, name = type_name.split('/')
+    text = msg_file(package, name)
+    for field in installed.message_class(type_name).get_fields_and_field_types():
+        assert f' {field}' in text, (type_name, field)
+
+
+def test_every_carried_type_is_installed_verbatim():
+    for type_name in schema.known_types():
+        package, _, name = type_name.split('/')
+        assert schema.msg_text(type_name) == msg_file(package, name), type_name

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-BagWriter against rosbag2 Jazzy's layout, read back by rosbags and by mcap_ros2.
+BagWriter and RosBagWriter against rosbag2 Jazzy's layout, read back by rosbags and mcap_ros2.
 
 Every number written (times, poses, forces, counts, QoS, hashes) is read back through
 two readers that share no code with ours, and metadata.yaml is compared with the copy
@@ -32,9 +32,11 @@ import pytest
 from rclpy.duration import Duration
 from rclpy.qos import QoSDurabilityPolicy, QoSProfile, QoSReliabilityPolicy
 from rclpy.serialization import deserialize_message, serialize_message
-from rope_sim_ros.bag import BagError, BagWriter, deserialize, read_messages
+from rope_sim_ros.bag import BagError, BagWriter, cdr, read_messages
 from rope_sim_ros.bag import schema
 from rope_sim_ros.bag import storage
+from rope_sim_ros.bag.metadata import DEFAULT_QOS
+from rope_sim_ros.ros2bag import deserialize, qos_to_dict, RosBagWriter
 from rosbags.interfaces import QosDurability, QosReliability
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
@@ -124,7 +126,7 @@ def build(topic, k):
 def recorded(tmp_path_factory):
     """Record N_STEPS of each topic; the tension topic is written as raw CDR bytes."""
     path = tmp_path_factory.mktemp('bags') / 'mooring_run'
-    with BagWriter(path, chunk_size=4096, custom_data={'material': 'nylon'}) as bag:
+    with RosBagWriter(path, chunk_size=4096, custom_data={'material': 'nylon'}) as bag:
         for topic, type_name in TOPICS.items():
             bag.add_topic(topic, type_name, TENSION_QOS if 'tension' in topic else None)
         for k in range(N_STEPS):
@@ -316,7 +318,7 @@ def test_read_only_location_is_reported_at_construction(tmp_path):
 
 
 def test_topic_and_type_checks(tmp_path):
-    with BagWriter(tmp_path / 'run') as bag:
+    with RosBagWriter(tmp_path / 'run') as bag:
         with pytest.raises(BagError, match='fully qualified'):
             bag.add_topic('fairlead/pose', 'geometry_msgs/msg/PoseStamped')
         bag.add_topic('/p', 'geometry_msgs/msg/PoseStamped')
@@ -329,6 +331,52 @@ def test_topic_and_type_checks(tmp_path):
             bag.write('/p', Wrench(), T0)
     assert bag.write('/p', PoseStamped(), T0) is False  # closed: dropped, not raised
     assert bag.dropped == 1
+
+
+def test_bytes_writer_takes_bytes_and_the_types_it_carries(tmp_path):
+    with BagWriter(tmp_path / 'run') as bag:
+        bag.add_topic('/w', 'geometry_msgs/msg/Wrench')
+        with pytest.raises(BagError, match='CDR bytes.*RosBagWriter'):
+            bag.write('/w', Wrench(), T0)
+        with pytest.raises(BagError, match="'sensor_msgs/msg/Imu'.*RosBagWriter"):
+            bag.add_topic('/imu', 'sensor_msgs/msg/Imu')
+        with pytest.raises(BagError, match='QoSProfile'):
+            bag.add_topic('/q', 'geometry_msgs/msg/Wrench', TENSION_QOS)
+        assert bag.write('/w', bytearray(cdr.wrench((1.0, 2.0, 3.0), (0.0, 0.0, 0.0))), T0)
+    assert [cdr.decode_wrench(r.data)[0].tolist() for r in read_messages(tmp_path / 'run')] \
+        == [[1.0, 2.0, 3.0]]
+    # the ROS side records any installed type
+    with RosBagWriter(tmp_path / 'imu') as bag:
+        bag.add_topic('/imu', 'sensor_msgs/msg/Imu')
+    assert bag_topics(tmp_path / 'imu') == {'/imu': 'sensor_msgs/msg/Imu'}
+
+
+def bag_topics(path):
+    with Reader(path) as reader:
+        return {c.topic: c.msgtype for c in reader.connections}
+
+
+def channel_records(path):
+    """Return (topic, schema name, schema text, channel metadata) of each channel."""
+    name = os.path.basename(path)
+    with open(os.path.join(path, name + '_0.mcap'), 'rb') as stream:
+        summary = make_reader(stream).get_summary()
+    return sorted((c.topic, summary.schemas[c.schema_id].name,
+                   summary.schemas[c.schema_id].data, dict(c.metadata))
+                  for c in summary.channels.values())
+
+
+def test_bytes_writer_stores_what_the_ros_writer_stores(tmp_path):
+    """Schemas, hashes and QoS from stored data equal those read from the installed ROS."""
+    qos = {name: (TENSION_QOS if 'tension' in name else None) for name in TOPICS}
+    with RosBagWriter(tmp_path / 'ros') as bag:
+        for name, type_name in TOPICS.items():
+            bag.add_topic(name, type_name, qos[name])
+    with BagWriter(tmp_path / 'plain') as bag:
+        for name, type_name in TOPICS.items():
+            bag.add_topic(name, type_name, qos[name] and qos_to_dict(qos[name]))
+    assert channel_records(tmp_path / 'plain') == channel_records(tmp_path / 'ros')
+    assert qos_to_dict(QoSProfile(depth=10)) == DEFAULT_QOS
 
 
 def stall_writes(monkeypatch):
@@ -347,7 +395,7 @@ def stall_writes(monkeypatch):
 
 def test_full_queue_drops_and_counts_without_blocking(tmp_path, monkeypatch):
     entered, release = stall_writes(monkeypatch)
-    bag = BagWriter(tmp_path / 'stalled', queue_size=4)
+    bag = RosBagWriter(tmp_path / 'stalled', queue_size=4)
     bag.add_topic('/t', 'geometry_msgs/msg/Wrench')
     assert bag.write('/t', wrench(0), T0)
     assert entered.wait(5)  # the thread holds message 0 and waits on the "disk"
@@ -374,7 +422,7 @@ def test_disk_error_stops_recording_and_is_raised_at_close(tmp_path, monkeypatch
 
     monkeypatch.setattr(storage.McapFile, 'flush_stream', full_disk)
     monkeypatch.setattr(storage.McapFile, 'flush_chunk', full_disk)
-    bag = BagWriter(tmp_path / 'full')
+    bag = RosBagWriter(tmp_path / 'full')
     bag.add_topic('/t', 'geometry_msgs/msg/Wrench')
     assert bag.write('/t', wrench(0), T0)  # queued; the thread fails on it
     deadline = time.monotonic() + 5

@@ -198,18 +198,21 @@ def test_existing_bag_directory_is_refused(run, tmp_path, capsys):
 
 @pytest.mark.parametrize('frame_id', ['', 'a', 'abc', 'abcd', 'world', 'ship/base_link'])
 def test_numpy_cdr_equals_rclpy_serialization(frame_id):
-    """The runner's fast encoders: rclpy's bytes, but with zero padding."""
-    from geometry_msgs.msg import PoseArray, PoseStamped
+    """The runner's encoders: the node's messages as rclpy serialises them, zero padding."""
+    from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
     from rclpy.serialization import deserialize_message, serialize_message
-    from rope_sim_ros.runner import (particles_cdr, particles_message, pose_stamped,
-                                     pose_stamped_cdr)
+    from rope_sim_ros.ros.conversions import ns_to_stamp, pose_array, wrench
+    from rope_sim_ros.runner import particles_cdr, pose_stamped_cdr, wrench_cdr
     points = np.random.default_rng(7).normal(size=(SEGMENTS + 1, 3)) * 20.0
     ns = 1_767_225_600_123_456_789
+    pose = PoseStamped()
+    pose.header.stamp, pose.header.frame_id = ns_to_stamp(ns), frame_id
+    pose.pose.position.x, pose.pose.position.y, pose.pose.position.z = points[3].tolist()
+    pose.pose.orientation.w = 1.0
     for ours, message, cls in (
-            (particles_cdr(ns, frame_id, points), particles_message(ns, frame_id, points),
-             PoseArray),
-            (pose_stamped_cdr(ns, frame_id, points[3]), pose_stamped(ns, frame_id, points[3]),
-             PoseStamped)):
+            (particles_cdr(ns, frame_id, points), pose_array(points, frame_id, ns), PoseArray),
+            (pose_stamped_cdr(ns, frame_id, points[3]), pose, PoseStamped),
+            (wrench_cdr(points[0], points[1]), wrench(points[0], points[1]), Wrench)):
         theirs = serialize_message(message)
         assert len(ours) == len(theirs)
         assert deserialize_message(ours, cls) == message

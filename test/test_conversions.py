@@ -12,7 +12,13 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Unit tests of rope_sim_ros.ros.conversions: pose ⊕ offset, quaternions, messages, stamps."""
+"""
+Unit tests of rope_sim_ros.frames and its message wrappers in rope_sim_ros.ros.conversions.
+
+Pose ⊕ offset, quaternions, messages and stamps: frames does the arithmetic on plain
+numbers (the offline runner's way), conversions on geometry_msgs objects (the node's); both
+must give the same numbers and the same errors.
+"""
 
 import math
 
@@ -20,6 +26,7 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Pose, Quaternion
 import numpy as np
 import pytest
+from rope_sim_ros import frames
 from rope_sim_ros.ros import conversions
 
 
@@ -68,6 +75,32 @@ def test_non_unit_quaternion_is_normalised():
 def test_bad_poses_are_refused(position, orientation, reason):
     with pytest.raises(conversions.PoseError, match=reason):
         conversions.pose_point(pose(position, orientation), [0.0, 0.0, 0.0])
+    with pytest.raises(frames.PoseError, match=reason) as info:
+        frames.pose_point(position, orientation, [0.0, 0.0, 0.0])
+    assert isinstance(info.value, ValueError)
+
+
+def test_frames_and_messages_give_the_same_point():
+    rng = np.random.default_rng(7)
+    for _ in range(100):
+        position, orientation = rng.normal(scale=20.0, size=3), rng.normal(size=4)
+        offset = rng.normal(scale=3.0, size=3)
+        plain = frames.pose_point(position, orientation, offset)
+        wrapped = conversions.pose_point(pose(position, orientation), offset)
+        assert plain.point.tolist() == wrapped.point.tolist()
+        assert plain.lever.tolist() == wrapped.lever.tolist()
+        assert plain.quaternion_norm == wrapped.quaternion_norm
+        q, norm = frames.unit_quaternion(orientation)
+        assert np.allclose(plain.lever, frames.rotate(q, offset), atol=1e-12)
+        assert norm == pytest.approx(np.linalg.norm(orientation))
+        assert np.allclose(plain.point, position + plain.lever)
+
+
+def test_stamp_ns_and_split_ns():
+    assert frames.stamp_ns(12, 5) == 12_000_000_005
+    assert frames.split_ns(12_000_000_005) == (12, 5)
+    assert frames.split_ns(-1) == (-1, 999_999_999)
+    assert frames.stamp_ns(*frames.split_ns(-1)) == -1
 
 
 def test_unit_quaternion():

@@ -22,7 +22,7 @@ from matplotlib import image
 import numpy as np
 import pytest
 from rope_sim_ros import cli
-from rope_sim_ros.bag import bag_info, BagWriter
+from rope_sim_ros.bag import bag_info, BagWriter, cdr
 from rope_sim_ros.plot import read_tensions
 
 
@@ -86,13 +86,11 @@ def test_info_counts_duration_and_peaks(recorded, capsys):
 
 
 def test_recover_completes_a_cut_bag(tmp_path, capsys):
-    from geometry_msgs.msg import Wrench
     cut = tmp_path / 'cut'
     writer = BagWriter(cut, chunk_size=2048)
     writer.add_topic('/fairlead/tension', 'geometry_msgs/msg/Wrench')
     for k in range(400):
-        wrench = Wrench()
-        wrench.force.x = float(k)
+        wrench = cdr.wrench((float(k), 0.0, 0.0), (0.0, 0.0, 0.0))
         writer.write('/fairlead/tension', wrench, k * 10_000_000)
     writer.close()
     (cut / 'metadata.yaml').unlink()

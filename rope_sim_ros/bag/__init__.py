@@ -15,17 +15,19 @@
 """
 rosbag2-compatible (ROS 2 Jazzy, MCAP storage) bag writing, reading and recovery.
 
-BagWriter records from a background thread to `<dir>/<dir name>_0.mcap` and writes
-`<dir>/metadata.yaml` at close; read_messages() and deserialize() read a bag back (also
-one whose recorder was killed), bag_info() summarises it and recover() makes a killed
-recording a complete bag again.
+BagWriter records CDR bytes (cdr.py encodes and decodes the types we record) from a
+background thread to `<dir>/<dir name>_0.mcap` and writes `<dir>/metadata.yaml` at close;
+read_messages() reads a bag back (also one whose recorder was killed), bag_info()
+summarises it and recover() makes a killed recording a complete bag again.
+
+This package imports no ROS: the offline commands write and read bags without it. Message
+objects, QoS profiles and types beyond those in definitions.py are rope_sim_ros.ros2bag's.
 """
 
 from .errors import BagError
 from .reader import bag_info
 from .reader import BagInfo
 from .reader import BagMessage
-from .reader import deserialize
 from .reader import read_messages
 from .reader import TopicInfo
 from .recover import recover
@@ -37,7 +39,6 @@ __all__ = [
     'BagMessage',
     'BagWriter',
     'bag_info',
-    'deserialize',
     'read_messages',
     'recover',
     'TopicInfo',

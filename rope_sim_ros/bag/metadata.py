@@ -24,7 +24,6 @@ string in the MCAP channel metadata.
 import dataclasses
 from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Union
 
-from rclpy.qos import QoSProfile
 import yaml
 
 from .errors import BagError
@@ -92,81 +91,62 @@ class FileRecord:
         return max(0, self.end_ns - self.start_ns) if self.message_count else 0
 
 
-def _duration(nanoseconds: int) -> Dict[str, int]:
-    # rmw_time_t: whole seconds and the nanoseconds beyond them.
+def duration_dict(nanoseconds: int) -> Dict[str, int]:
+    """Return a duration [ns] as rosbag2 writes a QoS duration (rmw_time_t: sec, nsec)."""
     return {'sec': nanoseconds // 10**9, 'nsec': nanoseconds % 10**9}
 
 
-# What DDS (and so the ROS graph rosbag2 records from) makes of a policy left at
-# system_default: the DDS specification's DataWriter defaults.
-_DDS_DEFAULTS = {
+#: The keys of one offered QoS profile in rosbag2's version 9 form, in rosbag2's order.
+QOS_KEYS = (
+    'history', 'depth', 'reliability', 'durability', 'deadline', 'lifespan', 'liveliness',
+    'liveliness_lease_duration', 'avoid_ros_namespace_conventions')
+
+#: rclpy's default publisher profile (keep_last 10, reliable, volatile) as `ros2 bag record`
+#: stores it: the durations it leaves unspecified are infinite, liveliness automatic.
+DEFAULT_QOS: Dict[str, Any] = {
     'history': 'keep_last',
+    'depth': 10,
     'reliability': 'reliable',
     'durability': 'volatile',
+    'deadline': duration_dict(INFINITE_NS),
+    'lifespan': duration_dict(INFINITE_NS),
     'liveliness': 'automatic',
+    'liveliness_lease_duration': duration_dict(INFINITE_NS),
+    'avoid_ros_namespace_conventions': False,
 }
 
-
-def _policy(kind: str, value: Any) -> str:
-    # rmw_qos_*_policy_to_str spells the enum names in lower case.
-    name = value.name.lower()
-    return _DDS_DEFAULTS[kind] if name == 'system_default' else name
-
-
-def qos_to_dict(profile: QoSProfile) -> Dict[str, Any]:
-    """
-    Return one QoS profile in rosbag2's version 9 form.
-
-    Policies left at system_default and durations left unspecified (0) are written as
-    DDS resolves them (keep_last, reliable, volatile, automatic, infinite), which is what
-    the ROS graph reports for such a publisher and so what `ros2 bag record` stores.
-
-    :param profile: The offered QoS of the publisher.
-
-    :returns: A dict with the keys and order of rosbag2's Rosbag2QoS encoding.
-    """
-    def duration(value: Any) -> Dict[str, int]:
-        nanoseconds = value.nanoseconds
-        return _duration(INFINITE_NS if nanoseconds == 0 else nanoseconds)
-
-    return {
-        'history': _policy('history', profile.history),
-        'depth': int(profile.depth),
-        'reliability': _policy('reliability', profile.reliability),
-        'durability': _policy('durability', profile.durability),
-        'deadline': duration(profile.deadline),
-        'lifespan': duration(profile.lifespan),
-        'liveliness': _policy('liveliness', profile.liveliness),
-        'liveliness_lease_duration': duration(profile.liveliness_lease_duration),
-        'avoid_ros_namespace_conventions': bool(profile.avoid_ros_namespace_conventions),
-    }
-
-
-QosSpec = Union[None, QoSProfile, Sequence[QoSProfile]]
+#: None (DEFAULT_QOS), one profile or one per publisher, each a dict with QOS_KEYS.
+QosSpec = Union[None, Mapping[str, Any], Sequence[Mapping[str, Any]]]
 
 
 def qos_profiles_yaml(qos: QosSpec) -> str:
     """
     Return the offered_qos_profiles string of MCAP channel metadata.
 
-    :param qos: One profile, several (one per publisher) or None for rclpy's default
-        publisher profile (keep_last 10, reliable, volatile).
+    :param qos: One profile, several (one per publisher) or None for DEFAULT_QOS; each a
+        dict with the keys QOS_KEYS (rope_sim_ros.ros2bag.qos_to_dict makes one of an rclpy
+        QoSProfile).
 
     :returns: The YAML list as rosbag2's serialize_rclcpp_qos_vector dumps it.
 
-    :raises BagError: qos is not a QoSProfile or a sequence of them.
+    :raises BagError: qos is not such a dict or a sequence of them.
     """
     if qos is None:
-        profiles = [QoSProfile(depth=10)]
-    elif isinstance(qos, QoSProfile):
+        profiles = [DEFAULT_QOS]
+    elif isinstance(qos, Mapping):
         profiles = [qos]
-    else:
+    elif isinstance(qos, Sequence) and not isinstance(qos, (str, bytes)):
         profiles = list(qos)
-    if not all(isinstance(profile, QoSProfile) for profile in profiles):
+    else:
+        profiles = [qos]
+    if not all(isinstance(profile, Mapping) and set(profile) == set(QOS_KEYS)
+               for profile in profiles):
         raise BagError(
-            f'offered QoS {qos!r} is not understood: pass an rclpy.qos.QoSProfile, '
-            'a list of them, or None for the default publisher profile')
-    return _dump([qos_to_dict(profile) for profile in profiles]).rstrip('\n')
+            f'offered QoS {qos!r} is not understood: pass a dict with the keys '
+            f'{", ".join(QOS_KEYS)} (rosbag2\'s form), a list of them, or None for the '
+            'default publisher profile; rope_sim_ros.ros2bag.RosBagWriter takes rclpy '
+            'QoSProfile objects')
+    return _dump([{key: profile[key] for key in QOS_KEYS} for profile in profiles]).rstrip('\n')
 
 
 def parse_qos_profiles(text: str) -> List[Dict[str, Any]]:

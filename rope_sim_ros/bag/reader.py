@@ -31,12 +31,10 @@ from mcap.exceptions import McapError
 from mcap.reader import SeekingReader
 from mcap.records import Channel, Chunk, Message, Metadata, Schema
 from mcap.stream_reader import breakup_chunk, StreamReader
-from rclpy.serialization import deserialize_message
 
 from . import metadata as meta
 from . import storage
 from .errors import BagError
-from .schema import message_class
 
 # First and last 8 bytes of a complete MCAP file.
 _MAGIC = b'\x89MCAP0\r\n'
@@ -54,7 +52,8 @@ class BagMessage(NamedTuple):
     :ivar type_name: Message type, 'pkg/msg/Type'.
     :ivar log_time_ns: Receive/record time [ns].
     :ivar publish_time_ns: Send time [ns].
-    :ivar data: The serialized (CDR) message.
+    :ivar data: The serialized (CDR) message: bag.cdr decodes the types we record,
+        rope_sim_ros.ros2bag.deserialize() makes any type an rclpy message object.
     """
 
     topic: str
@@ -260,19 +259,6 @@ def read_messages(
     wanted = None if topics is None else frozenset(topics)
     for name in bag_files(path):
         yield from _read_file(name, wanted)
-
-
-def deserialize(message: BagMessage) -> Any:
-    """
-    Turn a BagMessage back into its rclpy message object.
-
-    :param message: A record from read_messages().
-
-    :returns: The message, e.g. a geometry_msgs.msg.PoseStamped.
-
-    :raises BagError: the type has no Python class here.
-    """
-    return deserialize_message(message.data, message_class(message.type_name))
 
 
 def _file_info(path: str) -> Tuple[Dict[str, TopicInfo], int, int, int, bool]:

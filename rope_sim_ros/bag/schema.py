@@ -17,22 +17,18 @@ Message definitions and type hashes as rosbag2 Jazzy embeds them in MCAP schemas
 
 rosbag2_storage_mcap (message_definition_cache.cpp) stores for each type the root .msg
 file verbatim, then every nested type once, depth-first in sorted order, each preceded by
-a newline, a line of 80 '=' and 'MSG: pkg/Type'. The files come from the ament index
-(AMENT_PREFIX_PATH), exactly where rosbag2 looks for them, so a bag written here carries
-the same schema text a `ros2 bag record` of the same topics would.
+a newline, a line of 80 '=' and 'MSG: pkg/Type'. rosbag2 reads the .msg files from the
+ament index; here they come from definitions.py, a copy of them for the types this package
+records, so that the offline commands write the very schema a `ros2 bag record` would
+without ROS installed (a test compares the copy with the installed files). Other types are
+the ROS side's business: rope_sim_ros.ros2bag reads them from the ament index.
 """
 
 import functools
-import importlib
-import json
-import os
 import re
-import sys
-from typing import Tuple
+from typing import Callable, Tuple
 
-from ament_index_python.packages import get_package_share_directory
-from ament_index_python.packages import PackageNotFoundError
-
+from .definitions import DEFINITIONS
 from .errors import BagError
 
 #: MCAP schema encoding of a .msg text (ros2 profile).
@@ -45,7 +41,7 @@ _TYPE_NAME = re.compile(r'^([a-zA-Z][a-zA-Z0-9_]*)/(?:msg/)?([a-zA-Z][a-zA-Z0-9_
 _FIELD_TYPE = re.compile(r'(?:^|\n)\s*([a-zA-Z0-9_/]+)(?:\[[^\]]*\])?\s+')
 _PRIMITIVES = frozenset((
     'bool', 'byte', 'char', 'float32', 'float64', 'int8', 'uint8', 'int16', 'uint16',
-    'int32', 'uint32', 'int64', 'uint64', 'string'))
+    'int32', 'uint32', 'int64', 'uint64', 'string', 'wstring'))
 _DELIMITER = '=' * 80 + '\n'
 # rosbag2 gives up at this depth; a deeper nesting would be a cycle.
 _MAX_DEPTH = 50
@@ -61,7 +57,7 @@ def split_type_name(type_name: str) -> Tuple[str, str]:
 
     :raises BagError: the name is not of the form pkg/msg/Type.
     """
-    match = _TYPE_NAME.match(type_name)
+    match = _TYPE_NAME.match(type_name) if isinstance(type_name, str) else None
     if match is None:
         raise BagError(
             f'message type {type_name!r} is not understood: expected pkg/msg/Type, '
@@ -83,36 +79,33 @@ def canonical_type_name(type_name: str) -> str:
     return f'{package}/msg/{name}'
 
 
-def _interface_file(type_name: str, extension: str) -> str:
-    package, name = split_type_name(type_name)
+def known_types() -> Tuple[str, ...]:
+    """Return the message types whose definitions this package carries, sorted."""
+    return tuple(sorted(DEFINITIONS))
+
+
+def _stored(type_name: str) -> Tuple[str, str]:
+    canonical = canonical_type_name(type_name)
     try:
-        share = get_package_share_directory(package)
-    except (PackageNotFoundError, LookupError, OSError) as exc:
-        # ROS 2 from PyPI wheels keeps share/ in the Python prefix, which a shell that has
-        # sourced no setup file does not name in AMENT_PREFIX_PATH
-        share = os.path.join(sys.prefix, 'share', package)
-        if os.path.isdir(os.path.join(share, 'msg')):
-            return os.path.join(share, 'msg', name + extension)
+        return DEFINITIONS[canonical]
+    except KeyError:
         raise BagError(
-            f'message package {package!r} of type {type_name!r} is not in the ament index '
-            f'(AMENT_PREFIX_PATH={os.environ.get("AMENT_PREFIX_PATH", "")!r}): {exc}; '
-            'install the package or add its prefix to AMENT_PREFIX_PATH') from None
-    return os.path.join(share, 'msg', name + extension)
+            f'message type {canonical!r} is not one this package records without ROS '
+            f'({", ".join(known_types())}); record other types through '
+            'rope_sim_ros.ros2bag.RosBagWriter, which reads the installed definitions') from None
 
 
-@functools.lru_cache(maxsize=None)
-def _msg_text(type_name: str) -> str:
-    path = _interface_file(type_name, '.msg')
-    try:
-        with open(path, encoding='utf-8', newline='') as stream:
-            return stream.read()
-    except OSError as exc:
-        raise BagError(
-            f'cannot read the definition of {type_name!r} from {path}: {exc.strerror}; '
-            'only message types with a .msg file in share/<pkg>/msg are supported') from None
+def msg_text(type_name: str) -> str:
+    """
+    Return the .msg file text of a message type, as installed in share/<pkg>/msg.
+
+    :raises BagError: the name is malformed or the type is not one of known_types().
+    """
+    return _stored(type_name)[0]
 
 
-def _dependencies(text: str, package: str) -> list:
+def dependencies(text: str, package: str) -> list:
+    """Return the nested message types a .msg text names, as rosbag2 finds and orders them."""
     found = set()
     for match in _FIELD_TYPE.finditer(text):
         field_type = match.group(1)
@@ -123,16 +116,16 @@ def _dependencies(text: str, package: str) -> list:
     return sorted(found)
 
 
-@functools.lru_cache(maxsize=None)
-def message_definition(type_name: str) -> str:
+def expand_definition(type_name: str, text_of: Callable[[str], str]) -> str:
     """
-    Return the full ros2msg definition of a message type as rosbag2 Jazzy embeds it.
+    Return a type's full ros2msg definition from its own and its nested types' .msg texts.
 
     :param type_name: 'pkg/msg/Type' (or 'pkg/Type').
+    :param text_of: returns the .msg text of a type named 'pkg/Type' or 'pkg/msg/Type'.
 
     :returns: The root .msg text followed by each nested type's text, depth-first and sorted.
 
-    :raises BagError: the type is unknown or its .msg files cannot be read.
+    :raises BagError: the name is malformed, a text cannot be had or the nesting is a cycle.
     """
     seen = set()
 
@@ -142,9 +135,9 @@ def message_definition(type_name: str) -> str:
                 f'the definition of {type_name!r} nests deeper than {_MAX_DEPTH} levels; '
                 'message types must not be recursive')
         package, _ = split_type_name(name)
-        text = _msg_text(name)
+        text = text_of(name)
         parts = [text]
-        for dependency in _dependencies(text, package):
+        for dependency in dependencies(text, package):
             if dependency not in seen:
                 seen.add(dependency)
                 parts.append('\n' + _DELIMITER + 'MSG: ' + dependency + '\n')
@@ -155,47 +148,27 @@ def message_definition(type_name: str) -> str:
 
 
 @functools.lru_cache(maxsize=None)
+def message_definition(type_name: str) -> str:
+    """
+    Return the full ros2msg definition of a message type as rosbag2 Jazzy embeds it.
+
+    :param type_name: 'pkg/msg/Type' (or 'pkg/Type'), one of known_types().
+
+    :returns: The root .msg text followed by each nested type's text, depth-first and sorted.
+
+    :raises BagError: the name is malformed or the type is not one of known_types().
+    """
+    return expand_definition(type_name, msg_text)
+
+
 def type_hash(type_name: str) -> str:
     """
     Return the RIHS01 type description hash of a message type.
 
-    :param type_name: 'pkg/msg/Type' (or 'pkg/Type').
+    :param type_name: 'pkg/msg/Type' (or 'pkg/Type'), one of known_types().
 
-    :returns: The 'RIHS01_<sha256>' string from share/<pkg>/msg/<Type>.json.
+    :returns: The 'RIHS01_<sha256>' string of share/<pkg>/msg/<Type>.json.
 
-    :raises BagError: the .json file is missing, unreadable or does not list the type.
+    :raises BagError: the name is malformed or the type is not one of known_types().
     """
-    canonical = canonical_type_name(type_name)
-    path = _interface_file(type_name, '.json')
-    try:
-        with open(path, encoding='utf-8') as stream:
-            hashes = json.load(stream)['type_hashes']
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        raise BagError(
-            f'cannot read the type hash of {canonical!r} from {path}: {exc}; '
-            'a Jazzy message package installs share/<pkg>/msg/<Type>.json') from None
-    for entry in hashes:
-        if entry.get('type_name') == canonical:
-            return entry['hash_string']
-    raise BagError(f'{path} has no type hash for {canonical!r}; expected a "type_hashes" entry')
-
-
-@functools.lru_cache(maxsize=None)
-def message_class(type_name: str) -> type:
-    """
-    Import the Python class of a message type.
-
-    :param type_name: 'pkg/msg/Type' (or 'pkg/Type').
-
-    :returns: The generated rosidl class, e.g. geometry_msgs.msg.PoseStamped.
-
-    :raises BagError: the package has no Python message module or lacks the type.
-    """
-    package, name = split_type_name(type_name)
-    try:
-        module = importlib.import_module(f'{package}.msg')
-        return getattr(module, name)
-    except (ImportError, AttributeError) as exc:
-        raise BagError(
-            f'cannot import the Python class of {type_name!r}: {exc}; '
-            f'the package {package!r} must be installed with its Python bindings') from None
+    return _stored(type_name)[1]

@@ -13,9 +13,10 @@
 # limitations under the License.
 
 """
-BagWriter: record messages to a rosbag2 Jazzy MCAP bag from a background thread.
+BagWriter: record CDR messages to a rosbag2 Jazzy MCAP bag from a background thread.
 
-The caller's write() only serialises and enqueues, so a slow or stalled disk never
+The caller's write() only enqueues bytes (cdr.py encodes them; rope_sim_ros.ros2bag's
+RosBagWriter takes message objects and rclpy QoS profiles), so a slow or stalled disk never
 stalls a simulation step; a full queue drops the message and counts it. The thread
 writes chunks of at most chunk_size bytes and finishes the chunk in progress at least
 every flush_interval seconds, so a killed process leaves a bag readable up to the last
@@ -29,14 +30,11 @@ import threading
 import time
 from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
-from rclpy.serialization import serialize_message
-
 from . import metadata as meta
 from . import schema
 from . import storage
 from .errors import BagError
 
-_LOG = logging.getLogger(__name__)
 # Tells the thread that close() was called and everything before it is queued.
 _STOP = object()
 
@@ -49,7 +47,10 @@ class BagWriter:
 
         with BagWriter('run1') as bag:
             bag.add_topic('/fairlead/tension', 'geometry_msgs/msg/Wrench')
-            bag.write('/fairlead/tension', wrench, now_ns)
+            bag.write('/fairlead/tension', cdr.wrench(force, torque), now_ns)
+
+    The types it can record are those of schema.known_types(); errors are logged to the
+    logger named after the class's module.
     """
 
     DEFAULT_QUEUE_SIZE = 10000
@@ -95,8 +96,8 @@ class BagWriter:
                                       custom_data=self._custom_data)
         self._flush_interval = float(flush_interval)
         self._queue: 'queue.Queue[Any]' = queue.Queue(queue_size)
-        # Topic name -> (type name, message class), filled by add_topic().
-        self._topics: Dict[str, Tuple[str, type]] = {}
+        # Topic name -> type name, filled by add_topic().
+        self._topics: Dict[str, str] = {}
         self._pending: List[Tuple[meta.TopicRecord, str]] = []
         self._lock = threading.Lock()
         self._dropped = 0
@@ -137,8 +138,9 @@ class BagWriter:
         Register a topic before writing to it (again with the same type: no effect).
 
         :param name: Fully qualified topic name, e.g. '/mooring_line/fairlead/tension'.
-        :param type_name: Message type, 'pkg/msg/Type'.
-        :param qos: The publisher's offered QoS profile(s); None for rclpy's default.
+        :param type_name: Message type, 'pkg/msg/Type', one of schema.known_types().
+        :param qos: The publisher's offered QoS profile(s) as rosbag2 dicts (see
+            metadata.qos_profiles_yaml); None for rclpy's default publisher profile.
 
         :raises BagError: the bag is closed, the name is not absolute, the type is unknown
             or the topic was added before with another type.
@@ -152,19 +154,37 @@ class BagWriter:
         canonical = schema.canonical_type_name(type_name)
         known = self._topics.get(name)
         if known is not None:
-            if known[0] != canonical:
+            if known != canonical:
                 raise BagError(
-                    f'bag {self._path}: topic {name} is recorded as {known[0]} already, '
+                    f'bag {self._path}: topic {name} is recorded as {known} already, '
                     f'cannot add it again as {canonical}; one type per topic')
             return
-        record = meta.TopicRecord(
-            name, canonical, meta.qos_profiles_yaml(qos), schema.type_hash(canonical))
-        definition = schema.message_definition(canonical)
-        cls = schema.message_class(canonical)
+        definition, type_hash = self._describe(canonical)
+        record = meta.TopicRecord(name, canonical, self._qos_yaml(qos), type_hash)
         with self._lock:
             # Queued for the thread before write() can accept a message on the topic.
             self._pending.append((record, definition))
-            self._topics[name] = (canonical, cls)
+            self._topics[name] = canonical
+
+    def _describe(self, type_name: str) -> Tuple[str, str]:
+        """Return the MCAP schema text and the type hash of a canonical type name."""
+        return schema.message_definition(type_name), schema.type_hash(type_name)
+
+    def _qos_yaml(self, qos: Any) -> str:
+        """Return the offered_qos_profiles string of the qos given to add_topic()."""
+        return meta.qos_profiles_yaml(qos)
+
+    def topic_type(self, topic: str) -> str:
+        """
+        Return the type a topic was added with.
+
+        :raises BagError: the topic was not added.
+        """
+        known = self._topics.get(topic)
+        if known is None:
+            raise BagError(
+                f'bag {self._path}: topic {topic!r} was not added; call add_topic() first')
+        return known
 
     def write(
         self,
@@ -177,28 +197,24 @@ class BagWriter:
         Queue one message for recording; never blocks on the disk.
 
         :param topic: A topic registered with add_topic().
-        :param message: The message object, or its CDR bytes as received.
+        :param message: The message's CDR bytes (bytes, bytearray or memoryview), e.g. from
+            cdr.py or as received.
         :param log_time_ns: Receive/record time [ns] (MCAP log_time).
         :param publish_time_ns: Send time [ns] (MCAP publish_time); log_time_ns if None.
 
         :returns: True if queued; False if dropped (queue full, recording stopped by an error
             or the bag closed), which the `dropped` count records.
 
-        :raises BagError: the topic was not added or the message is not of its type.
+        :raises BagError: the topic was not added or the message is not bytes.
         """
-        known = self._topics.get(topic)
-        if known is None:
+        type_name = self.topic_type(topic)
+        if not isinstance(message, (bytes, bytearray, memoryview)):
             raise BagError(
-                f'bag {self._path}: topic {topic!r} was not added; call add_topic() first')
-        cls = known[1]
-        if isinstance(message, (bytes, bytearray, memoryview)):
-            data = bytes(message)
-        elif type(message) is cls:
-            data = serialize_message(message)
-        else:
-            raise BagError(
-                f'bag {self._path}: topic {topic} records {cls.__module__}.{cls.__name__}, '
-                f'got {type(message).__module__}.{type(message).__name__}')
+                f'bag {self._path}: topic {topic} records {type_name} as CDR bytes, got '
+                f'{type(message).__module__}.{type(message).__name__}; encode it with '
+                'rope_sim_ros.bag.cdr, or record message objects with '
+                'rope_sim_ros.ros2bag.RosBagWriter')
+        data = bytes(message)
         if self._closed or self._error is not None:
             self._count_dropped()
             return False
@@ -250,7 +266,12 @@ class BagWriter:
         except BagError as error:
             if exc_type is None:
                 raise
-            _LOG.error('%s', error)
+            self._log.error('%s', error)
+
+    @property
+    def _log(self) -> logging.Logger:
+        # The subclass's module: its owner quiets the logger of the class it uses.
+        return logging.getLogger(type(self).__module__)
 
     def _count_dropped(self, count: int = 1) -> None:
         with self._lock:
@@ -264,7 +285,7 @@ class BagWriter:
                 'dropped, the file is readable up to its last complete chunk '
                 '(rope_sim_ros.bag.recover() makes it a complete bag)')
             self._error.__cause__ = exc
-            _LOG.error('%s', self._error)
+            self._log.error('%s', self._error)
 
     def _register_pending(self) -> None:
         with self._lock:

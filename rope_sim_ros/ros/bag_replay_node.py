@@ -44,7 +44,7 @@ from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock as ClockMsg
 
 from ..bag import bag_info, BagError, read_messages
-from ..bag.schema import message_class
+from ..ros2bag import message_class
 
 NODE_NAME = 'bag_replay'
 INPUT_SUFFIXES = ('/fairlead/pose', '/bollard/pose')

@@ -13,40 +13,27 @@
 # limitations under the License.
 
 """
-Pure conversions between geometry_msgs and the simulator's numpy arrays.
+Conversions between geometry_msgs objects and the simulator's numpy arrays.
 
-Conventions: quaternions as numpy arrays are (x, y, z, w), as in geometry_msgs; positions
-and forces are in frame_id axes; time stamps are integer nanoseconds.
+Thin wrappers over rope_sim_ros.frames, which does the arithmetic on plain numbers (so the
+offline runner, which imports no ROS, gets the same results). Conventions: quaternions as
+numpy arrays are (x, y, z, w), as in geometry_msgs; positions and forces are in frame_id
+axes; time stamps are integer nanoseconds.
 """
-
-import math
-from typing import NamedTuple
 
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Pose, PoseArray, Vector3, Wrench
 import numpy as np
 
-NANOSECONDS = 1_000_000_000
-# A quaternion shorter than this cannot be normalised into a meaningful rotation.
-MIN_QUATERNION_NORM = 1e-6
+from .. import frames
+from ..frames import all_finite, MIN_QUATERNION_NORM, NANOSECONDS, PoseError, PosePoint, rotate
+from ..frames import tangent_quaternions
 
-
-class PoseError(ValueError):
-    """A pose message cannot be used (non-finite numbers, zero quaternion)."""
-
-
-class PosePoint(NamedTuple):
-    """
-    A rope end computed from a pose message.
-
-    :ivar point: pose position ⊕ offset: the end point in frame_id [m], shape (3,).
-    :ivar lever: the offset rotated into frame_id: point minus the pose origin [m], shape (3,).
-    :ivar quaternion_norm: |q| of the message before normalisation (1 for a clean message).
-    """
-
-    point: np.ndarray
-    lever: np.ndarray
-    quaternion_norm: float
+__all__ = [
+    'MIN_QUATERNION_NORM', 'NANOSECONDS', 'PoseError', 'PosePoint', 'all_finite', 'ns_to_stamp',
+    'pose_array', 'pose_point', 'rotate', 'stamp_to_ns', 'tangent_quaternions',
+    'unit_quaternion', 'wrench',
+]
 
 
 def unit_quaternion(q) -> tuple:
@@ -55,85 +42,28 @@ def unit_quaternion(q) -> tuple:
 
     :raises PoseError: a component is NaN or infinite, or |q| is (nearly) zero.
     """
-    array = np.array([q.x, q.y, q.z, q.w], dtype=float)
-    if not np.isfinite(array).all():
-        raise PoseError(f'non-finite orientation {array.tolist()}')
-    norm = float(np.linalg.norm(array))
-    if norm < MIN_QUATERNION_NORM:
-        raise PoseError(f'zero quaternion {array.tolist()}')
-    return array / norm, norm
-
-
-def rotate(q: np.ndarray, v) -> np.ndarray:
-    """Rotate vector(s) v, shape (3,) or (n, 3), by the unit quaternion q = (x, y, z, w)."""
-    u, w = np.asarray(q[:3], dtype=float), float(q[3])
-    v = np.asarray(v, dtype=float)
-    uv = np.cross(u, v)
-    return v + 2.0 * w * uv + 2.0 * np.cross(u, uv)
+    return frames.unit_quaternion((q.x, q.y, q.z, q.w))
 
 
 def pose_point(pose: Pose, offset) -> PosePoint:
     """
     Return the point pose ⊕ offset: the offset (body frame) rotated and added.
 
-    In plain floats, as rotate() for one vector: this runs for every pose, and with numpy's
-    cross products the node's pose callback took 43 us, 14 us without (5000 poses).
-
     :raises PoseError: non-finite position or orientation, or a zero quaternion.
     """
     p, o = pose.position, pose.orientation
-    position = (float(p.x), float(p.y), float(p.z))
-    if not all(map(math.isfinite, position)):
-        raise PoseError(f'non-finite position {list(position)}')
-    q = (float(o.x), float(o.y), float(o.z), float(o.w))
-    if not all(map(math.isfinite, q)):
-        raise PoseError(f'non-finite orientation {list(q)}')
-    norm = math.sqrt(sum(c * c for c in q))
-    if norm < MIN_QUATERNION_NORM:
-        raise PoseError(f'zero quaternion {list(q)}')
-    ux, uy, uz, w = (c / norm for c in q)
-    vx, vy, vz = (float(c) for c in offset)
-    # v + 2 w (u × v) + 2 u × (u × v)
-    cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-    lever = np.array([vx + 2.0 * (w * cx + uy * cz - uz * cy),
-                      vy + 2.0 * (w * cy + uz * cx - ux * cz),
-                      vz + 2.0 * (w * cz + ux * cy - uy * cx)])
-    return PosePoint(np.add(position, lever), lever, norm)
+    return frames.pose_point((p.x, p.y, p.z), (o.x, o.y, o.z, o.w), offset)
 
 
 def stamp_to_ns(stamp: Time) -> int:
     """Return a builtin_interfaces/Time as integer nanoseconds."""
-    return int(stamp.sec) * NANOSECONDS + int(stamp.nanosec)
+    return frames.stamp_ns(stamp.sec, stamp.nanosec)
 
 
 def ns_to_stamp(ns: int) -> Time:
     """Return integer nanoseconds as a builtin_interfaces/Time."""
-    sec, nanosec = divmod(int(ns), NANOSECONDS)
+    sec, nanosec = frames.split_ns(ns)
     return Time(sec=sec, nanosec=nanosec)
-
-
-def tangent_quaternions(positions: np.ndarray) -> np.ndarray:
-    """
-    Orientations (n, 4) whose x axis points along the rope, from the bollard onwards.
-
-    The tangent at an inner particle is the central difference of its neighbours, at an end
-    the adjacent segment; the rotation is the shortest arc from +x to it (so the roll about
-    the rope is fixed, not physical). A zero tangent gives the identity.
-    """
-    x = np.asarray(positions, dtype=float)
-    tangent = np.empty_like(x)
-    tangent[1:-1] = x[2:] - x[:-2]
-    tangent[0] = x[1] - x[0]
-    tangent[-1] = x[-1] - x[-2]
-    length = np.linalg.norm(tangent, axis=1)
-    degenerate = length < 1e-12
-    t = tangent / np.where(degenerate, 1.0, length)[:, None]
-    # shortest arc from e_x to t: (e_x × t, 1 + e_x · t), normalised
-    q = np.stack([np.zeros(len(t)), -t[:, 2], t[:, 1], 1.0 + t[:, 0]], axis=1)
-    opposite = q[:, 3] < 1e-9
-    q[opposite] = (0.0, 0.0, 1.0, 0.0)  # half turn about z
-    q[degenerate] = (0.0, 0.0, 0.0, 1.0)
-    return q / np.linalg.norm(q, axis=1)[:, None]
 
 
 def pose_array(positions: np.ndarray, frame_id: str, stamp_ns: int) -> PoseArray:
@@ -169,8 +99,3 @@ def wrench(force, lever) -> Wrench:
 def _vector3(v: np.ndarray) -> Vector3:
     x, y, z = (float(c) for c in v)
     return Vector3(x=x, y=y, z=z)
-
-
-def all_finite(*arrays) -> bool:
-    """Return True when every number in every array is finite."""
-    return all(bool(np.isfinite(np.asarray(a, dtype=float)).all()) for a in arrays)
