@@ -87,6 +87,9 @@ SPECS: Mapping[str, Spec] = {
         0.0, 'N*s^2/m^3', 'quadratic air drag K_A per metre of rope: f = -K_A |v| v '
         '(0.5 rho Cd d is about 0.05 for a 64 mm line)', 0.0, 1.0e4, read_only=False),
     'gravity': Spec([0.0, 0.0, -9.81], 'm/s^2', 'gravity vector in frame_id (REP-103: z up)'),
+    'payload_mass': Spec(
+        0.0, 'kg', 'mass of a free payload hanging at the bollard end [kg]; 0 keeps a fixed '
+        'or pose-driven bollard', 0.0, 1.0e7),
     'max_strain': Spec(
         0.25, '', 'super-elasticity threshold: no structural spring is left stretched beyond '
         'this strain', 0.0, 10.0, low_open=True, read_only=False),
@@ -211,6 +214,7 @@ class LineParams:
     bending_damping_ratio: float = SPECS['bending_damping_ratio'].default
     air_drag_coefficient: float = SPECS['air_drag_coefficient'].default
     gravity: list = field(default_factory=lambda: list(SPECS['gravity'].default))
+    payload_mass: float = SPECS['payload_mass'].default
     max_strain: float = SPECS['max_strain'].default
     superelastic_adjustment: bool = SPECS['superelastic_adjustment'].default
     integrator: str = SPECS['integrator'].default

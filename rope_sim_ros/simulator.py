@@ -13,11 +13,15 @@
 # limitations under the License.
 
 """
-Drive a Rope through time from end trajectories.
+Drive a line through time from end trajectories.
 
-The one simulator of the node, the offline runner and the tests.
+The one simulator of the node, the offline runner and the tests: a physics System
+(physics/objects.py) of one line between two points, the bollard (point 0, particle 0) and
+the fairlead (point 1, particle N). The fairlead is a driven point (its samples); the bollard
+is driven too (its samples, or bollard_position while it has none), or, with payload_mass > 0,
+a free point: a payload of that mass hanging at the line's end.
 
-Data flows one way: end samples -> trajectories -> fixed substeps -> rope state -> outputs.
+Data flows one way: end samples -> trajectories -> fixed substeps -> system state -> outputs.
 """
 
 from dataclasses import dataclass
@@ -33,11 +37,11 @@ from .params import LineParams, ParameterError
 from .physics import catenary
 from .physics import kernels
 from .physics.integrators import (automatic_time_step, end_distances, implicit_bending,
-                                  improved_euler_step, largest_load, motion_spread, relax,
-                                  stability_limit)
+                                  motion_spread, relax, stability_limit)
 from .physics.materials import MaterialLibrary, MaterialProperties
-from .physics.rope import critical_axial_damping, Rope, RopeProperties, tension_bound
-from .physics.superelastic import adjust, MAX_ITERATIONS
+from .physics.objects import Line, Point, System
+from .physics.rope import critical_axial_damping, RopeProperties, tension_bound
+from .physics.superelastic import MAX_ITERATIONS
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 
 CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
@@ -100,7 +104,30 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
         damping_model=params.damping_model,
         air_drag_coefficient=params.air_drag_coefficient,
         gravity=tuple(params.gravity), max_strain=params.max_strain,
-        superelastic_adjustment=params.superelastic_adjustment)
+        superelastic_adjustment=params.superelastic_adjustment,
+        payload_mass=params.payload_mass)
+
+
+def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
+    """
+    Particles (N+1, 3) of a line hanging straight down from `top` with its payload, at rest.
+
+    Particle N is at top, particle 0 (the payload) lowest, along gravity (-z without it).
+    Each segment is stretched by the tension it carries: the weight of the payload and of
+    the line below it (the lumped masses below: the payload's half segment first).
+    """
+    gravity = np.asarray(props.gravity, dtype=float)
+    g = float(np.linalg.norm(gravity))
+    down = gravity / g if g > 0.0 else np.array([0.0, 0.0, -1.0])
+    n = props.segments
+    m = props.particle_mass
+    below = props.payload_mass + 0.5 * m + m * np.arange(n)  # mass under segment j
+    lengths = props.segment_length * (1.0 + g * below / props.axial_stiffness)
+    shape = np.empty((n + 1, 3))
+    shape[n] = top
+    for j in range(n - 1, -1, -1):
+        shape[j] = shape[j + 1] + lengths[j] * down
+    return shape
 
 
 @dataclass(frozen=True)
@@ -113,6 +140,9 @@ class Output:
     :ivar fairlead_force: force of the line on the fairlead (3,) [N].
     :ivar bollard_force: force of the line on the bollard (3,) [N].
     :ivar max_strain: largest structural spring strain.
+    :ivar payload_position: the payload (particle 0) with payload_mass > 0, (3,) [m]; else
+        None. bollard_force is then the force of the line on the payload.
+    :ivar payload_velocity: its velocity (3,) [m/s]; else None.
     """
 
     t: float
@@ -120,6 +150,8 @@ class Output:
     fairlead_force: np.ndarray
     bollard_force: np.ndarray
     max_strain: float
+    payload_position: Optional[np.ndarray] = None
+    payload_velocity: Optional[np.ndarray] = None
 
     @property
     def fairlead_tension(self) -> float:
@@ -155,7 +187,14 @@ class Advance:
 
 
 class Simulator:
-    """One mooring line between a bollard (particle 0) and a fairlead (particle N)."""
+    """
+    One mooring line between a bollard (particle 0) and a fairlead (particle N).
+
+    :ivar system: the physics System (None before start): point 0 the bollard (driven, or
+        free with a payload), point 1 the fairlead (driven), line 0 the rope.
+    :ivar rope: the line (system.lines[0]; None before start): its x and v (N+1, 3) are the
+        state the integrators step.
+    """
 
     # How far [m] the newest end sample lies from that end's place before it (see _push).
     last_jump = 0.0
@@ -170,7 +209,8 @@ class Simulator:
         :param materials: presets (default: config/materials.yaml).
         :param output_interval: if > 0, the automatic step is shortened to divide it, so that
             outputs fall on step times.
-        :param compiled: step with the numba kernels (False: the numpy reference path).
+        :param compiled: step with the numba kernels (False: their Python code, interpreted:
+            the reference the tests compare with).
         :param history: seconds of end samples kept behind the newest (math.inf offline, where
             a whole motion is pushed before the first step).
 
@@ -181,21 +221,28 @@ class Simulator:
         self.material = (materials or load_materials()).properties(
             params.material, params.diameter)
         self.props = rope_properties(params, self.material)
-        self._coefficients = kernels.coefficients(self.props)
         self._output_interval = output_interval
         self.time_step = self._choose_time_step(params, self.props)
         self.compiled = compiled
         self.fairlead = EndTrajectory(keep=history, method=params.end_interpolation)
         self.bollard = EndTrajectory(keep=history, method=params.end_interpolation)
-        self.rope: Optional[Rope] = None
+        self.system: Optional[System] = None
         self.time = math.nan
         self._blends: List[Optional[EndBlend]] = [None, None]  # bollard, fairlead
         self._off_track = False  # a sample or a skip may have moved an end's track under it
         self._held = False  # the fairlead was held at the reach at the last step
         # tension_bound of props at rest, and its growth per m/s of the ends (it is linear)
         self._bound = (None, math.nan, math.nan)
-        self._inv_mass = np.ones(params.segments + 1)
-        self._inv_mass[[0, -1]] = 0.0
+
+    @property
+    def rope(self) -> Optional[Line]:
+        """Return the line (x, v, strains()), None before start."""
+        return None if self.system is None else self.system.lines[0]
+
+    @property
+    def payload(self) -> bool:
+        """Tell whether the bollard end is a free payload: payload_mass > 0."""
+        return self.props.payload_mass > 0.0
 
     def _choose_time_step(self, params: LineParams, props: RopeProperties) -> float:
         """
@@ -232,7 +279,7 @@ class Simulator:
     @property
     def started(self) -> bool:
         """Tell whether the rope has been placed."""
-        return self.rope is not None
+        return self.system is not None
 
     @property
     def reach(self) -> float:
@@ -265,9 +312,9 @@ class Simulator:
         :raises ParameterError: as check_update (nothing is changed then).
         """
         self.params, self.props, self.time_step = self._updated(values)
-        self._coefficients = kernels.coefficients(self.props)
-        if self.rope is not None:
-            self.rope.props = self.props
+        if self.system is not None:
+            self.system.lines[0].line_type = self.props.line_type
+            self.system.refresh()
 
     # -- inputs -------------------------------------------------------------------------
 
@@ -289,7 +336,8 @@ class Simulator:
         Add a bollard sample; return 'teleport' if it restarted the rope (see push_fairlead).
 
         Before the first bollard sample the bollard is at bollard_position: a first sample
-        farther than teleport_distance from there is a jump too.
+        farther than teleport_distance from there is a jump too. With a payload the bollard
+        end is free: its samples are kept but move nothing, and restart nothing.
         """
         return self._push(self.bollard, t, position, self.params.bollard_position)
 
@@ -300,6 +348,8 @@ class Simulator:
         end.push(t, position)
         self._off_track |= self.started and self.time > settled
         self.last_jump = 0.0 if last is None else math.dist(position, last)
+        if end is self.bollard and self.payload:
+            return ''
         if self.started and self.last_jump > self.params.teleport_distance:
             end.clear()
             end.push(t, position)
@@ -316,7 +366,8 @@ class Simulator:
         """
         End positions and velocities the rope follows at `times`: arrays (n, 2, 3), bollard first.
 
-        A fairlead farther from the bollard than the line's reach is held at the reach.
+        A fairlead farther from the bollard than the line's reach is held at the reach. With
+        a payload the rope follows the fairlead only: the bollard's columns repeat it.
         """
         return self._ends(times)[:2]
 
@@ -326,6 +377,9 @@ class Simulator:
         ends = np.empty((len(times), 2, 3))
         velocities = np.zeros((len(times), 2, 3))
         ends[:, 1], velocities[:, 1] = self.fairlead.sample(times)
+        if self.payload:  # a free end: nothing to follow, nothing to hold
+            ends[:, 0], velocities[:, 0] = ends[:, 1], velocities[:, 1]
+            return ends, velocities, np.zeros(len(times))
         if len(self.bollard):
             ends[:, 0], velocities[:, 0] = self.bollard.sample(times)
         else:
@@ -370,7 +424,7 @@ class Simulator:
             raise TrajectoryError('cannot start the rope before the first fairlead sample')
         self.restart(t)
         if shape is not None:
-            self.rope = Rope(self.props, shape)
+            self.system = self._build(np.asarray(shape, dtype=float))
 
     def restart(self, t: Optional[float] = None) -> None:
         """
@@ -378,19 +432,39 @@ class Simulator:
 
         The catenary, brought to rest under the bending springs too (integrators.relax);
         the catenary itself wherever that fails, and with the fairlead held at the reach.
+        With a payload: hanging straight down from the fairlead (hanging_shape), likewise
+        brought to rest.
         """
         t = self.time if t is None else t
         ends, _, distances = self._ends([t])
         self._held = bool(distances[0] > self.props.reach)
         p = self.props
-        shape = catenary.initial_shape(
-            ends[0, 0], ends[0, 1], p.length, p.segments, p.weight_per_length,
-            p.axial_stiffness, np.asarray(p.gravity))
-        self.rope = Rope(p, shape)
-        if not self._held and (not relax(p, self.rope.x, self._coefficients, self._inv_mass)
-                               or self._unphysical()):
-            self.rope = Rope(p, shape)
+        if self.payload:
+            shape = hanging_shape(p, ends[0, 1])
+        else:
+            shape = catenary.initial_shape(
+                ends[0, 0], ends[0, 1], p.length, p.segments, p.weight_per_length,
+                p.axial_stiffness, np.asarray(p.gravity))
+        self.system = self._build(shape)
+        if not self._held and (not relax(p, self.system) or self._unphysical()):
+            self.system = self._build(shape)
         self.time = t
+
+    def _build(self, shape: np.ndarray) -> System:
+        """Make the System of the line at rest at `shape` (N+1, 3), its ends on the points."""
+        p = self.props
+        if shape.shape != (p.segments + 1, 3):
+            raise ValueError(
+                f'shape must have shape ({p.segments + 1}, 3), got {shape.shape}')
+        system = System(p.environment)
+        if self.payload:
+            system.add_point(Point('free', shape[0], mass=p.payload_mass))
+        else:
+            system.add_point(Point('driven', shape[0]))
+        system.add_point(Point('driven', shape[-1]))
+        system.add_line(Line.uniform(p.line_type, p.length, p.segments, shape, (0, 1)))
+        system.pack()
+        return system
 
     def advance_to(self, t: float, max_steps: Optional[int] = None) -> Advance:
         """
@@ -485,18 +559,8 @@ class Simulator:
 
         :param end_speed: the ends' largest speed over the steps just taken [m/s].
         """
-        rope = self.rope
-        if self.compiled:
-            finite, largest = largest_load(rope.x, rope.v, self._coefficients,
-                                           self.props.axial_stiffness)
-        else:
-            finite, largest = rope.is_finite(), math.inf
-            if finite:
-                bollard, fairlead = rope.end_forces()
-                largest = float(np.max([  # NaN, from an overflow, wins
-                    math.hypot(*bollard), math.hypot(*fairlead),
-                    float(rope.strains().max()) * self.props.axial_stiffness]))
-        if not finite:
+        finite, largest = self.system.largest_load()
+        if not finite or not self.system.is_finite():
             return 'non-finite state'
         if self._bound[0] is not self.props:
             at_rest = tension_bound(self.props)
@@ -520,6 +584,8 @@ class Simulator:
         self._off_track = False
         here, here_velocities = self.ends_at([self.time])
         for k, particle in ((0, 0), (1, -1)):
+            if k == 0 and self.payload:  # a free end follows no track
+                continue
             offset = self.rope.x[particle] - here[0, k]
             blend = self._blends[k]
             if np.abs(offset).max() <= END_TOLERANCE:
@@ -534,23 +600,9 @@ class Simulator:
             velocities[:, k] += rates
 
     def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
-        rope, props = self.rope, self.props
-        args = (rope.x, rope.v, ends, velocities, dt, self._coefficients, self._inv_mass,
-                props.max_strain, props.superelastic_adjustment, MAX_ITERATIONS)
-        if self.params.integrator == 'implicit_euler':
-            run = kernels.implicit_euler_run
-            if not self.compiled:
-                run = run.py_func  # the same code, interpreted: for tests
-            run(*args, implicit_bending(props, dt))
-            return
-        if self.compiled:
-            kernels.improved_euler_run(*args)
-            return
-        for k in range(len(ends)):
-            improved_euler_step(rope, dt, ends[k], velocities[k])
-            if props.superelastic_adjustment:
-                adjust(rope.x, rope.v, self._inv_mass, props.segment_length, props.max_strain,
-                       MAX_ITERATIONS)
+        """Take len(ends) substeps of dt: ends, velocities (n, 2, 3) drive points 0 and 1."""
+        self.system.step(self.params.integrator, dt, ends, velocities, MAX_ITERATIONS,
+                         implicit_bending(self.props, dt), self.compiled)
 
     def skip_to(self, t: float) -> None:
         """
@@ -566,17 +618,15 @@ class Simulator:
     def output(self) -> Output:
         """Return the current state: particles, end forces and the largest strain."""
         bollard, fairlead, strain = self._forces()
-        return Output(self.time, self.rope.x.copy(), fairlead, bollard, strain)
+        position = velocity = None
+        if self.payload:
+            position = self.system.point_x[0].copy()
+            velocity = self.system.point_v[0].copy()
+        return Output(self.time, self.rope.x.copy(), fairlead, bollard, strain, position,
+                      velocity)
 
     def _forces(self) -> tuple:
         """Return the forces on the bollard and the fairlead and the largest strain."""
-        rope = self.rope
-        if self.compiled:
-            forces = np.empty((2, 3))
-            kernels.end_forces(rope.x, rope.v, self._coefficients, forces)
-            bollard, fairlead = forces
-            strain = kernels.max_strain(rope.x, self.props.segment_length)
-        else:
-            bollard, fairlead = rope.end_forces()
-            strain = float(rope.strains().max())
+        bollard, fairlead = self.system.end_forces()[0]
+        strain = kernels.max_strain(self.rope.x, self.rope.rest)
         return bollard, fairlead, strain

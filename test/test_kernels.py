@@ -44,7 +44,9 @@ def test_block_thomas_solves_the_chain_system():
     diagonal, lower, dense = _spd_blocks(40, rng)
     rhs = rng.normal(size=(40, 3))
     expected = np.linalg.solve(dense, rhs.ravel())
-    kernels._block_thomas(diagonal, lower, rhs, np.empty((40, 3, 3)), np.empty((3, 3)))
+    inverse, multiplier = np.empty((40, 3, 3)), np.empty((40, 3, 3))
+    kernels._block_thomas_factor(diagonal, lower, inverse, multiplier, 40)
+    kernels._block_thomas_solve(lower, inverse, multiplier, rhs, 40)
     assert rhs.ravel() == pytest.approx(expected, rel=1e-10, abs=1e-12)
 
 
@@ -59,7 +61,19 @@ def test_banded_cholesky_solves_the_bending_system():
                      for i in range(n)])
     rhs = rng.normal(size=n)
     expected = np.linalg.solve(dense, rhs)
-    assert kernels._cholesky_solve(band, rhs.copy()) == pytest.approx(expected, rel=1e-10)
+    kernels._cholesky_factor(band, n)
+    kernels._cholesky_band_solve(band, rhs, n)
+    assert rhs == pytest.approx(expected, rel=1e-10)
+
+
+def test_dense_cholesky_solves_the_point_system():
+    rng = np.random.default_rng(3)
+    a = rng.normal(size=(9, 9))
+    a = a @ a.T + 9.0 * np.eye(9)
+    b = rng.normal(size=9)
+    expected = np.linalg.solve(a, b)
+    kernels.dense_cholesky_solve(a.copy(), b)
+    assert b == pytest.approx(expected, rel=1e-10)
 
 
 def test_improved_euler_needs_damping():

@@ -13,7 +13,10 @@
 # limitations under the License.
 
 """
-Time integration of the rope and the choice of its time step.
+The choice of the time step, and bringing a start shape to rest.
+
+The integrators themselves are kernels.improved_euler_run and kernels.implicit_euler_run,
+which step a whole System (objects.py).
 
 The seed's improved Euler (eq. 7) is Heun's method: an Euler predictor, then the mean of the
 two accelerations for the velocity and the trapezoid of the two velocities for the position.
@@ -25,34 +28,11 @@ axial mode of the chain, with its damping, is stable, times a safety factor.
 import numba
 import numpy as np
 
-from . import kernels
-from .rope import Rope, RopeProperties
+from .objects import System
+from .rope import RopeProperties
 from .superelastic import MAX_ITERATIONS
 
 SAFETY_FACTOR = 0.8
-
-
-def improved_euler_step(rope: Rope, dt: float, ends_next: np.ndarray,
-                        end_velocities_next: np.ndarray) -> None:
-    """
-    Advance the rope by dt in place (seed eq. 7).
-
-    :param rope: the rope at time t.
-    :param dt: step [s].
-    :param ends_next: positions of particles 0 and N at t + dt, shape (2, 3).
-    :param end_velocities_next: their velocities at t + dt, shape (2, 3).
-    """
-    x, v = rope.x, rope.v
-    a1 = rope.accelerations(x, v)
-    x_pred = x + dt * v
-    v_pred = v + dt * a1
-    x_pred[[0, -1]] = ends_next
-    v_pred[[0, -1]] = end_velocities_next
-    a2 = rope.accelerations(x_pred, v_pred)
-    x += (0.5 * dt) * (v + v_pred)
-    v += (0.5 * dt) * (a1 + a2)
-    x[[0, -1]] = ends_next
-    v[[0, -1]] = end_velocities_next
 
 
 def _heun_growth(z: np.ndarray) -> np.ndarray:
@@ -64,13 +44,19 @@ def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
     """
     Eigenvalues of the chain's axial modes, from the slowest to the fastest.
 
-    The chain's frequencies lie in (0, w_max] with w_max^2 <= 4 (k_s + k_b) / m
-    (Gershgorin). Each mode is damped in proportion to its stiffness (w^2 beta).
+    The chain's frequencies lie in (0, w_max] with w_max^2 the largest Gershgorin row sum
+    of M^-1 K: 4 (k_s + k_b) / m for an inner particle, 2 (k_s + k_b) / M_e for a free end
+    of lumped mass M_e (a payload and half a segment). A free end is never lighter than
+    half a particle, so it never raises the bound; a lighter free point would. Each mode
+    is damped in proportion to its stiffness (w^2 beta).
     """
     m = props.particle_mass
     k = props.structural_stiffness + props.bending_stiffness
     c = props.structural_damping + props.bending_damping
-    w2 = 4.0 * k / m * np.geomspace(1e-8, 1.0, count)
+    w2_max = 4.0 * k / m
+    if props.payload_mass > 0.0:
+        w2_max = max(w2_max, 2.0 * k / props.end_mass)
+    w2 = w2_max * np.geomspace(1e-8, 1.0, count)
     # roots of s^2 + (c/k) w^2 s + w^2 = 0, both branches (overdamped modes have two)
     half = 0.5 * (c / k) * w2
     root = np.sqrt((half * half - w2).astype(complex))
@@ -178,26 +164,6 @@ def end_distances(ends):
     return out
 
 
-@numba.njit(cache=True)
-def largest_load(x, v, coefficients, axial_stiffness):
-    """
-    Return whether the state is finite, and the largest end force or EA times strain [N].
-
-    The load is NaN or inf where finite numbers overflow.
-    """
-    if not kernels.all_finite(x, v):
-        return False, np.inf
-    forces = np.empty((2, 3))
-    kernels.end_forces(x, v, coefficients, forces)
-    largest = axial_stiffness * kernels.max_strain(x, coefficients[0])
-    for e in range(2):
-        load = np.sqrt(forces[e, 0] ** 2 + forces[e, 1] ** 2 + forces[e, 2] ** 2)
-        if np.isnan(load) or np.isnan(largest):
-            return True, np.nan
-        largest = max(largest, load)
-    return True, largest
-
-
 # Bringing a start shape to rest (relax): pseudo-steps until no particle moves more than
 # RELAX_TOLERANCE * L in one, first Newton-like ones of NEWTON_STEP from rest (at most
 # NEWTON_STEPS), then, where a fold is left, steps of the line's own motion, of its
@@ -218,10 +184,12 @@ FOLD_LENGTH = 0.9
 FOLD_NUDGE = 1e-3
 
 
-def relax(props: RopeProperties, x: np.ndarray, coefficients: np.ndarray,
-          inv_mass: np.ndarray) -> bool:
+def relax(props: RopeProperties, system: System) -> bool:
     """
-    Move the free particles of x (in place) to rest under the line's own forces, ends fixed.
+    Bring the system (in place) to rest under its own forces, fixed and driven points held.
+
+    Free points (a payload) settle with the lines. The fold checks look at the first line,
+    the one props describes.
 
     The catenary is the rest shape of a chain without bending springs. With them it is
     nearly so wherever the line is smooth (they move the settled tension of the reference
@@ -241,42 +209,51 @@ def relax(props: RopeProperties, x: np.ndarray, coefficients: np.ndarray,
     its strain limit, it cannot carry its weight. Do not relax it: 200 pseudo-steps of N =
     2000 then cost 0.7 s, and the line's own motion 40 s.)
 
-    :returns: whether x came to rest (else it is where the steps left it).
+    :returns: whether the system came to rest (else it is where the steps left it); either
+        way, every velocity is zero.
     """
-    ends = x[[0, -1]][None].copy()
-    v = np.zeros_like(x)
-    settled = _settle(props, x, v, ends, coefficients, inv_mass, NEWTON_STEP, NEWTON_STEPS,
-                      True)
-    if settled and not _folded(props, x):
-        return True
-    x += FOLD_NUDGE * props.segment_length * _sideways(props, x)
-    v[:] = 0.0
-    step = automatic_time_step(props, 'implicit_euler')
-    steps = int(min(np.ceil(FOLD_TIME / step), FOLD_WORK / len(x)))
-    return _settle(props, x, v, ends, coefficients, inv_mass, step, steps, False)
+    try:
+        settled = _settle(props, system, NEWTON_STEP, NEWTON_STEPS, True)
+        x = system.lines[0].x
+        if settled and not _folded(props, x):
+            return True
+        x += FOLD_NUDGE * props.segment_length * _sideways(props, x)
+        system.v[:] = 0.0
+        system.point_v[:] = 0.0
+        step = automatic_time_step(props, 'implicit_euler')
+        steps = int(min(np.ceil(FOLD_TIME / step), FOLD_WORK / len(system.x)))
+        return _settle(props, system, step, steps, False)
+    finally:
+        system.v[:] = 0.0
+        system.point_v[:] = 0.0
 
 
-def _settle(props, x, v, ends, coefficients, inv_mass, step, steps, from_rest) -> bool:
-    """Take pseudo-steps until x stops moving; return whether it did."""
-    end_velocities = np.zeros_like(ends)
+def _settle(props, system, step, steps, from_rest) -> bool:
+    """Take pseudo-steps until nothing moves; return whether it stopped."""
+    drive_x, drive_v = system.drive_arrays(1)  # fixed and driven points held still
+    system.point_v[:] = 0.0
     bending = implicit_bending(props, step)
     tolerance = RELAX_TOLERANCE * props.length
     peak = 0.0
+    x, v = system.x, system.v
     for _ in range(steps):
         before = x.copy()
+        before_points = system.point_x.copy()
         if from_rest:
             v[:] = 0.0
-        kernels.implicit_euler_run(
-            x, v, ends, end_velocities, step, coefficients, inv_mass, props.max_strain,
-            props.superelastic_adjustment, MAX_ITERATIONS, bending)
-        kinetic = float(np.einsum('ij,ij->', v, v))
+            system.point_v[:] = 0.0
+        system.step('implicit_euler', step, drive_x, drive_v, MAX_ITERATIONS, bending)
+        kinetic = float(np.einsum('ij,ij->', v, v)
+                        + np.einsum('ij,ij->', system.point_v, system.point_v))
         if not np.isfinite(kinetic):
             return False
         if kinetic < peak:  # past a peak of kinetic energy: stop there
             v[:] = 0.0
+            system.point_v[:] = 0.0
             kinetic = 0.0
         peak = kinetic
-        if np.abs(x - before).max() <= tolerance:
+        if max(np.abs(x - before).max(), np.abs(system.point_x - before_points).max(
+                initial=0.0)) <= tolerance:
             return True
     return False
 

@@ -13,86 +13,163 @@
 # limitations under the License.
 
 """
-Compiled (numba) loops for the rope's hot path, with the same physics as rope.py.
+The compiled (numba) hot path: force assembly and the two integrators, over a whole System.
 
-Pure numpy pays about 40 us of call overhead per force evaluation whatever N is, which caps
-a stiff line near real time. These kernels run many steps per call. The numpy forces and
-improved Euler step of rope.py / integrators.py stay the reference the tests compare with;
-the strain limit (superelastic.py) is one compiled implementation shared by both paths.
+A System (objects.py) packs its lines and points into the tables of layout.py; the kernels
+here step them all together. Each line is a chain of particles; its two end particles sit on
+points, MoorDyn's way: a fixed or driven point sets its line ends' positions and velocities,
+and a free point (a lumped body: a payload, a shackle joining lines) moves under its own
+weight plus the force of every line end on it, each end's springs and dampers with the
+weight and drag of the half segment lumped there, over its own mass plus those half-segment
+masses.
+
+The force terms live in forces/ (one module each, force and Jacobian); the assembly below is
+the one place that sums them. Tests run these same functions interpreted (``.py_func``).
 """
 
 import numba
 import numpy as np
 
-from .rope import RopeProperties
+from .forces.drag import add_drag, add_drag_block
+from .forces.gravity import add_weight
+from .forces.springs import add_springs, spring_block_at
+from .layout import (ADJUST, AXIAL, AXIAL_STIFFNESS, BENDING, DRAG, DRIVEN, END_A, FIRST,
+                     FREE, INV_MASS, KIND, LAST, MASS, MAX_STRAIN, OWN_MASS, REST, TOTAL_MASS)
 from .superelastic import adjust
 
 
-def coefficients(props: RopeProperties) -> np.ndarray:
-    """Pack the line's numbers in the flat layout the kernels take (see line_forces)."""
-    return np.array([
-        props.segment_length, props.structural_stiffness, props.structural_damping,
-        props.bending_stiffness, props.bending_damping,
-        1.0 if props.damping_model == 'axial' else 0.0,
-        props.air_drag_coefficient * props.segment_length, props.particle_mass,
-        *props.gravity], dtype=float)
-
-
-@numba.njit(cache=True, fastmath=False)
-def _add_springs(x, v, out, stride, rest, stiffness, damping, axial, tension_only):
-    for i in range(x.shape[0] - stride):
-        j = i + stride
-        dx = x[j, 0] - x[i, 0]
-        dy = x[j, 1] - x[i, 1]
-        dz = x[j, 2] - x[i, 2]
-        length = np.sqrt(dx * dx + dy * dy + dz * dz)
-        inv = 1.0 / max(length, 1e-12)
-        ux, uy, uz = dx * inv, dy * inv, dz * inv
-        stretch = length - rest
-        if tension_only and stretch < 0.0:
-            stretch = 0.0
-        dvx = v[j, 0] - v[i, 0]
-        dvy = v[j, 1] - v[i, 1]
-        dvz = v[j, 2] - v[i, 2]
-        if axial:
-            tension = stiffness * stretch + damping * (dvx * ux + dvy * uy + dvz * uz)
-            fx, fy, fz = tension * ux, tension * uy, tension * uz
-        else:
-            tension = stiffness * stretch
-            fx = tension * ux + damping * dvx
-            fy = tension * uy + damping * dvy
-            fz = tension * uz + damping * dvz
-        out[i, 0] += fx
-        out[i, 1] += fy
-        out[i, 2] += fz
-        out[j, 0] -= fx
-        out[j, 1] -= fy
-        out[j, 2] -= fz
-
+# -- forces ----------------------------------------------------------------------------------
 
 @numba.njit(cache=True)
-def line_forces(x, v, out, coef):
-    """
-    Spring and damper forces of the line on every particle into `out`.
-
-    coef = (l0, k_s, c_s, k_b, c_b, axial, drag_per_particle, particle_mass, gx, gy, gz).
-    """
+def line_forces(x, v, out, particles, lines):
+    """Spring and damper forces of every line on its particles into `out` (P, 3)."""
     out[:] = 0.0
-    l0, ks, cs, kb, cb, axial = coef[0], coef[1], coef[2], coef[3], coef[4], coef[5] > 0.5
-    _add_springs(x, v, out, 1, l0, ks, cs, axial, True)
-    if kb > 0.0 or cb > 0.0:
-        _add_springs(x, v, out, 2, 2.0 * l0, kb, cb, axial, False)
+    for k in range(lines.shape[0]):
+        first, last, axial = lines[k, FIRST], lines[k, LAST], lines[k, AXIAL] == 1
+        add_springs(x, v, out, particles, first, last, False, axial)
+        if lines[k, BENDING] == 1:
+            add_springs(x, v, out, particles, first, last, True, axial)
 
 
 @numba.njit(cache=True)
-def end_forces(x, v, coef, out):
-    """Force of the line on particle 0 and on particle N into out (2, 3) (see Rope)."""
+def end_forces(x, v, particles, lines, gravity, out):
+    """
+    Force of each line on the points its ends sit on into out (L, 2, 3): end A, end B.
+
+    The springs and dampers at the end particle plus the weight of the half segment lumped
+    there, as MoorDyn reports for a coupled point: it converges to the catenary's end tension
+    at second order in N. (The half segment's air drag acts on a free point's motion too, but
+    is not part of this reported force.)
+    """
     f = np.empty_like(x)
-    line_forces(x, v, f, coef)
-    half = 0.5 * coef[7]
-    for p in range(3):
-        out[0, p] = f[0, p] + half * coef[8 + p]
-        out[1, p] = f[-1, p] + half * coef[8 + p]
+    line_forces(x, v, f, particles, lines)
+    for k in range(lines.shape[0]):
+        for e in range(2):
+            row = lines[k, FIRST] if e == 0 else lines[k, LAST]
+            for p in range(3):
+                out[k, e, p] = f[row, p]
+            add_weight(out[k], e, particles[row, MASS], gravity)
+
+
+@numba.njit(cache=True)
+def _point_forces(x, v, f, particles, lines, points, gravity, out):
+    """
+    Net force on each free point into out (Q, 3), from the line forces f before gravity.
+
+    Its own weight plus, for every line end on it, that end's springs, dampers, half-segment
+    weight and drag. Rows of fixed and driven points are left as they are.
+    """
+    for q in range(points.shape[0]):
+        if points[q, KIND] == FREE:
+            for p in range(3):
+                out[q, p] = 0.0
+            add_weight(out, q, points[q, OWN_MASS], gravity)
+    for k in range(lines.shape[0]):
+        for e in range(2):
+            q = lines[k, END_A + e]
+            if points[q, KIND] != FREE:
+                continue
+            row = lines[k, FIRST] if e == 0 else lines[k, LAST]
+            for p in range(3):
+                out[q, p] += f[row, p]
+            add_weight(out, q, particles[row, MASS], gravity)
+            add_drag(v, row, particles[row, DRAG], out, q)
+
+
+@numba.njit(cache=True)
+def _accelerations(x, v, a, particles, lines, points, gravity, point_a):
+    """
+    Accelerations of every particle into a (P, 3), of every free point into point_a (Q, 3).
+
+    Rows of line ends are meaningless (their points set them).
+    """
+    line_forces(x, v, a, particles, lines)
+    _point_forces(x, v, a, particles, lines, points, gravity, point_a)
+    for q in range(points.shape[0]):
+        if points[q, KIND] == FREE:
+            for p in range(3):
+                point_a[q, p] /= points[q, TOTAL_MASS]
+    for i in range(x.shape[0]):
+        add_drag(v, i, particles[i, DRAG], a, i)
+        mass = particles[i, MASS]
+        for p in range(3):
+            a[i, p] = a[i, p] / mass + gravity[p]
+
+
+@numba.njit(cache=True, inline='always')
+def set_ends(x, v, lines, point_x, point_v):
+    """Put every line end particle on its point: the point's position and velocity."""
+    for k in range(lines.shape[0]):
+        for e in range(2):
+            q = lines[k, END_A + e]
+            row = lines[k, FIRST] if e == 0 else lines[k, LAST]
+            for p in range(3):
+                x[row, p] = point_x[q, p]
+                v[row, p] = point_v[q, p]
+
+
+@numba.njit(cache=True, inline='always')
+def _drive(points, point_x, point_v, drive_x, drive_v, k):
+    """Move the driven points to their k-th sample."""
+    for q in range(points.shape[0]):
+        if points[q, KIND] == DRIVEN:
+            for p in range(3):
+                point_x[q, p] = drive_x[k, q, p]
+                point_v[q, p] = drive_v[k, q, p]
+
+
+@numba.njit(cache=True)
+def _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
+                   max_iterations):
+    """
+    Apply the strain-limit projection (superelastic.adjust) to every line that asks for it.
+
+    Line by line: a free point shared by several lines is moved by each line's projection in
+    turn (its end particle carries the point's whole lumped mass), and the next line starts
+    from where the previous one left it. Exact for one line per free point; with several, a
+    later line may pull a shared point back over an earlier line's limit by a little, which
+    the next step's projection takes up.
+    """
+    for k in range(lines.shape[0]):
+        if lines[k, ADJUST] != 1:
+            continue
+        first, last = lines[k, FIRST], lines[k, LAST]
+        for e in range(2):  # from the point, as an earlier line may have moved it
+            q = lines[k, END_A + e]
+            row = first if e == 0 else last
+            for p in range(3):
+                x[row, p] = point_x[q, p]
+                v[row, p] = point_v[q, p]
+        adjust(x[first:last + 1], v[first:last + 1], inv_mass[first:last + 1],
+               rest[first:last], line_real[k, MAX_STRAIN], max_iterations)
+        for e in range(2):
+            q = lines[k, END_A + e]
+            if points[q, KIND] == FREE:
+                row = first if e == 0 else last
+                for p in range(3):
+                    point_x[q, p] = x[row, p]
+                    point_v[q, p] = v[row, p]
+    set_ends(x, v, lines, point_x, point_v)
 
 
 @numba.njit(cache=True)
@@ -106,139 +183,121 @@ def all_finite(x, v):
 
 
 @numba.njit(cache=True)
-def max_strain(x, segment_length):
-    """Largest strain of the structural springs."""
+def max_strain(x, rest):
+    """Largest strain of a line's structural springs (x (N+1, 3), rest (N,))."""
     worst = -1.0
     for i in range(x.shape[0] - 1):
         d = np.sqrt((x[i + 1, 0] - x[i, 0]) ** 2 + (x[i + 1, 1] - x[i, 1]) ** 2
                     + (x[i + 1, 2] - x[i, 2]) ** 2)
-        worst = max(worst, d / segment_length - 1.0)
+        worst = max(worst, d / rest[i] - 1.0)
     return worst
 
 
 @numba.njit(cache=True)
-def _accelerations(x, v, out, coef):
-    line_forces(x, v, out, coef)
-    drag, mass = coef[6], coef[7]
-    for i in range(x.shape[0]):
-        speed = np.sqrt(v[i, 0] ** 2 + v[i, 1] ** 2 + v[i, 2] ** 2)
-        for d in range(3):
-            out[i, d] = (out[i, d] - drag * speed * v[i, d]) / mass + coef[8 + d]
+def largest_load(x, v, particles, lines, line_real, gravity):
+    """
+    Return whether the state is finite, and the largest end force or EA times strain [N].
 
+    The load is NaN or inf where finite numbers overflow.
+    """
+    if not all_finite(x, v):
+        return False, np.inf
+    forces = np.empty((lines.shape[0], 2, 3))
+    end_forces(x, v, particles, lines, gravity, forces)
+    largest = 0.0
+    for k in range(lines.shape[0]):
+        first, last = lines[k, FIRST], lines[k, LAST]
+        strain = max_strain(x[first:last + 1], particles[first:last, REST])
+        load = line_real[k, AXIAL_STIFFNESS] * strain
+        if np.isnan(load):
+            return True, np.nan
+        largest = max(largest, load)
+        for e in range(2):
+            load = np.sqrt(forces[k, e, 0] ** 2 + forces[k, e, 1] ** 2 + forces[k, e, 2] ** 2)
+            if np.isnan(load):
+                return True, np.nan
+            largest = max(largest, load)
+    return True, largest
+
+
+# -- improved Euler (the seed's eq. 7: Heun's method) ----------------------------------------
 
 @numba.njit(cache=True)
-def improved_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strain,
-                       adjusting, max_iterations):
-    """Take len(ends) improved Euler steps in place; ends[k] holds particles 0 and N."""
+def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
+                       line_real, points, gravity, max_iterations):
+    """
+    Take len(drive_x) improved Euler steps of the whole system in place.
+
+    :param x, v: particle positions and velocities (P, 3), every line's rows stacked.
+    :param point_x, point_v: point positions and velocities (Q, 3).
+    :param drive_x, drive_v: driven points' positions and velocities at the end of each step
+        (n, Q, 3) (rows of other points ignored).
+    :param particles, lines, line_real, points: the tables of layout.py.
+    :param gravity: (3,) [m/s^2].
+    """
+    n_points = points.shape[0]
+    inv_mass = np.ascontiguousarray(particles[:, INV_MASS])  # for the strain limit
+    rest = np.ascontiguousarray(particles[:, REST])
     a1 = np.empty_like(x)
     a2 = np.empty_like(x)
     xp = np.empty_like(x)
     vp = np.empty_like(x)
-    last = x.shape[0] - 1
-    for k in range(ends.shape[0]):
-        _accelerations(x, v, a1, coef)
+    pa1 = np.zeros((n_points, 3))
+    pa2 = np.zeros((n_points, 3))
+    pxp = np.empty((n_points, 3))
+    pvp = np.empty((n_points, 3))
+    for k in range(drive_x.shape[0]):
+        _accelerations(x, v, a1, particles, lines, points, gravity, pa1)
         for i in range(x.shape[0]):
             for d in range(3):
                 xp[i, d] = x[i, d] + dt * v[i, d]
                 vp[i, d] = v[i, d] + dt * a1[i, d]
-        for d in range(3):
-            xp[0, d], xp[last, d] = ends[k, 0, d], ends[k, 1, d]
-            vp[0, d], vp[last, d] = end_velocities[k, 0, d], end_velocities[k, 1, d]
-        _accelerations(xp, vp, a2, coef)
+        for q in range(n_points):
+            kind = points[q, KIND]
+            for d in range(3):
+                if kind == DRIVEN:
+                    pxp[q, d], pvp[q, d] = drive_x[k, q, d], drive_v[k, q, d]
+                elif kind == FREE:
+                    pxp[q, d] = point_x[q, d] + dt * point_v[q, d]
+                    pvp[q, d] = point_v[q, d] + dt * pa1[q, d]
+                else:
+                    pxp[q, d], pvp[q, d] = point_x[q, d], point_v[q, d]
+        set_ends(xp, vp, lines, pxp, pvp)
+        _accelerations(xp, vp, a2, particles, lines, points, gravity, pa2)
         for i in range(x.shape[0]):
             for d in range(3):
                 x[i, d] += 0.5 * dt * (v[i, d] + vp[i, d])
                 v[i, d] += 0.5 * dt * (a1[i, d] + a2[i, d])
-        for d in range(3):
-            x[0, d], x[last, d] = ends[k, 0, d], ends[k, 1, d]
-            v[0, d], v[last, d] = end_velocities[k, 0, d], end_velocities[k, 1, d]
-        if adjusting:
-            adjust(x, v, inv_mass, coef[0], max_strain, max_iterations)
+        for q in range(n_points):
+            if points[q, KIND] == FREE:
+                for d in range(3):
+                    point_x[q, d] += 0.5 * dt * (point_v[q, d] + pvp[q, d])
+                    point_v[q, d] += 0.5 * dt * (pa1[q, d] + pa2[q, d])
+        _drive(points, point_x, point_v, drive_x, drive_v, k)
+        set_ends(x, v, lines, point_x, point_v)
+        _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
+                       max_iterations)
 
 
 # -- implicit Euler: the seed's scheme made implicit -----------------------------------------
 #
 # Backward Euler on the velocity, trapezoid on the position (Newmark gamma = 1, beta = 1/2):
 #     v1 = v0 + h a1,   x1 = x0 + h (v0 + v1) / 2,   M a1 = f(x1, v1),
-# linearised once per step about the predictor x^ = x0 + h v0, v0 (the ends already at their
-# new places), as Baraff & Witkin (1998) do:
+# linearised once per step about the predictor x^ = x0 + h v0, v0 (driven points already at
+# their new places), as Baraff & Witkin (1998) do:
 #     (M + h C + h^2/2 S) a1 = f(x^, v0),
-# with S and C the stiffness and damping matrices of the springs (minus the force Jacobians).
+# with S and C the stiffness and damping matrices of the forces (minus their Jacobians).
 # Unconditionally stable, first order, and it damps the fastest axial waves; predictors that
-# extrapolate the acceleration (Newmark gamma < 1) blew up on slack-taut snaps. A rope couples
-# particle i to i+1 and i+2 only, so the system is banded (half bandwidth 5 scalars, 8 with
-# the bending springs) and symmetric positive definite: a banded Cholesky solves it in O(N).
-
-@numba.njit(cache=True)
-def _add_block(band, a, b, block, sign):
-    """Add sign * block into the band at particle rows a, columns b (free numbering)."""
-    if a < 0 or b < 0:
-        return
-    width = band.shape[1] - 1
-    for p in range(3):
-        for q in range(3):
-            i, j = 3 * a + p, 3 * b + q
-            if j <= i and i - j <= width:
-                band[i, i - j] += sign * block[p, q]
-
-
-@numba.njit(cache=True)
-def _spring_block(x, i, j, rest, k, c, axial, block):
-    """
-    Fill block with S + C of the spring (i, j) (k, c already scaled by the step).
-
-    S = k u u^T + (T / l)(I - u u^T), C = c u u^T (axial) or c I (seed form).
-    """
-    dx = x[j, 0] - x[i, 0]
-    dy = x[j, 1] - x[i, 1]
-    dz = x[j, 2] - x[i, 2]
-    length = max(np.sqrt(dx * dx + dy * dy + dz * dz), 1e-12)
-    u0, u1, u2 = dx / length, dy / length, dz / length
-    # The full axial stiffness even where a segment is slack: a single linearised step that
-    # expects no resistance overshoots when the segment snaps taut within the step (and then
-    # blows up); overestimating it only damps that step a little. The geometric term only
-    # where the spring pulls: that keeps the matrix positive definite.
-    g = max(k * (length - rest), 0.0) / length
-    diag = g + (0.0 if axial else c)
-    along = k - g + (c if axial else 0.0)
-    block[0, 0] = along * u0 * u0 + diag
-    block[1, 1] = along * u1 * u1 + diag
-    block[2, 2] = along * u2 * u2 + diag
-    block[0, 1] = block[1, 0] = along * u0 * u1
-    block[0, 2] = block[2, 0] = along * u0 * u2
-    block[1, 2] = block[2, 1] = along * u1 * u2
-
-
-@numba.njit(cache=True)
-def _spring_jacobians(x, band, block, stride, rest, k, c, axial):
-    """Add S + C of the springs (i, i + stride) to the band (free-particle numbering)."""
-    n = x.shape[0]
-    for i in range(n - stride):
-        j = i + stride
-        _spring_block(x, i, j, rest, k, c, axial, block)
-        # particle 1 is unknown 0; the ends are not unknowns
-        a = i - 1 if 0 < i < n - 1 else -1
-        b = j - 1 if 0 < j < n - 1 else -1
-        _add_block(band, a, a, block, 1.0)
-        _add_block(band, b, b, block, 1.0)
-        _add_block(band, b, a, block, -1.0)
-
-
-@numba.njit(cache=True)
-def _structural_blocks(x, diagonal, lower, block, rest, k, c, axial):
-    """Add S + C of the structural springs as 3x3 blocks of a block-tridiagonal matrix."""
-    m = diagonal.shape[0]
-    for i in range(m + 1):  # spring i joins particles i and i + 1, unknowns i - 1 and i
-        _spring_block(x, i, i + 1, rest, k, c, axial, block)
-        for p in range(3):
-            for q in range(3):
-                if i > 0:
-                    diagonal[i - 1, p, q] += block[p, q]
-                if i < m:
-                    diagonal[i, p, q] += block[p, q]
-                if 0 < i < m:
-                    lower[i - 1, p, q] -= block[p, q]  # A[i, i - 1]
-
+# extrapolate the acceleration (Newmark gamma < 1) blew up on slack-taut snaps.
+#
+# The unknowns are the accelerations of every line's interior particles and of every free
+# point. A line couples particle i to i+1 and i+2 only: its interior block A_k is
+# block-tridiagonal (structural springs: block Thomas) or banded (with the bending springs:
+# half bandwidth 8 scalars, banded Cholesky), solved in O(N). Free points couple lines: B_k
+# (interior rows x the free ends' point columns) is nonzero only next to the ends, and the
+# points' own block D holds their masses and the end springs. The points are solved through
+# the Schur complement S = D - sum_k B_k^T A_k^-1 B_k (small, dense, SPD: Cholesky), then
+# every line's interior by back-substitution: a_k = A_k^-1 (r_k - B_k a_points).
 
 @numba.njit(cache=True)
 def _inverse3(a, out):
@@ -259,30 +318,37 @@ def _inverse3(a, out):
 
 
 @numba.njit(cache=True)
-def _block_thomas(diagonal, lower, rhs, inverse, work):
+def _block_thomas_factor(diagonal, lower, inverse, multiplier, m):
     """
-    Solve the symmetric block-tridiagonal system in place; rhs (m, 3) -> solution.
+    Factor the symmetric block-tridiagonal matrix of m blocks (block Thomas).
 
-    Block Thomas: diagonal[i] -= L D^-1 L^T down the chain, then back-substitution.
-    inverse (m, 3, 3) and work (3, 3) are scratch.
+    diagonal[i] -= L D^-1 L^T down the chain; inverse[i] gets the inverse of the reduced
+    diagonal block, multiplier[i] = lower[i - 1] inverse[i - 1].
     """
-    m = diagonal.shape[0]
     _inverse3(diagonal[0], inverse[0])
     for i in range(1, m):
         low = lower[i - 1]
         prev = inverse[i - 1]
-        # work = low @ prev (the multiplier), then diagonal[i] -= work @ low^T
+        work = multiplier[i]
         for p in range(3):
             for q in range(3):
                 work[p, q] = (low[p, 0] * prev[0, q] + low[p, 1] * prev[1, q]
                               + low[p, 2] * prev[2, q])
         for p in range(3):
-            rhs[i, p] -= (work[p, 0] * rhs[i - 1, 0] + work[p, 1] * rhs[i - 1, 1]
-                          + work[p, 2] * rhs[i - 1, 2])
             for q in range(3):
                 diagonal[i, p, q] -= (work[p, 0] * low[q, 0] + work[p, 1] * low[q, 1]
                                       + work[p, 2] * low[q, 2])
         _inverse3(diagonal[i], inverse[i])
+
+
+@numba.njit(cache=True)
+def _block_thomas_solve(lower, inverse, multiplier, rhs, m):
+    """Solve with the factors of _block_thomas_factor in place; rhs (>= m, 3) -> solution."""
+    for i in range(1, m):
+        work = multiplier[i]
+        for p in range(3):
+            rhs[i, p] -= (work[p, 0] * rhs[i - 1, 0] + work[p, 1] * rhs[i - 1, 1]
+                          + work[p, 2] * rhs[i - 1, 2])
     for i in range(m - 1, -1, -1):
         if i < m - 1:  # subtract A[i, i + 1] x[i + 1] = lower[i]^T x[i + 1]
             low = lower[i]
@@ -296,9 +362,8 @@ def _block_thomas(diagonal, lower, rhs, inverse, work):
 
 
 @numba.njit(cache=True)
-def _cholesky_solve(band, rhs):
-    """Solve the banded SPD system in place (band[i, i - j] = A[i, j]); return rhs."""
-    n = band.shape[0]
+def _cholesky_factor(band, n):
+    """Factor the banded SPD matrix of size n in place (band[i, i - j] = A[i, j])."""
     width = band.shape[1] - 1
     for i in range(n):
         for j in range(max(0, i - width), i + 1):
@@ -309,6 +374,12 @@ def _cholesky_solve(band, rhs):
                 band[i, 0] = np.sqrt(max(s, 1e-300))
             else:
                 band[i, i - j] = s / band[j, 0]
+
+
+@numba.njit(cache=True)
+def _cholesky_band_solve(band, rhs, n):
+    """Solve with the factor of _cholesky_factor in place; rhs (>= n,) -> solution."""
+    width = band.shape[1] - 1
     for i in range(n):
         s = rhs[i]
         for p in range(max(0, i - width), i):
@@ -319,70 +390,332 @@ def _cholesky_solve(band, rhs):
         for p in range(i + 1, min(n, i + width + 1)):
             s -= band[p, p - i] * rhs[p]
         rhs[i] = s / band[i, 0]
-    return rhs
 
 
 @numba.njit(cache=True)
-def implicit_euler_run(x, v, ends, end_velocities, dt, coef, inv_mass, max_strain,
-                       adjusting, max_iterations, implicit_bending):
-    """
-    Take len(ends) implicit Euler steps in place (arguments as improved_euler_run).
+def dense_cholesky_solve(a, b):
+    """Solve the small dense SPD system a x = b in place (a is overwritten); b -> x."""
+    n = a.shape[0]
+    for j in range(n):
+        s = a[j, j]
+        for p in range(j):
+            s -= a[j, p] * a[j, p]
+        a[j, j] = np.sqrt(max(s, 1e-300))
+        for i in range(j + 1, n):
+            s = a[i, j]
+            for p in range(j):
+                s -= a[i, p] * a[j, p]
+            a[i, j] = s / a[j, j]
+    for i in range(n):
+        s = b[i]
+        for p in range(i):
+            s -= a[i, p] * b[p]
+        b[i] = s / a[i, i]
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for p in range(i + 1, n):
+            s -= a[p, i] * b[p]
+        b[i] = s / a[i, i]
 
-    implicit_bending: put the bending springs in the matrix too (needed only when they are
-    stiff enough to limit an explicit step; it widens the band from 5 to 8).
+
+@numba.njit(cache=True, inline='always')
+def _add_band(band, a, b, block, sign):
+    """Add sign * block into the band at unknown rows a, columns b (lower triangle only)."""
+    width = band.shape[1] - 1
+    for p in range(3):
+        for q in range(3):
+            i, j = 3 * a + p, 3 * b + q
+            if j <= i and i - j <= width:
+                band[i, i - j] += sign * block[p, q]
+
+
+@numba.njit(cache=True, inline='always')
+def _scatter(block, i, j, first, last, end_col, end_free, free_index, banded, band, diagonal,
+             lower, coupling, schur):
     """
-    n = x.shape[0]
-    last = n - 1
-    m = n - 2  # unknowns: the free particles
-    l0, ks, cs, kb, cb, axial = coef[0], coef[1], coef[2], coef[3], coef[4], coef[5] > 0.5
-    drag, mass = coef[6], coef[7]
+    Add a spring's block K between particles i < j of one line into the step's matrices.
+
+    The full matrix gets K at (i, i) and (j, j), -K at (i, j) and (j, i). An interior particle
+    is an unknown of the line's A (band or block tridiagonal); a line end on a free point is
+    that point's unknown (the Schur system `schur`, the coupling B `coupling`); an end on a
+    fixed or driven point is no unknown.
+    """
+    ii = i - first - 1 if first < i < last else -1
+    jj = j - first - 1 if first < j < last else -1
+    pi = -1
+    pj = -1
+    ci = 0
+    cj = 0
+    if ii < 0:
+        e = 0 if i == first else 1
+        if end_free[e]:
+            pi, ci = free_index[e], end_col[e]
+    if jj < 0:
+        e = 0 if j == first else 1
+        if end_free[e]:
+            pj, cj = free_index[e], end_col[e]
+    if banded:
+        if ii >= 0:
+            _add_band(band, ii, ii, block, 1.0)
+        if jj >= 0:
+            _add_band(band, jj, jj, block, 1.0)
+        if ii >= 0 and jj >= 0:
+            _add_band(band, jj, ii, block, -1.0)
+    else:
+        for p in range(3):
+            for q in range(3):
+                if ii >= 0:
+                    diagonal[ii, p, q] += block[p, q]
+                if jj >= 0:
+                    diagonal[jj, p, q] += block[p, q]
+                if ii >= 0 and jj >= 0:
+                    lower[ii, p, q] -= block[p, q]  # A[j, i] with j = i + 1
+    if pi < 0 and pj < 0:
+        return
+    for p in range(3):
+        for q in range(3):
+            if pi >= 0:
+                schur[3 * pi + p, 3 * pi + q] += block[p, q]
+            if pj >= 0:
+                schur[3 * pj + p, 3 * pj + q] += block[p, q]
+            if pi >= 0 and pj >= 0:
+                schur[3 * pi + p, 3 * pj + q] -= block[p, q]
+                schur[3 * pj + p, 3 * pi + q] -= block[p, q]
+            if ii >= 0 and pj >= 0:
+                coupling[ii, p, cj + q] -= block[p, q]
+            if jj >= 0 and pi >= 0:
+                coupling[jj, p, ci + q] -= block[p, q]
+
+
+@numba.njit(cache=True, inline='always')
+def _add_band_spring(band, a, b, m, block):
+    """Add a spring's block between unknowns a < b (-1 or m: an end, no unknown) to the band."""
+    if a >= 0:
+        _add_band(band, a, a, block, 1.0)
+    if b < m:
+        _add_band(band, b, b, block, 1.0)
+        if a >= 0:
+            _add_band(band, b, a, block, -1.0)
+
+
+@numba.njit(cache=True, inline='always')
+def _add_chain_block(diagonal, lower, u, m, block):
+    """Add the block of structural spring u (unknowns u - 1 and u) to a line's A."""
+    for p in range(3):
+        for q in range(3):
+            if u > 0:
+                diagonal[u - 1, p, q] += block[p, q]
+            if u < m:
+                diagonal[u, p, q] += block[p, q]
+            if 0 < u < m:
+                lower[u - 1, p, q] -= block[p, q]
+
+
+@numba.njit(cache=True)
+def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
+                       line_real, points, gravity, max_iterations, implicit_bending):
+    """
+    Take len(drive_x) implicit Euler steps of the whole system in place.
+
+    Arguments as improved_euler_run; implicit_bending: put the bending springs in the matrix
+    too (needed only when they are stiff enough to limit an explicit step; it widens a
+    line's band from 5 to 8).
+    """
+    n_points = points.shape[0]
+    n_lines = lines.shape[0]
+    inv_mass = np.ascontiguousarray(particles[:, INV_MASS])  # for the strain limit
+    rest = np.ascontiguousarray(particles[:, REST])
     half_h2 = 0.5 * dt * dt
+    free_of = np.full(n_points, -1, dtype=np.int64)
+    n_free = 0
+    for q in range(n_points):
+        if points[q, KIND] == FREE:
+            free_of[q] = n_free
+            n_free += 1
+    widest = 1
+    for k in range(n_lines):
+        widest = max(widest, lines[k, LAST] - lines[k, FIRST] - 1)
     f = np.empty_like(x)
     block = np.empty((3, 3))
-    rhs = np.empty((m, 3))
+    rhs_flat = np.empty(3 * widest)
+    rhs = rhs_flat.reshape(widest, 3)
+    end_force = np.empty((1, 3))
     # structural springs only: 3x3 block-tridiagonal (block Thomas); with the bending
     # springs the band is wider (banded Cholesky)
-    band = np.empty((3 * m, 9) if implicit_bending else (0, 0))
-    diagonal = np.empty((m, 3, 3))
-    lower = np.empty((max(m - 1, 0), 3, 3))
-    inverse = np.empty((m, 3, 3))
-    for k in range(ends.shape[0]):
-        for i in range(1, last):
+    band = np.empty((3 * widest, 9) if implicit_bending else (0, 0))
+    diagonal = np.empty((widest, 3, 3))
+    lower = np.empty((widest, 3, 3))
+    inverse = np.empty((widest, 3, 3))
+    multiplier = np.empty((widest, 3, 3))
+    solution = np.zeros_like(x)  # interior accelerations, by particle row
+    # free points: the Schur system, its right-hand side, and per line the coupling B and
+    # A^-1 B (by particle row), six columns: end A's point, then end B's
+    schur = np.empty((3 * n_free, 3 * n_free))
+    point_rhs = np.empty(3 * n_free)
+    coupling = np.empty((widest if n_free else 0, 3, 6))
+    solved_coupling = np.zeros((x.shape[0] if n_free else 0, 3, 6))
+    column = np.empty(3 * widest)
+    column_blocks = column.reshape(widest, 3)
+    end_col = np.array([0, 3])
+    end_free = np.zeros(2, dtype=np.bool_)
+    free_index = np.zeros(2, dtype=np.int64)
+    for k in range(drive_x.shape[0]):
+        for i in range(x.shape[0]):
             for p in range(3):
                 x[i, p] += dt * v[i, p]
-        for p in range(3):
-            x[0, p], x[last, p] = ends[k, 0, p], ends[k, 1, p]
-            v[0, p], v[last, p] = end_velocities[k, 0, p], end_velocities[k, 1, p]
-        line_forces(x, v, f, coef)
-        diagonal[:] = 0.0
-        lower[:] = 0.0
-        if implicit_bending:
-            band[:] = 0.0
-            _spring_jacobians(x, band, block, 1, l0, ks * half_h2, cs * dt, axial)
-            _spring_jacobians(x, band, block, 2, 2.0 * l0, kb * half_h2, cb * dt, axial)
-        else:
-            _structural_blocks(x, diagonal, lower, block, l0, ks * half_h2, cs * dt, axial)
-        for i in range(1, last):
-            speed = np.sqrt(v[i, 0] ** 2 + v[i, 1] ** 2 + v[i, 2] ** 2)
-            for p in range(3):
-                rhs[i - 1, p] = f[i, p] - drag * speed * v[i, p] + mass * coef[8 + p]
-                # mass, and the drag Jacobian kappa (|v| I + v v^T / |v|)
-                for q in range(3):
-                    jac = dt * drag * v[i, p] * v[i, q] / max(speed, 1e-12)
-                    if p == q:
-                        jac += dt * drag * speed + mass
-                    if implicit_bending:
-                        if q <= p:
-                            band[3 * (i - 1) + p, p - q] += jac
+        for q in range(n_points):
+            if points[q, KIND] == FREE:
+                for p in range(3):
+                    point_x[q, p] += dt * point_v[q, p]
+        _drive(points, point_x, point_v, drive_x, drive_v, k)
+        set_ends(x, v, lines, point_x, point_v)
+        line_forces(x, v, f, particles, lines)
+        if n_free:
+            schur[:] = 0.0
+            for q in range(n_points):
+                j = free_of[q]
+                if j >= 0:
+                    own = points[q, OWN_MASS]
+                    for p in range(3):
+                        point_rhs[3 * j + p] = own * gravity[p]
+                        schur[3 * j + p, 3 * j + p] += own
+        for line in range(n_lines):
+            first, last = lines[line, FIRST], lines[line, LAST]
+            axial = lines[line, AXIAL] == 1
+            m = last - first - 1
+            coupled = False
+            for e in range(2):
+                q = lines[line, END_A + e]
+                end_free[e] = points[q, KIND] == FREE
+                free_index[e] = free_of[q]
+                coupled |= end_free[e]
+            diagonal[:m] = 0.0
+            lower[:m] = 0.0
+            if implicit_bending:
+                band[:3 * m] = 0.0
+            if coupled:
+                coupling[:m] = 0.0
+            for i in range(first, last):
+                spring_block_at(x, particles, i, False, half_h2, dt, axial, block)
+                if coupled:
+                    _scatter(block, i, i + 1, first, last, end_col, end_free, free_index,
+                             implicit_bending, band, diagonal, lower, coupling, schur)
+                elif implicit_bending:  # the common cases, kept lean: A only
+                    _add_band_spring(band, i - first - 1, i - first, m, block)
+                else:
+                    _add_chain_block(diagonal, lower, i - first, m, block)
+            if implicit_bending:
+                for i in range(first, last - 1):
+                    spring_block_at(x, particles, i, True, half_h2, dt, axial, block)
+                    if coupled:
+                        _scatter(block, i, i + 2, first, last, end_col, end_free,
+                                 free_index, True, band, diagonal, lower, coupling, schur)
                     else:
-                        diagonal[i - 1, p, q] += jac
-        if implicit_bending:
-            _cholesky_solve(band, rhs.reshape(3 * m))
-        else:
-            _block_thomas(diagonal, lower, rhs, inverse, block)
-        for i in range(1, last):
-            for p in range(3):
-                x[i, p] += half_h2 * rhs[i - 1, p]
-                v[i, p] += dt * rhs[i - 1, p]
-        if adjusting:
-            adjust(x, v, inv_mass, l0, max_strain, max_iterations)
+                        _add_band_spring(band, i - first - 1, i - first + 1, m, block)
+            # mass, weight and drag of the interior particles
+            for i in range(first + 1, last):
+                local = i - first - 1
+                mass = particles[i, MASS]
+                for p in range(3):
+                    rhs[local, p] = f[i, p]
+                add_drag(v, i, particles[i, DRAG], rhs, local)
+                add_weight(rhs, local, mass, gravity)
+                block[:] = 0.0
+                add_drag_block(v, i, dt * particles[i, DRAG], mass, block)
+                if implicit_bending:
+                    _add_band(band, local, local, block, 1.0)
+                else:
+                    for p in range(3):
+                        for q in range(3):
+                            diagonal[local, p, q] += block[p, q]
+            # the line ends on free points: their rows of the point system
+            for e in range(2):
+                if not end_free[e]:
+                    continue
+                row = first if e == 0 else last
+                j = free_index[e]
+                block[:] = 0.0
+                mass = particles[row, MASS]
+                add_drag_block(v, row, dt * particles[row, DRAG], mass, block)
+                for p in range(3):
+                    end_force[0, p] = f[row, p]
+                add_drag(v, row, particles[row, DRAG], end_force, 0)
+                add_weight(end_force, 0, mass, gravity)
+                for p in range(3):
+                    point_rhs[3 * j + p] += end_force[0, p]
+                    for q in range(3):
+                        schur[3 * j + p, 3 * j + q] += block[p, q]
+            if m <= 0:
+                continue
+            if implicit_bending:
+                _cholesky_factor(band, 3 * m)
+                _cholesky_band_solve(band, rhs_flat, 3 * m)
+            else:
+                _block_thomas_factor(diagonal, lower, inverse, multiplier, m)
+                _block_thomas_solve(lower, inverse, multiplier, rhs, m)
+            for i in range(m):
+                for p in range(3):
+                    solution[first + 1 + i, p] = rhs[i, p]
+            if not coupled:
+                continue
+            # A^-1 B, column by column, and the Schur complement's share of this line
+            for c in range(6):
+                e = c // 3
+                if not end_free[e]:
+                    continue
+                for i in range(m):
+                    for p in range(3):
+                        column[3 * i + p] = coupling[i, p, c]
+                if implicit_bending:
+                    _cholesky_band_solve(band, column, 3 * m)
+                else:
+                    _block_thomas_solve(lower, inverse, multiplier, column_blocks, m)
+                for i in range(m):
+                    for p in range(3):
+                        solved_coupling[first + 1 + i, p, c] = column[3 * i + p]
+            for c in range(6):
+                e = c // 3
+                if not end_free[e]:
+                    continue
+                ro = 3 * free_index[e] + c % 3
+                s = 0.0
+                for i in range(m):
+                    for p in range(3):
+                        s += coupling[i, p, c] * rhs[i, p]
+                point_rhs[ro] -= s
+                for d in range(6):
+                    g = d // 3
+                    if not end_free[g]:
+                        continue
+                    co = 3 * free_index[g] + d % 3
+                    s = 0.0
+                    for i in range(m):
+                        for p in range(3):
+                            s += coupling[i, p, c] * solved_coupling[first + 1 + i, p, d]
+                    schur[ro, co] -= s
+        if n_free:
+            dense_cholesky_solve(schur, point_rhs)
+            for line in range(n_lines):
+                first, last = lines[line, FIRST], lines[line, LAST]
+                for c in range(6):
+                    q = lines[line, END_A + c // 3]
+                    if points[q, KIND] != FREE:
+                        continue
+                    a = point_rhs[3 * free_of[q] + c % 3]
+                    for i in range(first + 1, last):
+                        for p in range(3):
+                            solution[i, p] -= solved_coupling[i, p, c] * a
+            for q in range(n_points):
+                j = free_of[q]
+                if j >= 0:
+                    for p in range(3):
+                        point_x[q, p] += half_h2 * point_rhs[3 * j + p]
+                        point_v[q, p] += dt * point_rhs[3 * j + p]
+        for line in range(n_lines):
+            for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
+                for p in range(3):
+                    x[i, p] += half_h2 * solution[i, p]
+                    v[i, p] += dt * solution[i, p]
+        set_ends(x, v, lines, point_x, point_v)
+        _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
+                       max_iterations)

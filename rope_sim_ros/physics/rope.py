@@ -13,17 +13,21 @@
 # limitations under the License.
 
 """
-The rope: particles joined by structural (i, i+1) and bending (i, i+2) springs.
+The simulator's one line: its numbers (RopeProperties) and the bound on its end forces.
 
-Particle 0 is the bollard end and particle N the fairlead end; both are kinematic (moved by
-the inputs), the N-1 others are free. Forces follow the seed paper (Liang & Yin 2016):
-Hooke springs (eq. 2), spring damping (eq. 3), gravity (eq. 4) and quadratic air drag (eq. 5).
+RopeProperties describes a line between two points, a bollard (particle 0) and a fairlead
+(particle N), in one environment: it gives the LineType and Environment of objects.py and
+the step rules of integrators.py their numbers. Forces follow the seed paper (Liang & Yin
+2016): Hooke springs (eq. 2), spring damping (eq. 3), gravity (eq. 4) and quadratic air drag
+(eq. 5), in forces/.
 """
 
 from dataclasses import dataclass
 import math
 
 import numpy as np
+
+from .objects import Environment, LineType
 
 
 @dataclass(frozen=True)
@@ -43,6 +47,8 @@ class RopeProperties:
     :ivar gravity: gravity vector [m/s^2], shape (3,).
     :ivar max_strain: super-elasticity threshold (strain).
     :ivar superelastic_adjustment: apply the position/velocity adjustment.
+    :ivar payload_mass: mass of a free payload at the bollard end [kg]; 0: the bollard is a
+        fixed or driven point.
     """
 
     segments: int
@@ -57,6 +63,28 @@ class RopeProperties:
     gravity: tuple = (0.0, 0.0, -9.81)
     max_strain: float = 0.25
     superelastic_adjustment: bool = True
+    payload_mass: float = 0.0
+
+    @property
+    def line_type(self) -> LineType:
+        """Return the LineType of the line."""
+        return LineType(
+            mass_per_length=self.mass_per_length, axial_stiffness=self.axial_stiffness,
+            axial_damping=self.axial_damping,
+            bending_stiffness_ratio=self.bending_stiffness_ratio,
+            bending_damping_ratio=self.bending_damping_ratio, damping_model=self.damping_model,
+            air_drag_coefficient=self.air_drag_coefficient, max_strain=self.max_strain,
+            superelastic_adjustment=self.superelastic_adjustment)
+
+    @property
+    def environment(self) -> Environment:
+        """Return the Environment of the line."""
+        return Environment(gravity=tuple(float(g) for g in self.gravity))
+
+    @property
+    def end_mass(self) -> float:
+        """Lumped mass of a free bollard end [kg]: the payload and half a segment."""
+        return self.payload_mass + 0.5 * self.particle_mass
 
     @property
     def segment_length(self) -> float:
@@ -108,7 +136,7 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
     """
     Largest force [N] the line can put on an end; a state past it is a numerical artefact.
 
-    Every term of the end force (Rope.end_forces) is bounded:
+    Every term of the end force (kernels.end_forces) is bounded:
 
     - springs: a structural spring is never longer than l0 (1 + max_strain) (the
       superelastic adjustment, with the ends held within reach), so it pulls at most
@@ -128,15 +156,42 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
     1e153 N. A line-parting model (tension past the breaking load) acts far below this
     bound and would take its place.
 
+    With a payload of mass M at the bollard end (a free point) three terms grow:
+
+    - its weight M |g|;
+    - its fall: a payload thrown up by a snap can rise to the reach above the fairlead
+      and fall to the reach below it, so the fall speed above becomes
+      v_f = sqrt(4 |g| L (1 + max_strain)), and a line stretched to its limit can fling a
+      light payload at up to max_strain sqrt(EA L / M_e) (its elastic energy
+      EA max_strain^2 L / 2 all in M_e = M + half a segment): both join v*;
+    - its snatch: a payload moving at v_s = v_f + the ends' speed away from the fairlead
+      when the line snaps taut is stopped by the line's stiffness EA / L: the spring-mass
+      peak v_s sqrt(EA M / L), plus the wave front's Z v_s (Z = sqrt(EA m), the line's wave
+      impedance) before the line's whole stiffness acts; counted twice, like the springs
+      (a reflected wave, or a line without the strain limit). With the strain limit the
+      springs term already caps the pull; this keeps the bound valid without it.
+
+    A slack-taut snap of a 1 t payload on the default 40 m polyester line under a crane tip
+    heaving at 1.4 g peaks well under a tenth of this bound (test_payload.py).
+
     :param end_speed: the largest speed of an end [m/s].
     """
     ea, strain = props.axial_stiffness, props.max_strain
     r_s, r_d = props.bending_stiffness_ratio, props.bending_damping_ratio
-    fall = math.sqrt(2.0 * math.hypot(*props.gravity) * props.length)
+    g = math.hypot(*props.gravity)
+    fall = math.sqrt(2.0 * g * props.length)
+    payload = props.payload_mass
+    snatch = 0.0
+    if payload > 0.0:
+        fall = math.sqrt(4.0 * g * props.reach)
+        fall += strain * math.sqrt(ea * props.length / props.end_mass)
+        impedance = math.sqrt(ea * payload / props.length) + math.sqrt(
+            ea * props.mass_per_length)
+        snatch = 2.0 * (fall + end_speed) * impedance + payload * g
     v_star = props.wave_speed * strain + fall + end_speed
     springs = 2.0 * ea * strain * (1.0 + 2.0 * r_s) + 2.0 * r_s * ea
     dampers = 2.0 * props.axial_damping * v_star / props.segment_length * (1.0 + 2.0 * r_d)
-    return springs + dampers + props.weight_per_length * props.length
+    return springs + dampers + props.weight_per_length * props.length + snatch
 
 
 def critical_axial_damping(length: float, mass_per_length: float, axial_stiffness: float,
@@ -148,95 +203,3 @@ def critical_axial_damping(length: float, mass_per_length: float, axial_stiffnes
     stiffness-proportional damper BA gives it the damping ratio BA w1 / (2 EA).
     """
     return 2.0 * ratio * length * np.sqrt(axial_stiffness * mass_per_length) / np.pi
-
-
-def _spring_forces(x, v, stride, rest, stiffness, damping, axial, tension_only, out):
-    """
-    Add the forces of springs (i, i + stride) to `out`; return their axial force.
-
-    The axial force is positive in tension. A structural spring is a rope segment and carries
-    no compression; a bending spring pushes back when the rope folds (the seed's purpose).
-    """
-    d = x[stride:] - x[:-stride]
-    length = np.sqrt(np.einsum('ij,ij->i', d, d))
-    u = d / np.maximum(length, 1e-12)[:, None]
-    stretch = length - rest
-    if tension_only:
-        stretch = np.maximum(stretch, 0.0)
-    dv = v[stride:] - v[:-stride]
-    if axial:
-        tension = stiffness * stretch + damping * np.einsum('ij,ij->i', dv, u)
-        f = tension[:, None] * u
-    else:
-        tension = stiffness * stretch
-        f = tension[:, None] * u + damping * dv
-    out[:-stride] += f
-    out[stride:] -= f
-    return tension
-
-
-class Rope:
-    """
-    State and forces of one line.
-
-    :ivar props: the line's RopeProperties.
-    :ivar x: particle positions, shape (N+1, 3) [m].
-    :ivar v: particle velocities, shape (N+1, 3) [m/s].
-    """
-
-    def __init__(self, props: RopeProperties, positions: np.ndarray):
-        """Place the rope at rest at `positions`, shape (N+1, 3)."""
-        self.props = props
-        self.x = np.array(positions, dtype=float)
-        if self.x.shape != (props.segments + 1, 3):
-            raise ValueError(
-                f'positions must have shape ({props.segments + 1}, 3), got {self.x.shape}')
-        self.v = np.zeros_like(self.x)
-        self._gravity = np.asarray(props.gravity, dtype=float)
-
-    @property
-    def count(self) -> int:
-        """Count the particles: N + 1."""
-        return self.props.segments + 1
-
-    def line_forces(self, x: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """Spring and damper forces of the line on every particle, shape (N+1, 3)."""
-        p = self.props
-        axial = p.damping_model == 'axial'
-        f = np.zeros_like(x)
-        _spring_forces(x, v, 1, p.segment_length, p.structural_stiffness,
-                       p.structural_damping, axial, True, f)
-        if p.bending_stiffness > 0.0 or p.bending_damping > 0.0:
-            _spring_forces(x, v, 2, 2.0 * p.segment_length, p.bending_stiffness,
-                           p.bending_damping, axial, False, f)
-        return f
-
-    def accelerations(self, x: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """Accelerations of all particles (the two ends' rows are meaningless)."""
-        p = self.props
-        f = self.line_forces(x, v)
-        if p.air_drag_coefficient > 0.0:
-            speed = np.sqrt(np.einsum('ij,ij->i', v, v))
-            f -= (p.air_drag_coefficient * p.segment_length) * speed[:, None] * v
-        return f / p.particle_mass + self._gravity
-
-    def end_forces(self) -> tuple:
-        """
-        Force of the line on the bollard (particle 0) and on the fairlead (particle N).
-
-        The attached springs and dampers plus the weight of the half segment lumped at the
-        end, as MoorDyn reports for a coupled point: it converges to the catenary's end
-        tension at second order in N.
-        """
-        f = self.line_forces(self.x, self.v)
-        half_weight = 0.5 * self.props.particle_mass * self._gravity
-        return f[0] + half_weight, f[-1] + half_weight
-
-    def strains(self) -> np.ndarray:
-        """Strain of every structural spring, shape (N,)."""
-        d = np.diff(self.x, axis=0)
-        return np.sqrt(np.einsum('ij,ij->i', d, d)) / self.props.segment_length - 1.0
-
-    def is_finite(self) -> bool:
-        """Tell whether every position and velocity is a finite number."""
-        return bool(np.isfinite(self.x).all() and np.isfinite(self.v).all())

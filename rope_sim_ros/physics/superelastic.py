@@ -15,11 +15,13 @@
 """
 The seed's cure for super-elasticity (section 1.2): position and velocity adjustment.
 
-After a step, wherever a structural spring is stretched beyond l0 (1 + max_strain), its two
-particles move toward each other along it until that length is restored (only the free one
-where the other is a kinematic end), and their velocities along it are made equal, so that
-it stops stretching. For one spring between two free particles this is exactly the paper's
-rule: both move by half the excess.
+After a step, wherever a structural spring is stretched beyond l_i (1 + max_strain) (l_i its
+rest length), its two particles move toward each other along it until that length is
+restored, and their velocities along it are made equal, so that it stops stretching. They
+move in inverse proportion to their masses: a particle on a fixed or driven point (inverse
+mass 0) not at all, a line end on a free point (a payload) as that point's whole lumped
+mass. For one spring between two equal free particles this is exactly the paper's rule:
+both move by half the excess.
 
 Made right in three ways. Restoring one spring over-stretches its neighbour, so all springs
 over the limit are restored together: a Newton projection onto the constraint set whose
@@ -31,7 +33,7 @@ towed. And the bending springs get no threshold of their own: a bending spring (
 cannot exceed 2 l0 (1 + max_strain) while both structural springs under it obey theirs, and
 projecting both kinds makes them fight on a straight line.
 
-Compiled with numba: the one implementation serves the numpy path and the kernels alike.
+Compiled with numba; the integrators apply it line by line (see kernels.py).
 """
 
 import numba
@@ -91,21 +93,22 @@ def _apply(q, u, inv_mass, lam):
 
 
 @numba.njit(cache=True)
-def adjust(x, v, inv_mass, segment_length, max_strain, max_iterations):
+def adjust(x, v, inv_mass, rest, max_strain, max_iterations):
     """
     Apply the position and velocity adjustment in place.
 
     :param x: positions (N+1, 3), modified in place.
     :param v: velocities (N+1, 3), modified in place.
-    :param inv_mass: 1 for free particles, 0 for kinematic ends, shape (N+1,).
-    :param segment_length: unstretched structural spring length l0 [m].
+    :param inv_mass: inverse masses, shape (N+1,): 0 for an end on a fixed or driven point;
+        only their ratios matter (1 for equal particles will do).
+    :param rest: unstretched structural spring lengths l_i [m], shape (N,).
     :param max_strain: threshold strain.
     :param max_iterations: bound on the Newton iterations.
 
     :returns: Newton iterations taken (0 when no spring was over the threshold).
     """
     n = x.shape[0] - 1
-    limit = segment_length * (1.0 + max_strain)
+    scale = 1.0 + max_strain
     u = np.empty((n, 3))
     length = np.empty(n)
     active = np.zeros(n, dtype=np.bool_)
@@ -115,14 +118,14 @@ def adjust(x, v, inv_mass, segment_length, max_strain, max_iterations):
         _directions(x, u, length)
         over = False
         for i in range(n):
-            if length[i] > limit * (1.0 + TOLERANCE):
+            if length[i] > rest[i] * scale * (1.0 + TOLERANCE):
                 active[i] = True
                 over = True
         if not over:
             break
         # limited springs stay at their limit while the others are being restored
         for i in range(n):
-            lam[i] = length[i] - limit if active[i] else 0.0
+            lam[i] = length[i] - rest[i] * scale if active[i] else 0.0
         _solve_chain(u, inv_mass, active, lam)
         _apply(x, u, inv_mass, lam)
         iterations += 1

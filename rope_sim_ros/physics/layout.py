@@ -1,0 +1,74 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Column layout of the flat tables the numba kernels take (built by objects.System).
+
+numba passes a few 2-D tables far faster than dozens of arrays (each argument costs its
+dispatch), so a System packs its lines and points into the tables below; these names say
+which column holds what.
+
+PARTICLE table (P, PARTICLE_COLUMNS), one row per particle of every line, lines stacked:
+    MASS: lumped mass [kg], half of each neighbouring segment (an end: half of one);
+    INV_MASS: the strain-limit projection's inverse mass, relative to the line's heaviest
+        particle m_u: m_u / MASS inside a line, 0 at an end on a fixed or driven point,
+        m_u / (the point's lumped mass) at an end on a free one;
+    DRAG: air drag factor K_A times the lumped length [N s^2 / m^2];
+    REST, STIFFNESS, DAMPING: the structural spring (i, i + 1) starting at this particle:
+        rest length l_i [m], EA / l_i [N/m], BA / l_i [N s/m] (unused on a line's last row);
+    BEND_REST, BEND_STIFFNESS, BEND_DAMPING: the bending spring (i, i + 2): rest length
+        l_i + l_{i+1}, r_s EA / l_b, r_d BA / l_b with l_b = (l_i + l_{i+1}) / 2.
+
+LINE table (L, LINE_COLUMNS), integers: FIRST, LAST (its particle rows), END_A, END_B (the
+points its particles FIRST and LAST sit on), AXIAL (1: axial damping, 0: the seed's
+K_SD (V_A - V_B)), BENDING (1 if it has bending springs), ADJUST (1: apply the strain limit).
+
+LINE_REAL table (L, LINE_REAL_COLUMNS): MAX_STRAIN, AXIAL_STIFFNESS (EA [N]).
+
+POINT table (Q, POINT_COLUMNS): KIND (FIXED, DRIVEN or FREE), OWN_MASS [kg], TOTAL_MASS (own
+mass plus the half segments of every line end on it [kg]).
+"""
+
+MASS = 0
+INV_MASS = 1
+DRAG = 2
+REST = 3
+STIFFNESS = 4
+DAMPING = 5
+BEND_REST = 6
+BEND_STIFFNESS = 7
+BEND_DAMPING = 8
+PARTICLE_COLUMNS = 9
+
+FIRST = 0
+LAST = 1
+END_A = 2
+END_B = 3
+AXIAL = 4
+BENDING = 5
+ADJUST = 6
+LINE_COLUMNS = 7
+
+MAX_STRAIN = 0
+AXIAL_STIFFNESS = 1
+LINE_REAL_COLUMNS = 2
+
+KIND = 0
+OWN_MASS = 1
+TOTAL_MASS = 2
+POINT_COLUMNS = 3
+
+FIXED = 0
+DRIVEN = 1
+FREE = 2

@@ -1,0 +1,428 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The objects of a mooring system, each owning its state, as MoorDyn has them.
+
+- LineType: what a line is made of (per metre numbers, damping model, strain limit).
+- Environment: gravity (and air density); water and seabed will come here.
+- Point: where line ends meet. FIXED (never moves), DRIVEN (its position and velocity are set
+  every substep from outside: a fairlead on a ship, a crane tip) or FREE (a lumped body with a
+  mass: a payload, a shackle joining lines; volume, drag area and added mass will come).
+- Line: a LineType, N segments with a rest length each (a winch will change them), the N+1
+  particles' positions and velocities, and the two points its ends sit on.
+- System: any number of lines and points, stepped together by one integrator (kernels.py).
+
+A line's end particle coincides with its point: the point sets it, and the line returns to
+the point its end force (springs and dampers, plus the weight and drag of the half segment
+lumped at the end). A free point's acceleration is (its weight + the sum of those end
+forces) / (its mass + the attached half-segment masses).
+
+The System packs everything into the flat tables of layout.py, once (pack) and again when a
+line's rest lengths or a point change (refresh). After packing, every Line's x and v and every
+Point's position and velocity are views into the System's arrays: writing them moves the
+state the kernels step.
+"""
+
+from dataclasses import dataclass
+import math
+from typing import List, Sequence
+
+import numpy as np
+
+from . import kernels
+from .layout import (AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST, BEND_STIFFNESS,
+                     BENDING, DAMPING, DRAG, DRIVEN, FIRST, FIXED, FREE, INV_MASS,
+                     KIND, LAST, LINE_COLUMNS, LINE_REAL_COLUMNS, MASS, MAX_STRAIN, OWN_MASS,
+                     PARTICLE_COLUMNS, POINT_COLUMNS, REST, STIFFNESS, TOTAL_MASS)
+
+KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE}
+
+
+@dataclass(frozen=True)
+class LineType:
+    """
+    What a line is made of.
+
+    :ivar mass_per_length: [kg/m].
+    :ivar axial_stiffness: EA [N].
+    :ivar axial_damping: BA [N s]: a segment's damping coefficient is BA / its rest length.
+    :ivar diameter: nominal diameter [m] (for the hydrodynamics to come).
+    :ivar mbl: minimum breaking load [N] (for the parting model to come).
+    :ivar bending_stiffness_ratio: bending spring stiffness / structural spring stiffness.
+    :ivar bending_damping_ratio: bending spring damping / structural spring damping.
+    :ivar damping_model: 'axial' (stretch rate only) or 'seed' (K_SD (V_A - V_B)).
+    :ivar air_drag_coefficient: K_A per metre [N s^2 / m^3]: f = -K_A |v| v.
+    :ivar max_strain: super-elasticity threshold (strain).
+    :ivar superelastic_adjustment: apply the strain-limit projection.
+    """
+
+    mass_per_length: float
+    axial_stiffness: float
+    axial_damping: float
+    diameter: float = 0.0
+    mbl: float = math.inf
+    bending_stiffness_ratio: float = 0.0
+    bending_damping_ratio: float = 0.0
+    damping_model: str = 'axial'
+    air_drag_coefficient: float = 0.0
+    max_strain: float = 0.25
+    superelastic_adjustment: bool = True
+
+    @property
+    def wave_speed(self) -> float:
+        """Speed of an axial wave, c = sqrt(EA / m) [m/s]."""
+        return math.sqrt(self.axial_stiffness / self.mass_per_length)
+
+
+@dataclass(frozen=True)
+class Environment:
+    """
+    What the lines live in.
+
+    :ivar gravity: gravity vector [m/s^2], (3,), z up (REP-103).
+    :ivar air_density: [kg/m^3] (the seed's drag takes K_A directly; kept for what comes).
+    """
+
+    gravity: tuple = (0.0, 0.0, -9.81)
+    air_density: float = 1.225
+
+    @property
+    def g(self) -> float:
+        """|gravity| [m/s^2]."""
+        return math.hypot(*self.gravity)
+
+
+class Point:
+    """
+    A point line ends attach to.
+
+    :ivar kind: 'fixed', 'driven' or 'free'.
+    :ivar mass: own mass [kg] (a free point's; 0 for the others).
+    :ivar position: (3,) [m], a view into the System's state once packed.
+    :ivar velocity: (3,) [m/s], likewise.
+    """
+
+    def __init__(self, kind: str, position, mass: float = 0.0, velocity=None):
+        """Make a point of `kind` at `position` (a free point needs mass or a line)."""
+        if kind not in KINDS:
+            raise ValueError(f'point kind {kind!r} is not one of {", ".join(KINDS)}')
+        if not (math.isfinite(mass) and mass >= 0.0):
+            raise ValueError(f'point mass {mass!r} must be a finite number >= 0')
+        self.kind = kind
+        self.mass = float(mass)
+        self.position = np.array(position, dtype=float).reshape(3)
+        self.velocity = (np.zeros(3) if velocity is None
+                         else np.array(velocity, dtype=float).reshape(3))
+
+
+class Line:
+    """
+    One line: particles joined by structural (i, i+1) and bending (i, i+2) springs.
+
+    Particle 0 sits on point `ends[0]` (end A), particle N on `ends[1]` (end B).
+
+    :ivar line_type: its LineType.
+    :ivar rest: rest length of each segment [m], shape (N,).
+    :ivar x: particle positions (N+1, 3) [m] (a view into the System's state once packed).
+    :ivar v: particle velocities (N+1, 3) [m/s], likewise.
+    :ivar ends: indices of the points of end A and end B in the System.
+    """
+
+    def __init__(self, line_type: LineType, rest: Sequence[float], positions,
+                 ends: Sequence[int]):
+        """Place the line at rest at `positions` (N+1, 3) with segment rest lengths `rest`."""
+        self.line_type = line_type
+        self.rest = np.array(rest, dtype=float).reshape(-1)
+        self.x = np.array(positions, dtype=float)
+        if self.x.shape != (len(self.rest) + 1, 3):
+            raise ValueError(
+                f'positions must have shape ({len(self.rest) + 1}, 3), got {self.x.shape}')
+        if not (self.rest > 0.0).all():
+            raise ValueError('every segment rest length must be > 0')
+        self.v = np.zeros_like(self.x)
+        self.ends = (int(ends[0]), int(ends[1]))
+
+    @classmethod
+    def uniform(cls, line_type: LineType, length: float, segments: int, positions,
+                ends: Sequence[int]) -> 'Line':
+        """Make a line of `segments` equal segments of length / segments."""
+        return cls(line_type, np.full(segments, length / segments), positions, ends)
+
+    @property
+    def segments(self) -> int:
+        """Count the segments: N."""
+        return len(self.rest)
+
+    @property
+    def length(self) -> float:
+        """Unstretched length: the sum of the rest lengths [m]."""
+        return float(self.rest.sum())
+
+    def particle_masses(self) -> np.ndarray:
+        """Lumped masses (N+1,) [kg]: half of each neighbouring segment."""
+        half = 0.5 * self.line_type.mass_per_length * self.rest
+        masses = np.zeros(self.segments + 1)
+        masses[:-1] += half
+        masses[1:] += half
+        return masses
+
+    def strains(self) -> np.ndarray:
+        """Strain of every structural spring, shape (N,)."""
+        d = np.diff(self.x, axis=0)
+        return np.sqrt(np.einsum('ij,ij->i', d, d)) / self.rest - 1.0
+
+
+class System:
+    """
+    Lines and points stepped together.
+
+    Add points and lines, then pack(); step with improved_euler or implicit_euler.
+
+    :ivar environment: the Environment.
+    :ivar points: the Points, in index order.
+    :ivar lines: the Lines.
+    """
+
+    def __init__(self, environment: Environment):
+        """Make an empty system in `environment`."""
+        self.environment = environment
+        self.points: List[Point] = []
+        self.lines: List[Line] = []
+        self.gravity = np.asarray(environment.gravity, dtype=float)
+        self._packed = False
+
+    def add_point(self, point: Point) -> int:
+        """Add a point; return its index."""
+        self.points.append(point)
+        self._packed = False
+        return len(self.points) - 1
+
+    def add_line(self, line: Line) -> int:
+        """Add a line whose ends sit on points already added; return its index."""
+        for end in line.ends:
+            if not 0 <= end < len(self.points):
+                raise ValueError(f'line end on point {end}: the system has '
+                                 f'{len(self.points)} points')
+        self.lines.append(line)
+        self._packed = False
+        return len(self.lines) - 1
+
+    # -- packing ---------------------------------------------------------------------------
+
+    def pack(self) -> None:
+        """
+        Stack the state into the System's arrays and build the kernels' tables.
+
+        Every line end is put on its point. Afterwards Line.x / Line.v and Point.position /
+        Point.velocity are views into x, v, point_x, point_v.
+        """
+        counts = [line.segments + 1 for line in self.lines]
+        starts = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+        self.x = np.empty((int(starts[-1]), 3))
+        self.v = np.empty((int(starts[-1]), 3))
+        for k, line in enumerate(self.lines):
+            self.x[starts[k]:starts[k + 1]] = line.x
+            self.v[starts[k]:starts[k + 1]] = line.v
+            line.x = self.x[starts[k]:starts[k + 1]]
+            line.v = self.v[starts[k]:starts[k + 1]]
+        self.point_x = np.array([p.position for p in self.points], dtype=float).reshape(-1, 3)
+        self.point_v = np.array([p.velocity for p in self.points], dtype=float).reshape(-1, 3)
+        for q, point in enumerate(self.points):
+            point.position = self.point_x[q]
+            point.velocity = self.point_v[q]
+        self._starts = starts
+        self._packed = True
+        self.refresh()
+        kernels.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)
+
+    def refresh(self) -> None:
+        """Rebuild the tables from the lines' types and rest lengths and the points' masses."""
+        starts = self._starts
+        self.particles = np.zeros((int(starts[-1]), PARTICLE_COLUMNS))
+        self.lines_table = np.zeros((len(self.lines), LINE_COLUMNS), dtype=np.int64)
+        self.line_real = np.zeros((len(self.lines), LINE_REAL_COLUMNS))
+        self.points_table = np.zeros((len(self.points), POINT_COLUMNS))
+        for q, point in enumerate(self.points):
+            self.points_table[q, KIND] = KINDS[point.kind]
+            self.points_table[q, OWN_MASS] = point.mass
+            self.points_table[q, TOTAL_MASS] = point.mass
+        for k, line in enumerate(self.lines):
+            first, last = int(starts[k]), int(starts[k + 1]) - 1
+            t = line.line_type
+            rows = self.particles[first:last + 1]
+            rest = line.rest
+            masses = line.particle_masses()
+            rows[:, MASS] = masses
+            lumped = np.zeros(line.segments + 1)
+            lumped[:-1] += 0.5 * rest
+            lumped[1:] += 0.5 * rest
+            rows[:, DRAG] = t.air_drag_coefficient * lumped
+            rows[:-1, REST] = rest
+            rows[:-1, STIFFNESS] = t.axial_stiffness / rest
+            rows[:-1, DAMPING] = t.axial_damping / rest
+            if line.segments >= 2:
+                pair = rest[:-1] + rest[1:]
+                mean = 0.5 * pair
+                rows[:-2, BEND_REST] = pair
+                rows[:-2, BEND_STIFFNESS] = t.bending_stiffness_ratio * (
+                    t.axial_stiffness / mean)
+                rows[:-2, BEND_DAMPING] = t.bending_damping_ratio * (t.axial_damping / mean)
+            self.lines_table[k] = (
+                first, last, line.ends[0], line.ends[1], t.damping_model == 'axial',
+                line.segments >= 2 and (t.bending_stiffness_ratio > 0.0
+                                        or t.bending_damping_ratio > 0.0),
+                t.superelastic_adjustment)
+            self.line_real[k, MAX_STRAIN] = t.max_strain
+            self.line_real[k, AXIAL_STIFFNESS] = t.axial_stiffness
+            for e, row in ((0, first), (1, last)):
+                self.points_table[line.ends[e], TOTAL_MASS] += masses[0 if e == 0 else -1]
+        for k, line in enumerate(self.lines):
+            # inverse masses relative to the line's heaviest particle: only their ratios
+            # matter, and a uniform line's inner particles get exactly 1
+            first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST]
+            unit = self.particles[first:last + 1, MASS].max()
+            self.particles[first:last + 1, INV_MASS] = unit / self.particles[first:last + 1, MASS]
+            for e, row in ((0, first), (1, last)):
+                q = line.ends[e]
+                kind = self.points_table[q, KIND]
+                self.particles[row, INV_MASS] = (
+                    unit / self.points_table[q, TOTAL_MASS] if kind == FREE else 0.0)
+        for q in range(len(self.points)):
+            if self.points_table[q, KIND] == FREE and not self.points_table[q, TOTAL_MASS] > 0.0:
+                raise ValueError(f'free point {q} has no mass and no line')
+
+    # -- what the integrators and the outputs need -----------------------------------------
+
+    @property
+    def free_points(self) -> np.ndarray:
+        """Return the indices of the free points."""
+        return np.flatnonzero(self.points_table[:, KIND] == FREE)
+
+    def lumped_mass(self, q: int) -> float:
+        """Return a point's own mass plus the half segments of the line ends on it [kg]."""
+        return float(self.points_table[q, TOTAL_MASS])
+
+    def drive_arrays(self, steps: int) -> tuple:
+        """Return drive_x, drive_v (steps, Q, 3) holding every point where it is now, at rest."""
+        drive_x = np.repeat(self.point_x[None], steps, axis=0)
+        return drive_x, np.zeros_like(drive_x)
+
+    def step(self, integrator: str, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
+             max_iterations: int, implicit_bending: bool = False,
+             compiled: bool = True) -> None:
+        """
+        Take len(drive_x) steps of dt with the driven points at drive_x, drive_v (n, Q, 3).
+
+        :param compiled: False runs the same kernels' Python code (``.py_func``), for tests.
+        """
+        args = (self.x, self.v, self.point_x, self.point_v, drive_x, drive_v, dt,
+                self.particles, self.lines_table, self.line_real, self.points_table,
+                self.gravity, max_iterations)
+        if integrator == 'implicit_euler':
+            run = kernels.implicit_euler_run
+            args = args + (implicit_bending,)
+        else:
+            run = kernels.improved_euler_run
+        (run if compiled else run.py_func)(*args)
+
+    def end_forces(self) -> np.ndarray:
+        """Force of each line on the points of its ends, (L, 2, 3) [N] (see kernels)."""
+        out = np.empty((len(self.lines), 2, 3))
+        kernels.end_forces(self.x, self.v, self.particles, self.lines_table, self.gravity, out)
+        return out
+
+    def largest_load(self) -> tuple:
+        """Return whether the state is finite, and its largest end force or EA strain [N]."""
+        return kernels.largest_load(self.x, self.v, self.particles, self.lines_table,
+                                    self.line_real, self.gravity)
+
+    def is_finite(self) -> bool:
+        """Tell whether every position and velocity is a finite number."""
+        return bool(kernels.all_finite(self.x, self.v)
+                    and np.isfinite(self.point_x).all() and np.isfinite(self.point_v).all())
+
+    def energy(self) -> tuple:
+        """
+        Return (kinetic, potential, elastic) energy of the lines and free points [J].
+
+        Kinetic of every particle (a line end on a free point counted with the point, once),
+        potential of every lumped mass in gravity (0 at the origin), elastic of the
+        structural and bending springs.
+        """
+        kinetic = potential = elastic = 0.0
+        g = self.gravity
+        on_free = np.zeros(len(self.x), dtype=bool)
+        for k, line in enumerate(self.lines):
+            for e, row in ((0, self.lines_table[k, FIRST]), (1, self.lines_table[k, LAST])):
+                on_free[row] = self.points_table[line.ends[e], KIND] == FREE
+        moving = ~on_free
+        m = self.particles[:, MASS]
+        kinetic += 0.5 * float(np.sum(m[moving] * np.einsum('ij,ij->i', self.v, self.v)[moving]))
+        potential -= float(np.sum(m[moving] * (self.x[moving] @ g)))
+        for q in self.free_points:
+            total = self.points_table[q, TOTAL_MASS]
+            kinetic += 0.5 * total * float(self.point_v[q] @ self.point_v[q])
+            potential -= total * float(self.point_x[q] @ g)
+        for k in range(len(self.lines)):
+            first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST]
+            rows = self.particles[first:last + 1]
+            x = self.x[first:last + 1]
+            length = np.linalg.norm(x[1:] - x[:-1], axis=1)
+            stretch = np.maximum(length - rows[:-1, REST], 0.0)
+            elastic += 0.5 * float(np.sum(rows[:-1, STIFFNESS] * stretch ** 2))
+            if self.lines_table[k, BENDING] and len(x) > 2:
+                bend = np.linalg.norm(x[2:] - x[:-2], axis=1) - rows[:-2, BEND_REST]
+                elastic += 0.5 * float(np.sum(rows[:-2, BEND_STIFFNESS] * bend ** 2))
+        return kinetic, potential, elastic
+
+    def damper_power(self) -> float:
+        """
+        Power the dampers and the air drag take out of the motion now [W] (>= 0).
+
+        Axial: c ((v_j - v_i) . u)^2 per spring; seed: c |v_j - v_i|^2; air drag:
+        kappa |v|^3 per particle. With every point fixed or free, the energy (energy()) falls
+        at exactly this rate.
+        """
+        power = 0.0
+        for k in range(len(self.lines)):
+            first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST]
+            rows = self.particles[first:last + 1]
+            x, v = self.x[first:last + 1], self.v[first:last + 1]
+            axial = self.lines_table[k, AXIAL] == 1
+            for stride, col in ((1, DAMPING), (2, BEND_DAMPING)):
+                if stride == 2 and not self.lines_table[k, BENDING]:
+                    continue
+                d = x[stride:] - x[:-stride]
+                u = d / np.linalg.norm(d, axis=1)[:, None]
+                dv = v[stride:] - v[:-stride]
+                c = rows[:-stride, col]
+                if axial:
+                    power += float(np.sum(c * np.einsum('ij,ij->i', dv, u) ** 2))
+                else:
+                    power += float(np.sum(c * np.einsum('ij,ij->i', dv, dv)))
+            speed = np.linalg.norm(v, axis=1)
+            power += float(np.sum(rows[:, DRAG] * speed ** 3))
+        return power
+
+
+def single_line(line_type: LineType, environment: Environment, length: float, segments: int,
+                positions, end_a: Point, end_b: Point) -> System:
+    """Make and pack a System of one uniform line from point end_a (0) to end_b (1)."""
+    system = System(environment)
+    system.add_point(end_a)
+    system.add_point(end_b)
+    system.add_line(Line.uniform(line_type, length, segments, positions, (0, 1)))
+    system.pack()
+    return system
