@@ -21,7 +21,8 @@ bollard_y, bollard_z`` (all three or none). Other columns are ignored. Every cel
 columns must be a finite number and ``t`` must increase strictly. Errors name the file, the
 data row (1-based, header excluded), the file line and the column.
 
-OUT.csv has one row per output time with the forces of the line on both ends (OUT_COLUMNS).
+OUT.csv has one row per output time with the forces of the line on both ends (OUT_COLUMNS),
+and the payload's position (PAYLOAD_COLUMNS) when the line ends in a free payload.
 """
 
 import csv
@@ -39,6 +40,8 @@ BOLLARD_COLUMNS = ('bollard_x', 'bollard_y', 'bollard_z')
 OUT_COLUMNS = (
     't', 'fairlead_fx', 'fairlead_fy', 'fairlead_fz', 'fairlead_tension',
     'bollard_fx', 'bollard_fy', 'bollard_fz', 'bollard_tension', 'max_strain')
+# Added after OUT_COLUMNS when the line ends in a free payload (payload_mass > 0).
+PAYLOAD_COLUMNS = ('payload_x', 'payload_y', 'payload_z')
 
 
 class MotionError(ValueError):
@@ -203,21 +206,23 @@ class OutWriter:
     very floats that were computed.
     """
 
-    def __init__(self, path) -> None:
+    def __init__(self, path, payload: bool = False) -> None:
         """
         Open (create or overwrite) the file and write the header.
 
         :param path: the file.
+        :param payload: add the PAYLOAD_COLUMNS.
         :raises OSError: it cannot be written.
         """
         self.path = os.fspath(path)
+        self.payload = payload
         self._file = open(self.path, 'w', newline='', encoding='utf-8')
         self._writer = csv.writer(self._file, lineterminator='\n')
-        self._writer.writerow(OUT_COLUMNS)
+        self._writer.writerow(OUT_COLUMNS + (PAYLOAD_COLUMNS if payload else ()))
         self.rows = 0
 
     def write(self, t: float, fairlead_force, fairlead_tension: float, bollard_force,
-              bollard_tension: float, max_strain: float) -> None:
+              bollard_tension: float, max_strain: float, payload_position=None) -> None:
         """
         Append one row.
 
@@ -227,9 +232,12 @@ class OutWriter:
         :param bollard_force: force of the line on the bollard (3,) [N].
         :param bollard_tension: its magnitude [N].
         :param max_strain: largest structural strain.
+        :param payload_position: the payload's position (3,) [m] (written with payload).
         """
         numbers = [t, *fairlead_force, fairlead_tension, *bollard_force, bollard_tension,
                    max_strain]
+        if self.payload:
+            numbers += list(payload_position)
         self._writer.writerow([repr(float(v)) for v in numbers])
         self.rows += 1
 

@@ -13,29 +13,44 @@
 # limitations under the License.
 
 """
-Re-simulate a bag: its recorded input poses through a fresh Simulator, offline.
+Re-simulate a bag: its recorded input poses through a fresh line, offline.
 
 The fairlead and bollard poses of a bag (stamps from their headers, end point = pose ⊕
-offset as the node computes it) drive the same offline loop as ``rope_sim run``; the new
-bag has the same layout (the input messages byte for byte, stamped with their header
-stamps, and the outputs). Nothing depends on the wall clock, so the same bag and
-parameters give byte-identical payloads.
+offset as the node computes it) drive a line_driver.LineDriver, the node's own rules; the
+new bag has the same layout (the input messages byte for byte, and the outputs). Nothing
+depends on the wall clock, so the same bag and parameters give byte-identical payloads.
+
+A bag the node recorded holds its clock-driven decisions too (rope/events: a stream taken
+for silent, a skip ahead, a reset, a clock jump back, a pose dropped for its stamp, a
+parameter set at run time). Such a bag is replayed in its recorded order: poses and events
+go to the driver as the node handled them, and the rope is stepped to each output the node
+recorded, so the outputs are the node's to round-off, across gaps and jumps too. A bag
+without events (``rope_sim run``), or a re-simulation at another --rate, runs the poses in
+stamp order as ``rope_sim run`` does.
 """
 
+from collections import deque
 from dataclasses import dataclass, field
 import math
 import os
+import time
 from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .bag import bag_info, BagError, deserialize, read_messages
+from .bag import bag_info, BagError, read_messages
+from .bag.cdr import decode_pose_array, decode_pose_stamped, decode_string
 from .bag.metadata import load_metadata, METADATA_FILE
-from .params import LineParams
-from .ros.conversions import pose_point, PoseError, stamp_to_ns
+from .frames import pose_point, PoseError, stamp_ns
+from .line_driver import (BOLLARD, decode_event, EVENTS_TOPIC, FAIRLEAD, LineDriver,
+                          parameters_from_yaml, PARAMETERS_KEY)
+from .params import LineParams, ParameterError
 from .runner import (BagSink, BOLLARD_POSE, check_line, DEFAULT_RATE, EndSamples,
-                     FAIRLEAD_POSE, parameters_from_yaml, PARAMETERS_KEY, PARTICLES, POSE_TYPE,
-                     RunSummary, simulate, topic_name)
+                     FAIRLEAD_POSE, PARTICLES, POSE_TYPE, RunSummary, simulate, Tally,
+                     topic_name)
+from .trajectory import TrajectoryError
+
+STRING_TYPE = 'std_msgs/msg/String'
 
 
 @dataclass
@@ -125,7 +140,7 @@ def recorded_rate(path, namespace: str = '') -> Optional[float]:
 
     The rate is the inverse of the median interval of the header stamps.
     """
-    stamps = [stamp_to_ns(deserialize(m).header.stamp) for m in read_messages(
+    stamps = [stamp_ns(*decode_pose_array(m.data)[:2]) for m in read_messages(
         path, [topic_name(namespace, PARTICLES)])]
     intervals = np.diff(np.unique(stamps))
     if not len(intervals):
@@ -140,24 +155,24 @@ class _End:
     levers: List[np.ndarray] = field(default_factory=list)
     raw: List[Tuple[int, str, bytes]] = field(default_factory=list)
 
-    def samples(self, base_ns: int) -> Optional[EndSamples]:
+    def samples(self) -> Optional[EndSamples]:
         if not self.stamps:
             return None
-        t = (np.array(self.stamps, dtype=np.int64) - base_ns) / 1e9
-        return EndSamples(t, np.array(self.points), np.array(self.levers))
+        return EndSamples(np.array(self.stamps, dtype=np.int64), np.array(self.points),
+                          np.array(self.levers))
 
 
 def _read_end(path, topic: str, offset: np.ndarray, skipped: List[str]) -> _End:
     records = []
     for message in read_messages(path, [topic]):
-        pose = deserialize(message)
-        records.append((stamp_to_ns(pose.header.stamp), message.data, pose.pose))
+        sec, nanosec, _, position, orientation = decode_pose_stamped(message.data)
+        records.append((stamp_ns(sec, nanosec), message.data, position, orientation))
     records.sort(key=lambda record: record[0])  # stable: equal stamps keep bag order
     end = _End()
-    for ns, data, pose in records:
+    for ns, data, position, orientation in records:
         # The node's rules: pose ⊕ offset, no non-finite pose, strictly newer stamps.
         try:
-            point = pose_point(pose, offset)
+            point = pose_point(position, orientation, offset)
         except PoseError as e:
             skipped.append(f'{topic} at {ns / 1e9:.9f} s: {e}')
             continue
@@ -174,6 +189,12 @@ def _read_end(path, topic: str, offset: np.ndarray, skipped: List[str]) -> _End:
     return end
 
 
+def has_events(path, namespace: str = '') -> bool:
+    """Tell whether a bag holds the node's decisions (rope/events): a node recording."""
+    topic = bag_info(path).topics.get(topic_name(namespace, EVENTS_TOPIC))
+    return topic is not None and topic.type_name == STRING_TYPE
+
+
 def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
           namespace: Optional[str] = None, progress=None) -> ResimSummary:
     """
@@ -182,7 +203,9 @@ def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
     :param path: the recorded bag.
     :param out_path: the new bag directory (must not exist or be empty).
     :param params: validated parameters for the fresh line.
-    :param rate: output rate [Hz]; None = the recorded rope/particles rate, else 100 Hz.
+    :param rate: output rate [Hz]; None = the recorded one: a node recording (with
+        rope/events) is replayed at the node's own output times, another bag at the rate
+        of its rope/particles, else 100 Hz.
     :param namespace: the line's namespace in the bag; None = the only one there is.
     :param progress: callable progress(done, total, t), or None.
     :returns: the ResimSummary.
@@ -191,6 +214,8 @@ def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
     :raises ParameterError: a bad rate.
     """
     namespace = choose_namespace(path, namespace)
+    if rate is None and has_events(path, namespace):
+        return _replay(path, out_path, params, namespace, progress)
     skipped: List[str] = []
     fairlead = _read_end(path, topic_name(namespace, FAIRLEAD_POSE),
                          np.asarray(params.fairlead_offset, dtype=float), skipped)
@@ -208,13 +233,11 @@ def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
     topics = {topic_name(namespace, FAIRLEAD_POSE): POSE_TYPE}
     if has_bollard:
         topics[bollard_topic] = POSE_TYPE
-    fairlead_samples = fairlead.samples(base_ns)
-    bollard_samples = bollard.samples(base_ns)
     check_line(params, rate)  # a refused line leaves no bag behind
-    sink = BagSink(out_path, params, fairlead.raw + bollard.raw, topics, namespace,
-                   fairlead_samples, bollard_samples, base_ns=base_ns)
+    sink = BagSink(out_path, params, fairlead.raw + bollard.raw, topics, namespace)
     try:
-        summary = simulate(params, fairlead_samples, bollard_samples, rate, [sink], progress)
+        summary = simulate(params, fairlead.samples(), bollard.samples(), rate, [sink],
+                           progress)
     except BaseException:
         try:
             sink.close(complete=False)
@@ -225,3 +248,112 @@ def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
     summary.start += base_ns / 1e9
     summary.end += base_ns / 1e9
     return ResimSummary(summary, namespace, rate, skipped)
+
+
+def _replay(path, out_path, params: LineParams, namespace: str, progress) -> ResimSummary:
+    """
+    Replay a node recording in its recorded order (see the module docstring).
+
+    The node records a pose as it takes it, an event as it decides, an output as it
+    publishes it, with strictly increasing log times: read in log-time order, the bag is
+    the node's own sequence. A pose the node dropped for its stamp follows its 'drop'
+    event; an unstamped pose its 'restamp' event (the receive time the node used).
+    """
+    wall = time.monotonic()
+    check_line(params, params.publish_rate)  # a refused line leaves no bag behind
+    topics = {end: topic_name(namespace, relative) for end, relative in (
+        (FAIRLEAD, FAIRLEAD_POSE), (BOLLARD, BOLLARD_POSE))}
+    ends = {topic: end for end, topic in topics.items()}
+    offsets = {FAIRLEAD: np.asarray(params.fairlead_offset, dtype=float),
+               BOLLARD: np.asarray(params.bollard_offset, dtype=float)}
+    events_topic = topic_name(namespace, EVENTS_TOPIC)
+    particles_topic = topic_name(namespace, PARTICLES)
+    recorded = bag_info(path).topics
+    inputs = {topic: POSE_TYPE for topic in topics.values() if topic in recorded}
+    total = recorded[particles_topic].message_count if particles_topic in recorded else 0
+    driver = LineDriver(params)
+    sink = BagSink(out_path, params, [], inputs, namespace, {events_topic: STRING_TYPE})
+    summary = RunSummary(time_step=driver.simulator.time_step, reach=driver.simulator.reach)
+    tally = Tally(summary)
+    skipped: List[str] = []
+    dropped: Dict[str, deque] = {FAIRLEAD: deque(), BOLLARD: deque()}
+    restamped: Dict[str, deque] = {FAIRLEAD: deque(), BOLLARD: deque()}
+    first_ns = None
+    try:
+        for message in read_messages(path, [*inputs, events_topic, particles_topic]):
+            topic = message.topic
+            if topic == particles_topic:
+                if not driver.started:
+                    continue
+                output_ns = stamp_ns(*decode_pose_array(message.data)[:2])
+                report = driver.outputs_until(driver.seconds(output_ns))
+                for published in report.outputs:
+                    tally.add(published)
+                    sink.write_output(published, message.log_time_ns)
+                    first_ns = published.stamp_ns if first_ns is None else first_ns
+                    if progress is not None:
+                        progress(summary.rows, max(total, summary.rows), published.output.t)
+                continue
+            sink.write(topic, message.data, message.log_time_ns)
+            if topic == events_topic:
+                _apply_event(driver, decode_string(message.data), dropped, restamped)
+                continue
+            end = ends[topic]
+            sec, nanosec, _, position, orientation = decode_pose_stamped(message.data)
+            ns = stamp_ns(sec, nanosec)
+            if dropped[end] and dropped[end][0] == ns:
+                dropped[end].popleft()
+                skipped.append(f'{topic} at {ns / 1e9:.9f} s: dropped by the node for its '
+                               'stamp')
+                continue
+            if ns == 0 and restamped[end]:
+                ns = restamped[end].popleft()
+            try:
+                point = pose_point(position, orientation, offsets[end])
+                driver.push(end, ns, point.point, point.lever)
+            except (PoseError, TrajectoryError) as e:
+                skipped.append(f'{topic} at {ns / 1e9:.9f} s: {e}')
+    except BaseException:
+        try:
+            sink.close(complete=False)
+        except BagError:
+            pass
+        raise
+    summary.dropped = sink.close()
+    if summary.rows == 0:
+        raise BagError(f'bag {os.fspath(path)}: the node published no output from its '
+                       f'poses on {topics[FAIRLEAD]}; nothing to re-simulate')
+    # Outputs in stamps: the epoch may change (a clock jump back), the first stamp not.
+    summary.end = first_ns / 1e9 + (summary.end - summary.start)
+    summary.start = first_ns / 1e9
+    summary.wall = time.monotonic() - wall
+    return ResimSummary(summary, namespace, driver.rate, skipped)
+
+
+def _apply_event(driver: LineDriver, text: str, dropped: Dict[str, deque],
+                 restamped: Dict[str, deque]) -> None:
+    """Take one of the node's decisions, as the node took it."""
+    try:
+        event = decode_event(text)
+        kind = event['event']
+        if kind in ('drop', 'restamp', 'silent') and event.get('end') not in (FAIRLEAD,
+                                                                              BOLLARD):
+            raise ValueError(f'no end in {text!r}')
+        if kind == 'drop':
+            dropped[event['end']].append(int(event['stamp']))
+        elif kind == 'restamp':
+            restamped[event['end']].append(int(event['stamp']))
+        elif kind == 'silent':
+            driver.silence(event['end'])
+        elif kind == 'skip':
+            if driver.started:
+                driver.skip(float(event['t']))
+        elif kind == 'reset':
+            if driver.started:
+                driver.reset()
+        elif kind == 'clock_back':
+            driver.clear()
+        elif kind == 'set':
+            driver.update(dict(event['values']))
+    except (ValueError, KeyError, TypeError, ParameterError) as e:
+        raise BagError(f'rope/events: cannot replay {text!r}: {e}') from None

@@ -15,13 +15,12 @@
 """
 The offline loop shared by ``rope_sim run`` and ``rope_sim resim``.
 
-End samples go into one Simulator a sample ahead of the state (see _Feed), which moves the
-ends exactly as if the whole motion were known.
-The rope starts on the catenary between the first samples' end points, and the state is
-advanced from output time to output time (every 1/rate s from the first sample time to the
-last). Each output goes to sinks: OUT.csv rows (motion.OutWriter) and/or a bag (BagSink)
-with the same topics, types and stamps the node records, log time = publish time =
-simulated time.
+End samples go into one line_driver.LineDriver, the node's own input and output rules, in
+stamp order: the rope stays one sample behind them, which moves the ends exactly as if the
+whole motion were known. The rope starts on the catenary at the first fairlead sample and
+outputs follow every 1/rate s up to the last fairlead sample. Each output goes to sinks:
+OUT.csv rows (motion.OutWriter) and/or a bag (BagSink) with the same topics, types and
+stamps the node records, log time = publish time = the output stamp.
 """
 
 from dataclasses import dataclass, field
@@ -32,22 +31,22 @@ import time
 from typing import Any, Callable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
-import yaml
 
 from .bag import cdr
-from .params import LineParams, load_params, NODE_NAME, ParameterError, read_params_file
-from .simulator import default_config_dir, Output, Simulator
+from .frames import split_ns, tangent_quaternions
+from .line_driver import BOLLARD, FAIRLEAD, LineDriver, PARAMETERS_KEY, parameters_yaml, Published
+from .params import LineParams, load_params, read_params_file
+from .simulator import default_config_dir
 
 DEFAULT_RATE = 100.0
 PARAMS_FILE = 'mooring_line.yaml'
-# custom_data key of metadata.yaml under which run and resim store their parameters.
-PARAMETERS_KEY = 'rope_sim_ros.parameters'
 
 FAIRLEAD_POSE = 'fairlead/pose'
 BOLLARD_POSE = 'bollard/pose'
 PARTICLES = 'rope/particles'
 FAIRLEAD_TENSION = 'fairlead/tension'
 BOLLARD_TENSION = 'bollard/tension'
+PAYLOAD_POSE = 'payload/pose'
 POSE_TYPE = 'geometry_msgs/msg/PoseStamped'
 PARTICLES_TYPE = 'geometry_msgs/msg/PoseArray'
 WRENCH_TYPE = 'geometry_msgs/msg/Wrench'
@@ -88,30 +87,6 @@ def resolve_params(path: Optional[str] = None, overrides: Optional[Mapping] = No
     return LineParams().with_values(values)
 
 
-def parameters_yaml(params: LineParams) -> str:
-    """Return the parameters as a one-line ROS parameter file (stored in bags)."""
-    values = params.as_dict()
-    values.pop('record_path', None)
-    return yaml.safe_dump({NODE_NAME: {'ros__parameters': values}},
-                          default_flow_style=True, sort_keys=True, width=2**31).strip()
-
-
-def parameters_from_yaml(text: str) -> dict:
-    """
-    Return the parameter values of a ``parameters_yaml`` text.
-
-    :raises ParameterError: it is not such a text.
-    """
-    try:
-        data = yaml.safe_load(text)
-        values = data[NODE_NAME]['ros__parameters']
-    except (yaml.YAMLError, KeyError, TypeError):
-        raise ParameterError(f'stored parameters are not a parameter map: {text!r}') from None
-    if not isinstance(values, dict):
-        raise ParameterError(f'stored parameters are not a parameter map: {text!r}')
-    return values
-
-
 # -- messages -------------------------------------------------------------------------------
 
 
@@ -120,53 +95,29 @@ def stamp_ns(t: float) -> int:
     return int(round(t * 1e9))
 
 
-# Messages are built exactly as the node builds them (ros/conversions.py); only the input
-# PoseStamped, which the node receives rather than builds, is made here.
-
-
-def pose_stamped(ns: int, frame_id: str, position: Sequence[float]):
-    """Return a PoseStamped at position with identity orientation."""
-    from geometry_msgs.msg import PoseStamped
-    from .ros.conversions import ns_to_stamp
-    msg = PoseStamped()
-    msg.header.stamp = ns_to_stamp(ns)
-    msg.header.frame_id = frame_id
-    msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = (
-        float(v) for v in position)
-    msg.pose.orientation.w = 1.0
-    return msg
-
-
-def particles_message(ns: int, frame_id: str, positions: np.ndarray):
-    """Return the PoseArray of the particles, each oriented along the rope tangent."""
-    from .ros.conversions import pose_array
-    return pose_array(positions, frame_id, ns)
-
-
 def pose_stamped_cdr(ns: int, frame_id: str, position: Sequence[float]) -> bytes:
-    """Return pose_stamped(...) (identity orientation) as zero-padded CDR bytes (bag.cdr)."""
-    sec, nanosec = divmod(int(ns), 1_000_000_000)
+    """Return a PoseStamped at position, identity orientation, as zero-padded CDR bytes."""
+    sec, nanosec = split_ns(ns)
     return cdr.pose_stamped(sec, nanosec, frame_id, [*map(float, position), 0.0, 0.0, 0.0, 1.0])
 
 
 def particles_cdr(ns: int, frame_id: str, positions: np.ndarray) -> bytes:
-    """Return particles_message(...) as zero-padded CDR bytes, built with numpy (bag.cdr)."""
-    from .ros.conversions import tangent_quaternions
+    """Return the particles as a PoseArray (each along the rope tangent) in CDR bytes."""
     points = np.asarray(positions, dtype=float)
-    sec, nanosec = divmod(int(ns), 1_000_000_000)
+    sec, nanosec = split_ns(ns)
     return cdr.pose_array(sec, nanosec, frame_id,
                           np.concatenate([points, tangent_quaternions(points)], axis=1))
 
 
-def wrench_message(force: Sequence[float], lever: Sequence[float] = (0.0, 0.0, 0.0)):
+def wrench_cdr(force: Sequence[float], lever: Sequence[float] = (0.0, 0.0, 0.0)) -> bytes:
     """
-    Return the Wrench of the line's force on an end, torque about the pose origin.
+    Return the Wrench of the line's force on an end, torque about the pose origin (CDR).
 
     :param force: force of the line on the end [N].
     :param lever: end point minus the pose origin [m].
     """
-    from .ros.conversions import wrench
-    return wrench(force, lever)
+    force = np.asarray(force, dtype=float)
+    return cdr.wrench(force, np.cross(np.asarray(lever, dtype=float), force))
 
 
 # -- the loop -------------------------------------------------------------------------------
@@ -175,30 +126,17 @@ def wrench_message(force: Sequence[float], lever: Sequence[float] = (0.0, 0.0, 0
 @dataclass
 class EndSamples:
     """
-    Samples of one end: times [s] and world points [m] the simulator follows.
+    Samples of one end: stamps [ns] and world points [m] the line follows.
 
-    :param t: strictly increasing times, shape (n,).
+    :param t_ns: strictly increasing stamps [ns], shape (n,).
     :param points: end points, shape (n, 3).
     :param levers: end point minus pose origin per sample (torque arm), shape (n, 3), or
         None for zero.
     """
 
-    t: np.ndarray
+    t_ns: np.ndarray
     points: np.ndarray
     levers: Optional[np.ndarray] = None
-
-    def lever_at(self, t: float) -> np.ndarray:
-        """Return the torque arm of the newest sample at or before t (first before)."""
-        if self.levers is None:
-            return np.zeros(3)
-        i = max(0, int(np.searchsorted(self.t, t, side='right')) - 1)
-        return self.levers[i]
-
-
-def output_times(start: float, end: float, rate: float) -> np.ndarray:
-    """Return start + k / rate for k = 0, 1, ... up to end (inclusive, to 1e-9 of a step)."""
-    count = int(math.floor((end - start) * rate + 1e-9)) + 1
-    return start + np.arange(count) / rate
 
 
 @dataclass
@@ -287,7 +225,35 @@ class Progress:
             self._drawn = False
 
 
-Sink = Callable[[float, Output], None]
+Sink = Callable[[Published], None]
+
+
+class Tally:
+    """Counts outputs into a RunSummary: rows, first and last time, restarts, reach."""
+
+    def __init__(self, summary: RunSummary) -> None:
+        """Count into `summary`."""
+        self.summary = summary
+        self._held = False
+
+    def add(self, published: Published) -> None:
+        """Count one output."""
+        summary = self.summary
+        t, advance = published.output.t, published.advance
+        if summary.rows == 0:
+            summary.start = t
+        summary.end = t
+        summary.rows += 1
+        if advance is not None and advance.restarted:
+            summary.restarts.append((t, advance.restarted))
+        beyond = advance.beyond_reach if advance is not None else 0.0
+        if beyond:
+            if self._held:
+                summary.beyond_reach[-1] = (summary.beyond_reach[-1][0],
+                                            max(summary.beyond_reach[-1][1], beyond))
+            else:
+                summary.beyond_reach.append((t, beyond))
+        self._held = beyond > 0.0
 
 
 def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamples] = None,
@@ -297,65 +263,53 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     """
     Run the line through the end samples and hand every output to the sinks.
 
-    Outputs fall every 1/rate s from the first fairlead sample time to the last; the rope
-    starts at rest on the catenary between the end points at the first time. Without
-    bollard samples the bollard stays at params.bollard_position. Give times relative to
-    the start (0 = first sample): a large origin such as an epoch stamp, resolved to
-    2e-7 s in a float, would cost the steps their precision. Sinks, the summary and the
-    progress see the same times.
+    The samples go to a LineDriver in stamp order (a bollard sample before a fairlead one
+    of the same stamp, so that the rope starts between both), an end's stream taken for
+    finished after its last sample. Simulated time 0 is the first stamp; outputs fall
+    every 1/rate s from the first fairlead sample to the last; without bollard samples the
+    bollard stays at params.bollard_position.
 
     :param params: validated parameters.
     :param fairlead: fairlead samples (at least one).
     :param bollard: bollard samples, or None.
     :param rate: outputs per simulated second.
-    :param sinks: callables sink(t, output) called in order for every output.
+    :param sinks: callables sink(published) called in order for every output.
     :param progress: callable progress(done, total, t), or None.
     :param materials: material library (default: config/materials.yaml).
-    :returns: the RunSummary.
+    :returns: the RunSummary (times in simulated seconds).
     :raises ParameterError: rate is not a positive finite number.
     :raises TrajectoryError: a sample is non-finite or out of order.
     """
-    if not (math.isfinite(rate) and rate > 0.0):
-        raise ParameterError(f'output rate {rate!r} Hz is not allowed: must be > 0')
     wall = time.monotonic()
-    # Samples are pushed as the state approaches them (_Feed): the default history of end
-    # samples suffices.
-    sim = Simulator(params, materials, output_interval=1.0 / rate)
-    ends = [_Feed(sim.push_fairlead, fairlead)]
-    if bollard is not None:
-        ends.append(_Feed(sim.push_bollard, bollard))
-    times = output_times(float(fairlead.t[0]), float(fairlead.t[-1]), rate).tolist()
-    summary = RunSummary(start=times[0], end=times[-1], time_step=sim.time_step,
-                         reach=sim.reach)
-    for end in ends:
-        end.feed(times[0])
-    sim.start(times[0])
-    dt = sim.time_step
-    total = len(times)
-    held = False
-    for k, t in enumerate(times):
-        for end in ends:
-            end.feed(t)
-        advance = sim.advance_to(t)
-        if advance.restarted:
-            summary.restarts.append((t, advance.restarted))
-        if advance.beyond_reach:
-            if held:
-                summary.beyond_reach[-1] = (summary.beyond_reach[-1][0], max(
-                    summary.beyond_reach[-1][1], advance.beyond_reach))
-            else:
-                summary.beyond_reach.append((t, advance.beyond_reach))
-        held = advance.beyond_reach > 0.0
-        if abs(sim.time - t) < 1e-6 * dt:
-            # The state time is a running sum of steps; pin it to the exact output time
-            # so rounding never accumulates into a missed step on long runs.
-            sim.skip_to(t)
-        out = sim.output()
-        for sink in sinks:
-            sink(t, out)
-        summary.rows += 1
-        if progress is not None:
-            progress(k + 1, total, t)
+    # No skip ahead offline: the samples, not a clock, say how far the rope may go.
+    driver = LineDriver(params, materials, rate=rate)
+    ends = [(FAIRLEAD, fairlead)] + ([(BOLLARD, bollard)] if bollard is not None else [])
+    order = sorted((int(ns), 0 if end == BOLLARD else 1, end, i)
+                   for end, samples in ends for i, ns in enumerate(samples.t_ns.tolist()))
+    by_end = dict(ends)
+    counts = {end: len(samples.t_ns) for end, samples in ends}
+    first_ns, last_ns = int(fairlead.t_ns[0]), int(fairlead.t_ns[-1])
+    total = int(math.floor((last_ns - first_ns) / 1e9 * rate + 1e-9)) + 1
+    summary = RunSummary(time_step=driver.simulator.time_step, reach=driver.simulator.reach)
+    tally = Tally(summary)
+
+    def take(report) -> None:
+        for published in report.outputs:
+            tally.add(published)
+            for sink in sinks:
+                sink(published)
+            if progress is not None:
+                progress(summary.rows, max(total, summary.rows), published.output.t)
+
+    for ns, _, end, i in order:
+        samples = by_end[end]
+        lever = None if samples.levers is None else samples.levers[i]
+        driver.push(end, ns, samples.points[i], lever)
+        if i == counts[end] - 1:
+            driver.silence(end)  # its last sample: nothing more to wait for
+        if driver.started:
+            take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
+    take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
     summary.wall = time.monotonic() - wall
     return summary
 
@@ -368,33 +322,7 @@ def check_line(params: LineParams, rate: float = DEFAULT_RATE, materials: Any = 
         allowed for the line (e.g. above improved_euler's stability limit).
     :raises MaterialError: the material cannot be built.
     """
-    if not (math.isfinite(rate) and rate > 0.0):
-        raise ParameterError(f'output rate {rate!r} Hz is not allowed: must be > 0')
-    Simulator(params, materials, output_interval=1.0 / rate)  # raises what simulate() would
-
-
-class _Feed:
-    """
-    Pushes one end's samples into the simulator one sample ahead of the state.
-
-    How an end moves up to a sample depends on the sample after it (the secant's side at
-    the sample instant, a spline's tangent there). Knowing one sample beyond the state is
-    as good as knowing them all, keeps the simulator's sample buffer short (pushing stays
-    O(1) per sample) and gives the same steps as a live node that stays one sample behind
-    its newest pose.
-    """
-
-    def __init__(self, push: Callable, samples: EndSamples) -> None:
-        self.push = push
-        self.t = samples.t.tolist()
-        self.points = samples.points
-        self.next = 0
-
-    def feed(self, until: float) -> None:
-        """Push samples until one after the first sample at or after `until` is known."""
-        while self.next < len(self.t) and (self.next < 2 or self.t[self.next - 2] < until):
-            self.push(self.t[self.next], self.points[self.next])
-            self.next += 1
+    LineDriver(params, materials, rate=rate)  # raises what simulate() would
 
 
 class BagSink:
@@ -402,8 +330,8 @@ class BagSink:
     Records a run as the node does: input poses and output particles and tensions.
 
     Inputs are written in stamp order interleaved with the outputs (an input stamped at or
-    before an output time is written before that output). Log time = publish time =
-    simulated time.
+    before an output is written before that output). Log time = publish time = the stamp.
+    A line with a payload records payload/pose at every output too.
     """
 
     # Messages the writer thread may hold; write() waits for room instead of dropping.
@@ -411,19 +339,16 @@ class BagSink:
 
     def __init__(self, path, params: LineParams, inputs: Sequence[Tuple[int, str, Any]],
                  input_topics: Mapping[str, str], namespace: str = '',
-                 fairlead: Optional[EndSamples] = None,
-                 bollard: Optional[EndSamples] = None, base_ns: int = 0) -> None:
+                 extra_topics: Optional[Mapping[str, str]] = None) -> None:
         """
         Create the bag (refusing an existing non-empty directory) and its topics.
 
         :param path: the new bag directory.
         :param params: the run's parameters (frame_id; stored in custom_data).
-        :param inputs: (stamp_ns, topic, message or CDR bytes) of every input message.
+        :param inputs: (stamp_ns, topic, CDR bytes) of every input message.
         :param input_topics: {topic: type} of the inputs.
         :param namespace: namespace of the output topics ('' = root).
-        :param fairlead: fairlead samples (for the torque arm), or None.
-        :param bollard: bollard samples (for the torque arm), or None.
-        :param base_ns: stamp [ns] of simulated time 0 (output stamp = base_ns + t).
+        :param extra_topics: {topic: type} of other topics to register (e.g. events).
         :raises BagError: the directory exists and is not empty, or cannot be created.
         """
         from .bag import BagWriter
@@ -431,19 +356,20 @@ class BagSink:
         self._inputs = sorted(inputs, key=lambda item: item[0])
         self._next_input = 0
         self._retries = 0
-        self._fairlead = fairlead
-        self._bollard = bollard
-        self._base_ns = int(base_ns)
         self.particles = topic_name(namespace, PARTICLES)
         self.fairlead_tension = topic_name(namespace, FAIRLEAD_TENSION)
         self.bollard_tension = topic_name(namespace, BOLLARD_TENSION)
+        self.payload = topic_name(namespace, PAYLOAD_POSE)
         self.writer = BagWriter(path, queue_size=self.QUEUE_SIZE,
                                 custom_data={PARAMETERS_KEY: parameters_yaml(params)})
-        for topic, type_name in input_topics.items():
+        for topic, type_name in {**input_topics, **(extra_topics or {})}.items():
             self.writer.add_topic(topic, type_name)
         self.writer.add_topic(self.particles, PARTICLES_TYPE)
         self.writer.add_topic(self.fairlead_tension, WRENCH_TYPE)
         self.writer.add_topic(self.bollard_tension, WRENCH_TYPE)
+        self._payload = _has_payload(params)
+        if self._payload:
+            self.writer.add_topic(self.payload, POSE_TYPE)
 
     @property
     def path(self) -> str:
@@ -468,16 +394,28 @@ class BagSink:
             self._write(topic, message, ns)
             self._next_input += 1
 
-    def __call__(self, t: float, out: Output) -> None:
-        """Record the inputs up to t, then the outputs at t."""
-        ns = self._base_ns + stamp_ns(t)
+    def __call__(self, published: Published, log_ns: Optional[int] = None) -> None:
+        """Record the inputs up to the output's stamp, then the output (log time log_ns)."""
+        ns = published.stamp_ns
+        log_ns = ns if log_ns is None else log_ns
         self._write_inputs(ns)
-        fairlead_lever = self._fairlead.lever_at(t) if self._fairlead else np.zeros(3)
-        bollard_lever = self._bollard.lever_at(t) if self._bollard else np.zeros(3)
-        self._write(self.particles, particles_cdr(ns, self.frame_id, out.positions), ns)
-        self._write(self.fairlead_tension, wrench_message(out.fairlead_force, fairlead_lever),
-                    ns)
-        self._write(self.bollard_tension, wrench_message(out.bollard_force, bollard_lever), ns)
+        self.write_output(published, log_ns)
+
+    def write(self, topic: str, data: bytes, log_ns: int) -> None:
+        """Record one message (CDR bytes) now."""
+        self._write(topic, data, log_ns)
+
+    def write_output(self, published: Published, log_ns: int) -> None:
+        """Record one output: particles, both tensions (and the payload pose)."""
+        out, ns = published.output, published.stamp_ns
+        self._write(self.particles, particles_cdr(ns, self.frame_id, out.positions), log_ns)
+        self._write(self.fairlead_tension,
+                    wrench_cdr(out.fairlead_force, published.fairlead_lever), log_ns)
+        self._write(self.bollard_tension,
+                    wrench_cdr(out.bollard_force, published.bollard_lever), log_ns)
+        position = getattr(out, 'payload_position', None)
+        if self._payload and position is not None:
+            self._write(self.payload, pose_stamped_cdr(ns, self.frame_id, position), log_ns)
 
     def close(self, complete: bool = True) -> int:
         """
@@ -526,12 +464,11 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
     # stamps, so a bag of epoch-stamped rows re-simulates to the same numbers.
     base_ns = int(motion.t_ns[0])
     origin = float(motion.t[0])
-    relative = (motion.t_ns - base_ns) / 1e9
-    fairlead = EndSamples(relative, motion.fairlead,
+    fairlead = EndSamples(motion.t_ns, motion.fairlead,
                           np.repeat([fairlead_offset], len(motion), axis=0))
     bollard = None
     if motion.bollard is not None:
-        bollard = EndSamples(relative, motion.bollard,
+        bollard = EndSamples(motion.t_ns, motion.bollard,
                              np.repeat([bollard_offset], len(motion), axis=0))
     sinks = []
     bag = None
@@ -549,15 +486,16 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
             topics[topic] = POSE_TYPE
             inputs += [(ns, topic, pose_stamped_cdr(ns, params.frame_id, p - offset))
                        for ns, p in zip(motion.t_ns.tolist(), points)]
-        bag = BagSink(bag_path, params, inputs, topics, '', fairlead, bollard, base_ns)
+        bag = BagSink(bag_path, params, inputs, topics, '')
         sinks.append(bag)
     writer = None
     try:
         if out_path is not None:
-            writer = OutWriter(out_path)
-            sinks.insert(0, lambda t, o: writer.write(
-                origin + t if origin else t, o.fairlead_force, o.fairlead_tension,
-                o.bollard_force, o.bollard_tension, o.max_strain))
+            writer = OutWriter(out_path, payload=_has_payload(params))
+            sinks.insert(0, lambda p: writer.write(
+                origin + p.output.t if origin else p.output.t, p.output.fairlead_force,
+                p.output.fairlead_tension, p.output.bollard_force, p.output.bollard_tension,
+                p.output.max_strain, getattr(p.output, 'payload_position', None)))
         summary = simulate(params, fairlead, bollard, rate, sinks, progress)
     except BaseException:
         # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
@@ -570,6 +508,11 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
     summary.start += origin
     summary.end += origin
     return summary
+
+
+def _has_payload(params: LineParams) -> bool:
+    """Tell whether the line ends in a free payload (payload_mass > 0)."""
+    return getattr(params, 'payload_mass', 0.0) > 0.0
 
 
 def _close_quietly(writer, bag) -> None:

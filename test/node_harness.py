@@ -176,14 +176,16 @@ class SimClient:
         msg.clock.sec, msg.clock.nanosec = sec, nanosec
         self.clock_pub.publish(msg)
 
-    def pose(self, position, stamp_ns: int, publisher=None) -> None:
-        """Publish a PoseStamped at `position` (identity orientation) stamped stamp_ns."""
+    def pose(self, position, stamp_ns: int, publisher=None,
+             orientation=(0.0, 0.0, 0.0, 1.0)) -> None:
+        """Publish a PoseStamped at `position` (x, y, z, w `orientation`) stamped stamp_ns."""
         msg = PoseStamped()
         msg.header.frame_id = 'world'
         msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
         msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = (
             float(c) for c in position)
-        msg.pose.orientation.w = 1.0
+        (msg.pose.orientation.x, msg.pose.orientation.y, msg.pose.orientation.z,
+         msg.pose.orientation.w) = (float(c) for c in orientation)
         (publisher or self.fairlead_pub).publish(msg)
 
     def set_parameter(self, name: str, value, timeout: float = 10.0):
@@ -201,7 +203,8 @@ class SimClient:
         Sim time runs at `speed` times the wall clock with this process: a stall here pauses
         the node's time as well. fairlead(t) and bollard(t) give the positions at t [s] from
         start_ns, or None for no pose then (fairlead or bollard None: /clock only, or no
-        bollard poses); at(t), if given, runs before each sample.
+        bollard poses), or a (position, orientation (x, y, z, w)) pair; at(t), if given,
+        runs before each sample.
         """
         wall = time.monotonic()
         for k in range(round(seconds * rate) + 1):
@@ -214,7 +217,9 @@ class SimClient:
             self.clock(ns)
             for end, publisher in ((fairlead, self.fairlead_pub), (bollard, self.bollard_pub)):
                 position = None if end is None else end(t)
-                if position is not None:
+                if isinstance(position, tuple) and len(position) == 2:
+                    self.pose(position[0], ns, publisher, position[1])
+                elif position is not None:
                     self.pose(position, ns, publisher)
 
 

@@ -238,3 +238,43 @@ def test_progress_bar_redraws_one_line_and_ends_it():
     bar(1, 1, 0.0)
     bar.finish()
     assert quiet.getvalue() == ''
+
+
+def test_a_payload_adds_its_position_to_out_csv_and_the_bag(tmp_path):
+    """payload_mass > 0: payload_x, payload_y, payload_z columns and payload/pose messages."""
+    from rope_sim_ros.bag import read_messages
+    from rope_sim_ros.bag.cdr import decode_pose_array, decode_pose_stamped
+    from rope_sim_ros.motion import PAYLOAD_COLUMNS
+    motion = tmp_path / 'motion.csv'
+    lines = [HEADER + ',bollard_x,bollard_y,bollard_z']
+    for k in range(101):
+        t = k * 0.02
+        lines.append(f'{t:.2f},{36.0 + 0.5 * math.sin(2.0 * t)!r},0,8,0,0,0')
+    motion.write_text('\n'.join(lines) + '\n')
+    out, bag = tmp_path / 'out.csv', tmp_path / 'bag'
+    assert cli.main(['run', '--motion', str(motion), '--out', str(out), '--bag', str(bag),
+                     '--rate', '50', '--quiet', '--set', 'segments=8',
+                     '--set', 'payload_mass=500']) == 0
+    header, rows = read_out(out)
+    assert tuple(header) == OUT_COLUMNS + PAYLOAD_COLUMNS
+    assert len(rows) == 101 and np.isfinite(rows).all()
+    payload = rows[:, 10:13]
+    # it hangs about a line's length under the fairlead (the bollard samples are ignored)
+    assert payload[0] == pytest.approx([36.0, 0.0, 8.0 - 40.0], abs=0.1)
+    assert np.abs(payload[:, 0] - 36.0).max() > 0.01  # the surge swings it
+    # the bollard force is the line's pull on the payload: its weight, at rest
+    assert rows[0, 8] == pytest.approx(500.0 * 9.81, rel=1e-3)
+    poses = [decode_pose_stamped(m.data) for m in read_messages(bag, ['/payload/pose'])]
+    particles = [decode_pose_array(m.data) for m in read_messages(bag, ['/rope/particles'])]
+    assert len(poses) == len(particles) == 101
+    for (sec, nanosec, frame, position, orientation), (psec, pnanosec, _, points) in zip(
+            poses, particles):
+        assert (sec, nanosec, frame) == (psec, pnanosec, 'world')
+        assert np.array_equal(position, points[0, :3])
+        assert np.array_equal(orientation, [0.0, 0.0, 0.0, 1.0])
+    np.testing.assert_array_equal([p[3] for p in poses], payload)
+    # resim of it: the same outputs, payload included
+    again = tmp_path / 'again'
+    assert cli.main(['resim', str(bag), '--out', str(again), '--quiet']) == 0
+    assert [m.data for m in read_messages(again, ['/payload/pose'])] == [
+        m.data for m in read_messages(bag, ['/payload/pose'])]

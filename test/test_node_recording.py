@@ -22,6 +22,7 @@ process: on the Recorder alone and on a node whose bag file breaks under it.
 """
 
 import errno
+import json
 import math
 import os
 from pathlib import Path
@@ -40,12 +41,14 @@ from rclpy.parameter import Parameter
 from rclpy.serialization import deserialize_message
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros import cli
-from rope_sim_ros.bag import bag_info, deserialize, read_messages
+from rope_sim_ros.bag import bag_info, read_messages
 from rope_sim_ros.resim import stored_parameters
 from rope_sim_ros.ros import recorder as rec
 from rope_sim_ros.ros.conversions import pose_array, wrench
+from rope_sim_ros.ros2bag import deserialize
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
+from std_msgs.msg import String
 import yaml
 
 with warnings.catch_warnings():
@@ -60,6 +63,7 @@ TYPES = {
     'rope/particles': 'geometry_msgs/msg/PoseArray',
     'fairlead/tension': 'geometry_msgs/msg/Wrench',
     'bollard/tension': 'geometry_msgs/msg/Wrench',
+    'rope/events': 'std_msgs/msg/String',
 }
 
 
@@ -416,6 +420,8 @@ def test_sigkill_leaves_a_recoverable_bag(colcon_install, colcon_env, tmp_path):
                 assert all(map(math.isfinite, force_values(msg)))
             elif isinstance(msg, PoseStamped):
                 assert all(map(math.isfinite, pose_values(msg)[1]))
+            elif isinstance(msg, String):
+                assert json.loads(msg.data)['event']
             else:
                 assert all(math.isfinite(p.position.z) for p in msg.poses)
     # Chunks are flushed every second: after 3 s more than the first one is there.
@@ -550,7 +556,7 @@ def test_node_simulates_on_after_a_disk_error(tmp_path, capfd):
                 msg.header.frame_id = 'world'
                 msg.pose.position.x, msg.pose.position.z = FAIRLEAD[0], FAIRLEAD[2]
                 msg.pose.orientation.w = 1.0
-                node._on_fairlead_pose(msg)
+                node._on_pose('fairlead', msg)
                 time.sleep(0.02)
                 node._on_tick()
                 if until_error and not node.recorder.recording:

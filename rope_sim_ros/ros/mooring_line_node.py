@@ -15,21 +15,27 @@
 """
 The mooring_line node: one simulated mooring line between a bollard and a fairlead.
 
-ROS glue only. Parameters (params.SPECS) become ParameterDescriptors and then a Simulator;
-pose messages become end samples; outputs are due every 1 / publish_rate of simulated time
-(from the first pose, as in `rope_sim run`) and are published as soon as the rope reaches
-them: in the pose callback that lets it, or in a timer tick when no pose stream is live.
+ROS glue only. Parameters (params.SPECS) become ParameterDescriptors and then a
+line_driver.LineDriver, which holds the input and output rules the offline runner uses
+too: simulated time 0 at the first pose, the rope one sample behind a live pose stream,
+outputs every 1 / publish_rate from the last (re)start, skip ahead past MAX_LAG, the torque
+arm of each output. Outputs are published as soon as the rope reaches them: in the pose
+callback that lets it, or in a timer tick when no pose stream is live.
 
 Time: the rope follows the node clock, so use_sim_time and /clock work. It advances to
-now, but while an end's pose stream is live never past that end's second-newest sample:
-how an end moves up to a sample depends on the sample after it (the side of the secant at
-the sample instant, the spline's tangent there), so one sample ahead the ends move exactly
-as in the offline runner, which knows the whole motion. Running ahead instead
-(extrapolating, then pulling the end back when the next pose arrives) costs a stiff line as
-much tension noise as the motion itself. When a stream falls silent for LIVE_INPUT seconds
-the end coasts to a stop, the rope goes on to now and a warning says so; poses that come
-late bring the end back onto its track smoothly (Simulator._blend_ends). Under
-use_sim_time, until the first /clock message the poses alone set the pace.
+now, but while an end's pose stream is live never past that end's second-newest sample
+(see line_driver). Running ahead instead (extrapolating, then pulling the end back when
+the next pose arrives) costs a stiff line as much tension noise as the motion itself. When
+a stream falls silent for LIVE_INPUT seconds the end coasts to a stop, the rope goes on to
+now and a warning says so; poses that come late bring the end back onto its track smoothly
+(Simulator._blend_ends). Under use_sim_time, until the first /clock message the poses alone
+set the pace.
+
+Decisions taken on the node clock (a stream taken for silent, a skip ahead, a restart by
+~/reset or by a clock jump back, a pose dropped for its stamp or stamped on receipt, a
+parameter set at run time) are published on rope/events (std_msgs/String, one JSON object
+each, line_driver.encode_event) and recorded, so that `rope_sim resim` of the node's bag
+takes them at the same points and reproduces its outputs.
 
 Inputs: a pose stamped more than STAMP_AHEAD_LIMIT ahead of the node clock or
 STAMP_BEHIND_LIMIT behind it is dropped and counted, like a non-finite one; a jump of either
@@ -44,7 +50,6 @@ after SIGKILL `rope_sim recover` completes it.
 """
 
 import array
-from collections import deque
 import contextlib
 import functools
 import gc
@@ -66,14 +71,16 @@ from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import HistoryPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
 from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions
+from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
 from . import conversions
-from .recorder import POSE_ARRAY, POSE_STAMPED, Recorder, WRENCH
+from .recorder import POSE_ARRAY, POSE_STAMPED, Recorder, STRING, WRENCH
 from .spinning import spin_until_shutdown
 from .. import params
 from ..bag import BagError
-from ..runner import PARAMETERS_KEY, parameters_yaml
+from ..line_driver import (BOLLARD, encode_event, ENDS, EVENTS_TOPIC, FAIRLEAD, LineDriver,
+                           MAX_LAG, PARAMETERS_KEY, parameters_yaml, Published)
 from ..simulator import Simulator
 from ..trajectory import TrajectoryError
 
@@ -83,7 +90,8 @@ ROS_PARAMETERS = ('use_sim_time', 'start_type_description_service')
 POSE_RELIABILITY = {'reliable': ReliabilityPolicy.RELIABLE,
                     'best_effort': ReliabilityPolicy.BEST_EFFORT}
 _OUTPUT_TYPES = {'rope/particles': POSE_ARRAY, 'fairlead/tension': WRENCH,
-                 'bollard/tension': WRENCH}
+                 'bollard/tension': WRENCH, EVENTS_TOPIC: STRING,
+                 'payload/pose': POSE_STAMPED}
 # History depth of the pose subscriptions (KEEP_LAST). A full queue drops its oldest pose
 # without a trace (DDS reports no loss for it): at depth 50 a burst of 10,000 poses reached
 # the node as 747 to 887, a 1 kHz stream for 30 s lost 3.5 %. This holds a whole burst, or
@@ -146,7 +154,7 @@ class MooringLineNode(Node):
     # stamps, so that a node that was itself stalled first reads the poses queued meanwhile.
     LIVE_INPUT = 0.25
     # Falling further behind than this [s] restarts the rope at now instead of catching up.
-    MAX_LAG = 1.0
+    MAX_LAG = MAX_LAG
     # One tick or pose callback simulates and publishes at most this many output periods of
     # a tick, so that a node catching up stays responsive (ticks and poses together catch up
     # fast enough).
@@ -184,33 +192,35 @@ class MooringLineNode(Node):
         self.skips = 0  # times the rope skipped ahead (MAX_LAG)
         # A Recorder while recording (record_path): gets every message via record().
         self.recorder: Optional[Recorder] = None
-        self.simulator: Optional[Simulator] = None
+        self.driver: Optional[LineDriver] = None
         self.add_pre_set_parameters_callback(self._coerce_parameters)
         self.add_on_set_parameters_callback(self._validate_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
         values = self._declare_parameters()
         try:
             line = params.from_values(values)
-            self.simulator = self._new_simulator(line)
+            self.driver = LineDriver(line)
             _warm_up(line, self.get_logger().info)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise StartupError(str(e)) from None
-        self._epoch_ns: Optional[int] = None  # stamp of the first pose: simulator time 0
-        self._levers = {'fairlead': np.zeros(3), 'bollard': np.zeros(3)}
-        # times [s] of the two newest accepted samples of each end, and ticks since the newest
-        self._recent = {'fairlead': deque(maxlen=2), 'bollard': deque(maxlen=2)}
-        self._quiet_ticks = {'fairlead': 0, 'bollard': 0}
-        self._fresh = False  # publish the state at once: the rope was (re)started
-        self._output_origin = 0.0  # simulator time [s] from which outputs are due
-        self._outputs_since_origin = 0
+        # ticks since the newest sample of each end (see LIVE_INPUT)
+        self._quiet_ticks = {end: 0 for end in ENDS}
+        self._payload = self.driver.payload  # publish payload/pose
+        self._told_payload = False
 
         self._outputs = {
             'rope/particles': self.create_publisher(PoseArray, 'rope/particles', 10),
             'fairlead/tension': self.create_publisher(Wrench, 'fairlead/tension', 10),
             'bollard/tension': self.create_publisher(Wrench, 'bollard/tension', 10),
+            EVENTS_TOPIC: self.create_publisher(String, EVENTS_TOPIC, 100),
         }
-        self._fairlead_sub = self._pose_subscription('fairlead/pose', self._on_fairlead_pose)
-        self._bollard_sub = self._pose_subscription('bollard/pose', self._on_bollard_pose)
+        if self._payload:
+            self._outputs['payload/pose'] = self.create_publisher(
+                PoseStamped, 'payload/pose', 10)
+        self._fairlead_sub = self._pose_subscription(
+            'fairlead/pose', functools.partial(self._on_pose, FAIRLEAD))
+        self._bollard_sub = self._pose_subscription(
+            'bollard/pose', functools.partial(self._on_pose, BOLLARD))
         for name in getattr(self, '_parameter_overrides', {}):
             if name.startswith('qos_overrides.') and not self.has_parameter(name):
                 self.get_logger().warning(
@@ -286,27 +296,30 @@ class MooringLineNode(Node):
                 except params.ParameterError as e:
                     return SetParametersResult(successful=False, reason=str(e))
         values = {p.name: _plain(p.value) for p in parameters if p.name in params.SPECS}
-        if self.simulator is not None and values:
+        if self.driver is not None and values:
             try:  # e.g. less damping under a fixed improved_euler step: unstable
-                self.simulator.check_update(values)
+                self.driver.check_update(values)
             except params.ParameterError as e:
                 return SetParametersResult(successful=False, reason=str(e))
         return SetParametersResult(successful=True)
 
     def _apply_parameters(self, parameters: List[Parameter]) -> None:
         """Post-set callback: hand run-time changes to the simulator at once."""
-        if self.simulator is None:  # still declaring
+        if self.driver is None:  # still declaring
             return
         values = {p.name: _plain(p.value) for p in parameters if p.name in params.SPECS}
         if not values:
             return
         try:
-            self.simulator.update(values)
+            self.driver.update(values)
         except ValueError as e:  # validated already: the simulator should never refuse
             self.get_logger().error(f'could not apply {values}: {e}')
             return
+        self._event('set', values=values)
         if 'publish_rate' in values:
-            self._set_output_rate(self.simulator.params.publish_rate)
+            # the driver re-anchored the outputs; the ticks follow the rate
+            self._timer.timer_period_ns = round(
+                _tick_period(self.simulator.params.publish_rate) * 1e9)
         self.get_logger().info('set ' + ', '.join(f'{k} = {v}' for k, v in values.items()))
 
     # -- inputs -------------------------------------------------------------------------
@@ -345,98 +358,80 @@ class MooringLineNode(Node):
                    'before they were sent, or the network dropped them (a deeper publisher '
                    'queue or a lower rate keeps them)')
 
-    def _on_fairlead_pose(self, msg: PoseStamped) -> None:
-        self.received['fairlead/pose'] += 1
-        self.record('fairlead/pose', msg)
-        sample = self._sample('fairlead/pose', msg, self.simulator.params.fairlead_offset)
-        if sample is None:
+    def _on_pose(self, end: str, msg: PoseStamped) -> None:
+        """Take a pose of an end: record it, check it, push its end point, advance."""
+        topic = f'{end}/pose'
+        self.received[topic] += 1
+        stamp_ns = self._stamp(end, msg)  # its events go to the bag before the pose
+        self.record(topic, msg)
+        if stamp_ns is None:
             return
-        t, end = sample
+        offset = (self.simulator.params.fairlead_offset if end == FAIRLEAD
+                  else self.simulator.params.bollard_offset)
         try:
-            event = self.simulator.push_fairlead(t, end.point)
-        except TrajectoryError as e:
-            self._drop('fairlead/pose', e)
-            return
-        if event == 'teleport':
-            self._jumped('fairlead', end.point)
-        self._accepted('fairlead', t, end.lever)
-        if not self.simulator.started:
-            self.simulator.start(t)
-            self._fresh = True
-            self.get_logger().info(
-                f'first fairlead pose: rope started on the catenary to {_fmt(end.point)}')
-        self._advance()
-
-    def _on_bollard_pose(self, msg: PoseStamped) -> None:
-        self.received['bollard/pose'] += 1
-        self.record('bollard/pose', msg)
-        sample = self._sample('bollard/pose', msg, self.simulator.params.bollard_offset)
-        if sample is None:
-            return
-        t, end = sample
-        try:
-            event = self.simulator.push_bollard(t, end.point)
-        except TrajectoryError as e:
-            self._drop('bollard/pose', e)
-            return
-        if event == 'teleport':
-            self._jumped('bollard', end.point)
-        self._accepted('bollard', t, end.lever)
-        if self.simulator.started:
-            self._advance()
-
-    def _jumped(self, end: str, point: np.ndarray) -> None:
-        """
-        Say that `end` jumped past teleport_distance, so the simulator restarted the rope.
-
-        It restarted at the state time, the last output's: the next output shows it.
-        """
-        self._recent[end].clear()  # its samples before the jump are gone
-        # Not throttled: each jump is a restart, a step in the published tension.
-        self.get_logger().warning(
-            f'{end} jumped {self.simulator.last_jump:.2f} m, more than teleport_distance '
-            f'({self.simulator.params.teleport_distance:g} m), to {_fmt(point)}: rope '
-            'restarted on the catenary there')
-
-    def _accepted(self, end: str, t: float, lever: np.ndarray) -> None:
-        """Note a sample of `end` taken by the simulator: its time, its lever, a live stream."""
-        self._levers[end] = lever
-        self._recent[end].append(t)
-        self._quiet_ticks[end] = 0
-
-    def _sample(self, topic: str, msg: PoseStamped, offset) -> Optional[tuple]:
-        """Return (time [s], PosePoint) of a pose message, or None if it was dropped."""
-        stamp_ns = conversions.stamp_to_ns(msg.header.stamp)
-        now_ns = self.get_clock().now().nanoseconds
-        if stamp_ns == 0 and now_ns:  # (a bag replayed from time 0 has both at 0 at first)
-            stamp_ns = now_ns
-            self._warn(f'{topic}: unstamped', f'{topic}: header.stamp is zero: using the '
-                       'receive time as the sample time')
-        try:
-            end = conversions.pose_point(msg.pose, offset)
+            point = conversions.pose_point(msg.pose, offset)
         except conversions.PoseError as e:
             self._drop(topic, e)
-            return None
-        if abs(end.quaternion_norm - 1.0) > 1e-3:
+            return
+        if abs(point.quaternion_norm - 1.0) > 1e-3:
             self._warn(f'{topic}: norm', f'{topic}: normalised a non-unit quaternion '
-                       f'(|q| = {end.quaternion_norm:.4g})')
+                       f'(|q| = {point.quaternion_norm:.4g})')
         frame_id = self.simulator.params.frame_id
         if msg.header.frame_id and msg.header.frame_id != frame_id:
             self._warn(f'{topic}: frame', f'{topic}: header.frame_id is '
                        f'{msg.header.frame_id!r}, not {frame_id!r}: taken as {frame_id!r} '
                        '(no tf lookup)')
+        try:
+            event = self.driver.push(end, stamp_ns, point.point, point.lever)
+        except TrajectoryError as e:
+            self._drop(topic, e)
+            return
+        if event == 'ignored':
+            if not self._told_payload:  # once: every bollard pose is ignored alike
+                self._told_payload = True
+                self.get_logger().warning(
+                    'bollard/pose: ignored: the bollard end is a free payload (payload_mass '
+                    f'{self.simulator.params.payload_mass:g} kg > 0), see payload/pose')
+            return
+        self._quiet_ticks[end] = 0
+        if event == 'teleport':
+            # Not throttled: each jump is a restart, a step in the published tension. The
+            # rope restarted at the state time, the last output's: the next output shows it.
+            self.get_logger().warning(
+                f'{end} jumped {self.simulator.last_jump:.2f} m, more than teleport_distance '
+                f'({self.simulator.params.teleport_distance:g} m), to {_fmt(point.point)}: '
+                'rope restarted on the catenary there')
+        elif event == 'start':
+            self.get_logger().info(
+                f'first fairlead pose: rope started on the catenary to {_fmt(point.point)}')
+        if self.driver.started:
+            self._advance()
+
+    def _stamp(self, end: str, msg: PoseStamped) -> Optional[int]:
+        """
+        Return the sample stamp [ns] of a pose, or None if its stamp is too far off the clock.
+
+        Both decisions depend on the node clock: they are events (see _event).
+        """
+        topic = f'{end}/pose'
+        stamp_ns = conversions.stamp_to_ns(msg.header.stamp)
+        now_ns = self.get_clock().now().nanoseconds
+        if stamp_ns == 0 and now_ns:  # (a bag replayed from time 0 has both at 0 at first)
+            stamp_ns = now_ns
+            self._event('restamp', end=end, stamp=now_ns)
+            self._warn(f'{topic}: unstamped', f'{topic}: header.stamp is zero: using the '
+                       'receive time as the sample time')
         # Under use_sim_time the clock reads 0 until the first /clock: nothing to compare.
         skew = (stamp_ns - now_ns) * 1e-9
         if now_ns and not -self.STAMP_BEHIND_LIMIT <= skew <= self.STAMP_AHEAD_LIMIT:
             side, limit = (('ahead of', self.STAMP_AHEAD_LIMIT) if skew > 0
                            else ('behind', self.STAMP_BEHIND_LIMIT))
+            self._event('drop', end=end, stamp=stamp_ns)
             self._drop(topic, ValueError(
                 f'stamp {side} the node clock by {abs(skew):.3f} s, more than {limit:g} s: '
                 'are the clocks in sync (use_sim_time)?'))
             return None
-        if self._epoch_ns is None:
-            self._epoch_ns = stamp_ns
-        return self._seconds(stamp_ns), end
+        return stamp_ns
 
     def _check_pose_publishers(self) -> None:
         """Warn of best-effort pose publishers: they cannot reach a reliable subscription."""
@@ -456,179 +451,131 @@ class MooringLineNode(Node):
 
     # -- time ---------------------------------------------------------------------------
 
-    @staticmethod
-    def _new_simulator(line: params.LineParams) -> Simulator:
-        """
-        Return a Simulator whose step divides the publish period, as `rope_sim run` does.
+    @property
+    def simulator(self) -> Optional[Simulator]:
+        """Return the line's Simulator (None while the parameters are being declared)."""
+        return None if self.driver is None else self.driver.simulator
 
-        With the same step and the same time origin (the first pose = 0) the node and the
-        offline runner step at the same times, so they give the same numbers.
-        """
-        return Simulator(line, output_interval=1.0 / line.publish_rate)
-
-    def _seconds(self, ns: int) -> float:
-        """Return the simulator time [s] of a ROS time [ns] (0 = the first pose's stamp)."""
-        return (ns - self._epoch_ns) * 1e-9
-
-    def _target_time(self, now: float) -> float:
-        """
-        Return now, but not past the second-newest sample of a live pose stream.
-
-        See the module docstring; a stream with a single sample so far holds at it.
-        """
-        target = now
-        for end, recent in self._recent.items():
-            if self._live(end):
-                target = min(target, recent[0])
-        return target
-
-    def _live(self, end: str) -> bool:
-        """Tell whether an end's pose stream is live (see LIVE_INPUT)."""
-        live_ticks = max(2, math.ceil(self.LIVE_INPUT / _tick_period(
+    def _live_ticks(self) -> int:
+        """Return after how many ticks without a sample a stream is silent (LIVE_INPUT)."""
+        return max(2, math.ceil(self.LIVE_INPUT / _tick_period(
             self.simulator.params.publish_rate)))
-        return bool(self._recent[end]) and self._quiet_ticks[end] < live_ticks
-
-    def _set_output_rate(self, rate: float) -> None:
-        """
-        Make a new publish_rate take effect with the next output: no gap, no burst.
-
-        The next output is due 1 / rate after the last one (the state time: outputs are
-        published as the rope reaches them), and the step is chosen again to divide the new
-        period. Counting on from the first output at the old period put the next one up to
-        seconds away (a skip-ahead) or in the past (a burst).
-        """
-        sim = self.simulator
-        sim.set_output_interval(1.0 / rate)
-        if sim.started and not self._fresh:
-            self._output_origin, self._outputs_since_origin = sim.time, 0
-        self._timer.timer_period_ns = round(_tick_period(rate) * 1e9)
 
     def _on_tick(self) -> None:
         """Count a tick without poses for each end, then advance (to now if none is live)."""
-        if not self.simulator.started:
+        if not self.driver.started:
             return
-        for end in self._recent:
-            was_live = self._live(end)
+        for end in ENDS:
             self._quiet_ticks[end] += 1
-            if was_live and not self._live(end):
+            if self.driver.live(end) and self._quiet_ticks[end] >= self._live_ticks():
+                self.driver.silence(end)
+                self._event('silent', end=end, t=self.driver.time)
                 self._warn(f'{end}: silent', f'{end}/pose: no new pose for '
                            f'{self.LIVE_INPUT:g} s: the {end} coasts to a stop and the rope goes '
-                           f'on with the clock from t = {self.simulator.time:.3f} s')
+                           f'on with the clock from t = {self.driver.time:.3f} s')
         self._advance()
 
     def _advance(self) -> None:
         """
-        Advance the rope towards the target time, publishing each output time it passes.
+        Advance the rope towards the clock, publishing each output it reaches (LineDriver).
 
-        Outputs are due every 1 / publish_rate from the last (re)start, as in `rope_sim run`,
-        and go out as soon as the input reaches them: from a pose callback when a pose
+        Outputs go out as soon as the input reaches them: from a pose callback when a pose
         stream is live, else from the tick. One call publishes at most OUTPUTS_PER_CALL
-        ticks' worth of them; a node further behind than MAX_LAG skips ahead instead of
-        catching up.
+        ticks' worth of them, so that a node catching up stays responsive; a node further
+        behind than MAX_LAG skips ahead instead of catching up.
         """
-        sim = self.simulator
+        driver = self.driver
         clock_ns = self.get_clock().now().nanoseconds
         # With use_sim_time the clock reads 0 until the first /clock message: until then
         # the poses alone say how far the rope may go.
-        now = self._seconds(clock_ns) if clock_ns else math.inf
-        if not clock_ns and sim.fairlead.last_time > self.LIVE_INPUT:
+        now = driver.seconds(clock_ns) if clock_ns and driver.epoch_ns is not None else math.inf
+        if not clock_ns and driver.simulator.fairlead.last_time > self.LIVE_INPUT:
             self._warn('no clock', 'use_sim_time is true but no /clock message has come: '
                        'the rope follows the pose stamps alone')
-        if now < sim.time - self.MAX_LAG:
-            self._clock_jumped_back(now)
+        rate = driver.rate
+        report = driver.advance(now, self.OUTPUTS_PER_CALL * math.ceil(
+            rate * _tick_period(rate) - 1e-9), self.MAX_LAG)
+        if report.clock_back:
+            self._event('clock_back', back=report.clock_back)
+            self.get_logger().warning(
+                f'clock jumped back by {report.clock_back:.2f} s: waiting for the next '
+                'fairlead pose to restart the rope')
             return
-        target = self._target_time(now)
-        if math.isinf(target):
-            return
-        if target - sim.time > self.MAX_LAG:
+        if report.skipped:
+            self.skips += 1
+            self._event('skip', t=report.skip_to)
             # Not throttled: each skip is a restart, a step in the published tension, and
             # there is at most one per MAX_LAG.
-            self.skips += 1
             self.get_logger().warning(
-                f'simulation fell {target - sim.time:.2f} s behind the clock: skipped ahead '
+                f'simulation fell {report.skipped:.2f} s behind the clock: skipped ahead '
                 f'and restarted the rope on the catenary (skips so far: {self.skips})')
-            sim.skip_to(target)
-            sim.restart()
-            self._fresh = True
-        if self._fresh:
-            self._publish()
-        rate, dt = sim.params.publish_rate, sim.time_step
-        period = 1.0 / rate
-        for _ in range(self.OUTPUTS_PER_CALL * math.ceil(rate * _tick_period(rate) - 1e-9)):
-            due = self._output_origin + (self._outputs_since_origin + 1) * period
-            steps = max(1, math.ceil((due - sim.time) / dt - 1e-9))
-            if sim.time + (steps - 1e-6) * dt > target:
-                return  # the input does not reach the next output time yet
-            advance = sim.advance_to(sim.time + (steps + 0.5) * dt, max_steps=steps)
-            self._outputs_since_origin += 1
-            if advance.beyond_reach:
-                self._warn('reach', f'the ends are {advance.beyond_reach:.1f} m apart, beyond '
-                           f"the line's reach of {sim.reach:.1f} m (length x (1 + max_strain)):"
-                           ' the fairlead is held at the reach')
-            if advance.restarted == 'back within reach':
-                self.get_logger().warning(
-                    f'the ends came back within reach at t = {sim.time:.3f} s: rope restarted '
-                    'at rest on the catenary')
-                self._fresh = True
-            elif advance.restarted:
-                self.get_logger().error(
-                    f'rope state turned {advance.restarted.split()[0]} at t = '
-                    f'{sim.time:.3f} s: restarted it on the catenary')
-                self._fresh = True
-            elif abs(sim.time - due) < 1e-6 * dt:
-                # The state time is a running sum of steps: pin it to the output time, as
-                # `rope_sim run` does, so that rounding never adds up to a missed step.
-                sim.skip_to(due)
-            self._publish()
+        for t in report.faults:
+            self.get_logger().error(
+                f'non-finite output at t = {t:.3f} s: not published; rope restarted')
+        for published in report.outputs:
+            self._report(published.advance)
+            self._publish(published)
 
-    def _clock_jumped_back(self, now: float) -> None:
-        """Start from scratch after the clock went back (a bag looped, a simulator reset)."""
-        self.get_logger().warning(
-            f'clock jumped back by {self.simulator.time - now:.2f} s: waiting for the next '
-            'fairlead pose to restart the rope')
-        self.simulator = self._new_simulator(self.simulator.params)
-        self._epoch_ns = None
-        for recent in self._recent.values():
-            recent.clear()
+    def _report(self, advance) -> None:
+        """Log what the advance to an output did to the rope."""
+        if advance is None:
+            return
+        sim = self.simulator
+        if advance.beyond_reach:
+            self._warn('reach', f'the ends are {advance.beyond_reach:.1f} m apart, beyond '
+                       f"the line's reach of {sim.reach:.1f} m (length x (1 + max_strain)):"
+                       ' the fairlead is held at the reach')
+        if advance.restarted == 'back within reach':
+            self.get_logger().warning(
+                f'the ends came back within reach at t = {sim.time:.3f} s: rope restarted '
+                'at rest on the catenary')
+        elif advance.restarted:
+            self.get_logger().error(
+                f'rope state turned {advance.restarted.split()[0]} at t = '
+                f'{sim.time:.3f} s: restarted it on the catenary')
 
     def _on_reset(self, request: Trigger.Request, response: Trigger.Response):
-        if not self.simulator.started:
+        if not self.driver.started:
             response.success = False
             response.message = 'no fairlead pose received yet: nothing to reset'
             return response
-        self.simulator.restart()
-        self._fresh = True
+        self.driver.reset()
+        self._event('reset', t=self.driver.time)
         response.success = True
         response.message = (
-            f'rope restarted on the catenary at t = {self.simulator.time:.3f} s')
+            f'rope restarted on the catenary at t = {self.driver.time:.3f} s')
         self.get_logger().info(response.message)
         return response
 
     # -- outputs ------------------------------------------------------------------------
 
-    def _publish(self) -> None:
-        out = self.simulator.output()
-        fairlead_lever, bollard_lever = self._levers['fairlead'], self._levers['bollard']
-        if not conversions.all_finite(out.positions, out.fairlead_force, out.bollard_force,
-                                      fairlead_lever, bollard_lever, [out.t]):
-            self.get_logger().error(
-                f'non-finite output at t = {out.t:.3f} s: not published; rope restarted')
-            self.simulator.restart()
-            self._fresh = True
-            return
-        if self._fresh:  # a (re)started rope: the next outputs are due from here
-            self._fresh = False
-            self._output_origin, self._outputs_since_origin = out.t, 0
-        stamp_ns = self._epoch_ns + round(out.t * 1e9)
+    def _publish(self, published: Published) -> None:
+        """Publish (and record) one output: particles, both tensions, the payload pose."""
+        out, stamp_ns = published.output, published.stamp_ns
+        frame_id = self.simulator.params.frame_id
         messages = {
-            'rope/particles': conversions.pose_array(
-                out.positions, self.simulator.params.frame_id, stamp_ns),
-            'fairlead/tension': conversions.wrench(out.fairlead_force, fairlead_lever),
-            'bollard/tension': conversions.wrench(out.bollard_force, bollard_lever),
+            'rope/particles': conversions.pose_array(out.positions, frame_id, stamp_ns),
+            'fairlead/tension': conversions.wrench(out.fairlead_force, published.fairlead_lever),
+            'bollard/tension': conversions.wrench(out.bollard_force, published.bollard_lever),
         }
+        position = getattr(out, 'payload_position', None)
+        if self._payload and position is not None:
+            pose = PoseStamped()
+            pose.header.frame_id = frame_id
+            pose.header.stamp = conversions.ns_to_stamp(stamp_ns)
+            pose.pose.position.x, pose.pose.position.y, pose.pose.position.z = (
+                float(c) for c in position)
+            pose.pose.orientation.w = 1.0
+            messages['payload/pose'] = pose
         for topic, msg in messages.items():
             self._outputs[topic].publish(msg)
             self.record(topic, msg)
+
+    def _event(self, kind: str, **fields: Any) -> None:
+        """Publish and record a decision taken on the node clock (see the module docstring)."""
+        msg = String(data=encode_event(kind, **fields))
+        self._outputs[EVENTS_TOPIC].publish(msg)
+        self.record(EVENTS_TOPIC, msg)
 
     # -- recording ----------------------------------------------------------------------
 

@@ -16,11 +16,18 @@
 Recording of the mooring_line node: its inputs and outputs to a rosbag2 Jazzy bag.
 
 A thin layer over bag.BagWriter that the node feeds from its record() hook. It encodes
-the three message types itself (numpy/struct CDR with zeroed padding, as the offline
+the message types itself (numpy/struct CDR with zeroed padding, as the offline
 runner does: rclpy's serialize_message leaves padding bytes uninitialised, and is slower),
 sets publish_time from the header stamp where there is one, and never lets a recording
 problem reach the simulation: write() cannot raise and never waits for the disk; an error
 stops recording, is logged once and the node goes on.
+
+Log times strictly increase in the order the node hands the messages over (a log time not
+after the previous one becomes 1 ns after it): read in log-time order, as every bag reader
+does, the bag is the node's own sequence of inputs, decisions and outputs, which `rope_sim
+resim` replays. Under use_sim_time the clock stands still between /clock messages, so a
+pose and the outputs it let through share a clock reading, and readers order ties as they
+please; a clock jumping back would put later messages before earlier ones.
 
 Input topics are registered with the QoS their publishers offer, looked up on the graph
 when the first message arrives (what `ros2 bag record` stores); an input that never
@@ -33,13 +40,16 @@ from typing import Any, Callable, Dict, Optional
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 import numpy as np
+from std_msgs.msg import String
 
-from ..bag import BagError, BagWriter, cdr
-from ..bag.metadata import QosSpec
+from ..bag import BagError, cdr
+from ..ros2bag import QosSpec
+from ..ros2bag import RosBagWriter as BagWriter
 
 POSE_STAMPED = 'geometry_msgs/msg/PoseStamped'
 POSE_ARRAY = 'geometry_msgs/msg/PoseArray'
 WRENCH = 'geometry_msgs/msg/Wrench'
+STRING = 'std_msgs/msg/String'
 
 
 def pose_stamped_cdr(msg: PoseStamped) -> bytes:
@@ -64,11 +74,17 @@ def wrench_cdr(msg: Wrench) -> bytes:
     return cdr.wrench((f.x, f.y, f.z), (t.x, t.y, t.z))
 
 
+def string_cdr(msg: String) -> bytes:
+    """Return a String as CDR bytes with zero padding (see bag.cdr)."""
+    return cdr.string(msg.data)
+
+
 # type name -> (message class, encoder, has a header)
 _TYPES = {
     POSE_STAMPED: (PoseStamped, pose_stamped_cdr, True),
     POSE_ARRAY: (PoseArray, pose_array_cdr, True),
     WRENCH: (Wrench, wrench_cdr, False),
+    STRING: (String, string_cdr, False),
 }
 
 
@@ -116,6 +132,7 @@ class Recorder:
         _quiet_writer_log()
         self._topics: Dict[str, _Topic] = {}
         self._offered = 0
+        self._last_log_ns = None  # log time of the last message (they strictly increase)
         self._failure: Optional[str] = None  # why recording stopped, once logged
 
     @property
@@ -140,7 +157,7 @@ class Recorder:
 
         :param relative: the name the node uses, e.g. 'fairlead/tension'.
         :param name: the resolved name recorded, e.g. '/line_1/fairlead/tension'.
-        :param type_name: POSE_STAMPED, POSE_ARRAY or WRENCH.
+        :param type_name: POSE_STAMPED, POSE_ARRAY, WRENCH or STRING.
         :param qos: the offered QoS profile(s) stored; None = rclpy's default publisher's.
         :param offered_qos: for an input: a callable returning the QoS its publishers offer
             (None or empty for the default), asked when the first message arrives.
@@ -159,8 +176,9 @@ class Recorder:
         Queue one message; never raises, never waits for the disk.
 
         publish_time is the header stamp where the message has a non-zero one, else the
-        log time. A message that cannot be queued (queue full, recording stopped) is
-        counted in `dropped`; the first error is logged once.
+        log time. The log time is made 1 ns after the previous one if it is not after it.
+        A message that cannot be queued (queue full, recording stopped) is counted in
+        `dropped`; the first error is logged once.
 
         :param relative: a topic given to add_topic().
         :param msg: the message as received or published.
@@ -172,6 +190,9 @@ class Recorder:
             topic = self._topics[relative]
             if topic.offered_qos is not None:
                 self._register(topic)
+            if self._last_log_ns is not None and log_time_ns <= self._last_log_ns:
+                log_time_ns = self._last_log_ns + 1
+            self._last_log_ns = log_time_ns
             publish_time_ns = log_time_ns
             if topic.stamped:
                 stamp = msg.header.stamp

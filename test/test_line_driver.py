@@ -1,0 +1,203 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The input and output rules of line_driver.LineDriver, which the node and the runner share.
+
+One sample behind a live stream, outputs pinned to their grid, skip ahead past MAX_LAG, a
+clock jump back, a rate change re-anchoring the grid, and the torque arm of each output.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from rope_sim_ros.line_driver import (BOLLARD, decode_event, encode_event, FAIRLEAD,
+                                      LineDriver, MAX_LAG)
+from rope_sim_ros.params import from_values, ParameterError
+from rope_sim_ros.simulator import Simulator
+
+EPOCH = 1_767_225_600_000_000_000  # [ns] stamp of the first sample
+FAIRLEAD_POINT = np.array([36.0, 0.0, 8.0])
+SECOND = 1_000_000_000
+
+
+def line(**values):
+    return from_values({'segments': 8, **values})
+
+
+def surge(t: float) -> np.ndarray:
+    return FAIRLEAD_POINT + [0.3 * math.sin(2.0 * t), 0.0, 0.1 * math.sin(3.0 * t)]
+
+
+def stamps(report) -> list:
+    return [(p.stamp_ns - EPOCH) for p in report.outputs]
+
+
+def test_the_rope_stays_one_sample_behind_a_live_stream():
+    driver = LineDriver(line(), rate=50.0)
+    assert driver.push(FAIRLEAD, EPOCH, surge(0.0)) == 'start'
+    # a single sample: the fresh output at the start, nothing past it
+    assert stamps(driver.advance(math.inf)) == [0]
+    driver.push(FAIRLEAD, EPOCH + 100_000_000, surge(0.1))
+    # the newest sample (0.1 s) is not reached: its motion up to it needs the next one
+    assert stamps(driver.advance(math.inf)) == []
+    driver.push(FAIRLEAD, EPOCH + 200_000_000, surge(0.2))
+    assert stamps(driver.advance(math.inf)) == [20_000_000 * k for k in range(1, 6)]
+    # a clock behind the samples holds the rope back too
+    driver.push(FAIRLEAD, EPOCH + 300_000_000, surge(0.3))
+    assert stamps(driver.advance(0.15)) == [120_000_000, 140_000_000]
+    # a silent stream no longer holds it: the rope goes on with the clock, coasting
+    assert driver.silence(FAIRLEAD) and not driver.live(FAIRLEAD)
+    assert stamps(driver.advance(0.5))[-1] == 500_000_000
+    driver.push(FAIRLEAD, EPOCH + 600_000_000, surge(0.6))
+    assert driver.live(FAIRLEAD)
+
+
+def test_one_sample_behind_is_the_whole_motion_known():
+    """Fed sample by sample, the outputs are those of a Simulator given every sample first."""
+    params = line()
+    driver = LineDriver(params, rate=50.0)
+    whole = Simulator(params, output_interval=0.02, history=math.inf)
+    times = np.arange(0, 101) * 0.02
+    live = []
+    for k, t in enumerate(times):
+        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(t))
+        whole.push_fairlead(k * 20_000_000 / 1e9, surge(t))
+        live += [p.output.fairlead_force for p in driver.advance(math.inf).outputs]
+    whole.start(0.0)
+    offline = []
+    for k in range(len(live)):
+        whole.advance_to(k / 50.0 + 0.5 * whole.time_step)
+        offline.append(whole.output().fairlead_force)
+    assert len(live) == 100  # up to the second-newest sample
+    difference = np.abs(np.subtract(live, offline)).max()
+    assert difference < 1e-6, difference
+
+
+def test_outputs_are_pinned_to_their_grid():
+    # 30 Hz does not divide the 20 ms samples; the step is chosen to divide 1/30 s: each
+    # output's state time is exactly k / 30 s, not a running sum of steps
+    driver = LineDriver(line(), rate=30.0)
+    times = []
+    for k in range(301):
+        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+        times += [p.output.t for p in driver.advance(math.inf).outputs]
+    assert len(times) == 180  # 0 .. 5.96 s: to the second-newest sample
+    assert times == [k / 30.0 for k in range(180)]
+    assert driver.time == times[-1]
+
+
+def test_a_lag_past_max_lag_skips_ahead_and_restarts_there():
+    driver = LineDriver(line(), rate=50.0)
+    for k in range(6):
+        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+    assert stamps(driver.advance(math.inf))[-1] == 80_000_000
+    driver.silence(FAIRLEAD)
+    report = driver.advance(0.08 + MAX_LAG + 0.5)
+    assert report.skipped == pytest.approx(MAX_LAG + 0.5) and report.skip_to == 1.58
+    # the fresh state at the skip, then the grid from there (here at most 3 per call)
+    assert stamps(report) == [1_580_000_000] and report.outputs[0].advance is None
+    report = driver.advance(1.7, max_outputs=3)
+    assert stamps(report) == [1_600_000_000, 1_620_000_000, 1_640_000_000]
+    assert report.skipped == 0.0 and report.outputs[0].advance.steps > 0
+    # within MAX_LAG: no skip, it catches up
+    assert driver.advance(1.64 + 0.9).skipped == 0.0
+    # without a limit on the lag (offline): never a skip
+    assert driver.advance(10.0, max_lag=math.inf).skipped == 0.0
+    assert driver.time == pytest.approx(10.0)
+
+
+def test_a_clock_jump_back_clears_the_line():
+    driver = LineDriver(line(), rate=50.0)
+    driver.push(FAIRLEAD, EPOCH, surge(0.0))
+    driver.push(FAIRLEAD, EPOCH + SECOND, surge(0.0))
+    driver.silence(FAIRLEAD)
+    driver.advance(3.0, max_lag=math.inf)
+    report = driver.advance(3.0 - MAX_LAG - 0.1)
+    assert report.clock_back == pytest.approx(MAX_LAG + 0.1) and report.outputs == []
+    assert not driver.started and driver.epoch_ns is None
+    # the next fairlead sample starts it again, its stamp the new epoch
+    assert driver.push(FAIRLEAD, EPOCH - 5 * SECOND, surge(0.0)) == 'start'
+    assert stamps(driver.advance(math.inf)) == [-5 * SECOND]
+
+
+def test_a_rate_change_re_anchors_the_grid_at_the_last_output():
+    driver = LineDriver(line(), rate=50.0)
+    outputs = []
+    for k in range(101):
+        if k == 50:  # the last output so far is at 0.96 s
+            driver.update({'publish_rate': 30.0})
+            assert driver.rate == 30.0
+        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+        outputs += stamps(driver.advance(math.inf))
+    before = [k * 20_000_000 for k in range(49)]
+    after = [960_000_000 + round(k / 30.0 * 1e9) for k in range(1, 31)]
+    assert outputs == before + after  # no gap, no burst: 1/30 s after 0.96 s, and on
+    # the step divides the new period
+    period = 1.0 / 30.0 / driver.simulator.time_step
+    assert period == pytest.approx(round(period), abs=1e-9)
+
+
+def test_the_lever_is_the_newest_samples_at_or_before_the_output():
+    # The pose rolls: each sample has its own lever. An output gets the lever of the
+    # newest sample at or before its time, not of the newest sample taken (one ahead).
+    driver = LineDriver(line(), rate=20.0)
+    levers = {k: np.array([2.0, 1.0, 3.0]) * (1.0 + 0.1 * k) for k in range(8)}
+    got = []
+    for k in range(8):
+        driver.push(FAIRLEAD, EPOCH + k * 100_000_000, surge(0.1 * k), levers[k])
+        for p in driver.advance(math.inf).outputs:
+            got.append((p.stamp_ns - EPOCH, p.fairlead_lever, p.bollard_lever))
+    # outputs every 50 ms up to the second-newest sample (0.6 s)
+    assert [ns for ns, _, _ in got] == [50_000_000 * k for k in range(13)]
+    for ns, fairlead, bollard in got:
+        assert np.array_equal(fairlead, levers[ns // 100_000_000]), ns
+        assert np.array_equal(bollard, np.zeros(3))  # no bollard sample: no arm
+    assert np.array_equal(driver.lever(FAIRLEAD, -1.0), levers[6])  # the oldest kept
+    assert np.array_equal(driver.lever(BOLLARD, 0.3), np.zeros(3))
+
+
+def test_a_bollard_stream_holds_the_rope_back_too():
+    driver = LineDriver(line(), rate=50.0)
+    driver.push(BOLLARD, EPOCH, [0.0, 0.0, 0.0])
+    driver.push(FAIRLEAD, EPOCH, surge(0.0))
+    for k in range(1, 11):
+        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+    driver.push(BOLLARD, EPOCH + 100_000_000, [0.0, 0.0, 0.0])
+    # the fairlead reached 0.2 s, the bollard is at its first sample still
+    assert stamps(driver.advance(math.inf)) == [0]
+    driver.push(BOLLARD, EPOCH + 200_000_000, [0.0, 0.0, 0.0])
+    assert stamps(driver.advance(math.inf))[-1] == 100_000_000
+
+
+def test_reset_restarts_at_the_state_time_and_re_anchors():
+    driver = LineDriver(line(), rate=50.0)
+    for k in range(11):
+        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+    driver.advance(math.inf)
+    driver.reset()
+    report = driver.advance(math.inf)
+    assert stamps(report) == [180_000_000]  # the fresh state, where the rope was
+    assert report.outputs[0].advance is None
+
+
+def test_events_round_trip_and_bad_rates_are_refused():
+    text = encode_event('skip', t=1.25)
+    assert decode_event(text) == {'event': 'skip', 't': 1.25}
+    with pytest.raises(ValueError):
+        decode_event('{"event": "explode"}')
+    for rate in (0.0, -1.0, math.nan, math.inf):
+        with pytest.raises(ParameterError, match='output rate'):
+            LineDriver(line(), rate=rate)
