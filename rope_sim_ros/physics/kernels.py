@@ -35,12 +35,12 @@ from .forces.gravity import add_weight
 from .forces.springs import add_springs, spring_block_at
 from .layout import (ADJUST, AXIAL, AXIAL_STIFFNESS, BENDING, DRAG, DRIVEN, END_A, FIRST,
                      FREE, INV_MASS, KIND, LAST, MASS, MAX_STRAIN, OWN_MASS, REST, TOTAL_MASS)
-from .superelastic import adjust
+from .superelastic import adjust, over_limit
 
 
 # -- forces ----------------------------------------------------------------------------------
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def line_forces(x, v, out, particles, lines):
     """Spring and damper forces of every line on its particles into `out` (P, 3)."""
     out[:] = 0.0
@@ -109,11 +109,49 @@ def _accelerations(x, v, a, particles, lines, points, gravity, point_a):
         if points[q, KIND] == FREE:
             for p in range(3):
                 point_a[q, p] /= points[q, TOTAL_MASS]
-    for i in range(x.shape[0]):
+    _particle_accelerations(v, a, particles, gravity)
+
+
+@numba.njit(cache=True, inline='always')
+def _particle_accelerations(v, a, particles, gravity):
+    """Turn the line forces in a (P, 3) into accelerations: drag, over the mass, gravity."""
+    for i in range(v.shape[0]):
         add_drag(v, i, particles[i, DRAG], a, i)
         mass = particles[i, MASS]
         for p in range(3):
             a[i, p] = a[i, p] / mass + gravity[p]
+
+
+@numba.njit(cache=True, inline='always')
+def _set_ends_at(x, v, lines, points, point_x, point_v, drive_x, drive_v, k):
+    """Put every line end on its fixed point, or on its driven point's k-th sample."""
+    for line in range(lines.shape[0]):
+        for e in range(2):
+            q = lines[line, END_A + e]
+            row = lines[line, FIRST] if e == 0 else lines[line, LAST]
+            if points[q, KIND] == DRIVEN:
+                for p in range(3):
+                    x[row, p] = drive_x[k, q, p]
+                    v[row, p] = drive_v[k, q, p]
+            else:
+                for p in range(3):
+                    x[row, p] = point_x[q, p]
+                    v[row, p] = point_v[q, p]
+
+
+@numba.njit(cache=True, inline='always')
+def _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations):
+    """
+    Apply the strain limit to every line that asks for it, when no point is free.
+
+    The ends (inverse mass 0) do not move; the projection itself returns at once when no
+    spring is over its limit.
+    """
+    for k in range(lines.shape[0]):
+        first, last = lines[k, FIRST], lines[k, LAST]
+        if lines[k, ADJUST] == 1 and over_limit(x, rest, first, last, line_real[k, MAX_STRAIN]):
+            adjust(x[first:last + 1], v[first:last + 1], inv_mass[first:last + 1],
+                   rest[first:last], line_real[k, MAX_STRAIN], max_iterations)
 
 
 @numba.njit(cache=True, inline='always')
@@ -246,6 +284,25 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     pa2 = np.zeros((n_points, 3))
     pxp = np.empty((n_points, 3))
     pvp = np.empty((n_points, 3))
+    if not np.any(points[:, KIND] == FREE):  # every line end fixed or driven: no points
+        for k in range(drive_x.shape[0]):
+            line_forces(x, v, a1, particles, lines)
+            _particle_accelerations(v, a1, particles, gravity)
+            for i in range(x.shape[0]):
+                for d in range(3):
+                    xp[i, d] = x[i, d] + dt * v[i, d]
+                    vp[i, d] = v[i, d] + dt * a1[i, d]
+            _set_ends_at(xp, vp, lines, points, point_x, point_v, drive_x, drive_v, k)
+            line_forces(xp, vp, a2, particles, lines)
+            _particle_accelerations(vp, a2, particles, gravity)
+            for i in range(x.shape[0]):
+                for d in range(3):
+                    x[i, d] += 0.5 * dt * (v[i, d] + vp[i, d])
+                    v[i, d] += 0.5 * dt * (a1[i, d] + a2[i, d])
+            _drive(points, point_x, point_v, drive_x, drive_v, k)
+            set_ends(x, v, lines, point_x, point_v)
+            _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
+        return
     for k in range(drive_x.shape[0]):
         _accelerations(x, v, a1, particles, lines, points, gravity, pa1)
         for i in range(x.shape[0]):
@@ -349,6 +406,12 @@ def _block_thomas_solve(lower, inverse, multiplier, rhs, m):
         for p in range(3):
             rhs[i, p] -= (work[p, 0] * rhs[i - 1, 0] + work[p, 1] * rhs[i - 1, 1]
                           + work[p, 2] * rhs[i - 1, 2])
+    _back_substitute(lower, inverse, rhs, m)
+
+
+@numba.njit(cache=True, inline='always')
+def _back_substitute(lower, inverse, rhs, m):
+    """Finish a block Thomas solve: back-substitution up the chain; rhs (>= m, 3)."""
     for i in range(m - 1, -1, -1):
         if i < m - 1:  # subtract A[i, i + 1] x[i + 1] = lower[i]^T x[i + 1]
             low = lower[i]
@@ -359,6 +422,32 @@ def _block_thomas_solve(lower, inverse, multiplier, rhs, m):
         r0, r1, r2 = rhs[i, 0], rhs[i, 1], rhs[i, 2]
         for p in range(3):
             rhs[i, p] = inv[p, 0] * r0 + inv[p, 1] * r1 + inv[p, 2] * r2
+
+
+@numba.njit(cache=True)
+def _block_thomas(diagonal, lower, inverse, work, rhs, m):
+    """
+    Solve the symmetric block-tridiagonal system of m blocks in place; rhs (>= m, 3).
+
+    _block_thomas_factor and _block_thomas_solve in one pass down the chain, for a single
+    right-hand side: the multipliers are not kept (work (3, 3) holds the current one).
+    """
+    _inverse3(diagonal[0], inverse[0])
+    for i in range(1, m):
+        low = lower[i - 1]
+        prev = inverse[i - 1]
+        for p in range(3):
+            for q in range(3):
+                work[p, q] = (low[p, 0] * prev[0, q] + low[p, 1] * prev[1, q]
+                              + low[p, 2] * prev[2, q])
+        for p in range(3):
+            rhs[i, p] -= (work[p, 0] * rhs[i - 1, 0] + work[p, 1] * rhs[i - 1, 1]
+                          + work[p, 2] * rhs[i - 1, 2])
+            for q in range(3):
+                diagonal[i, p, q] -= (work[p, 0] * low[q, 0] + work[p, 1] * low[q, 1]
+                                      + work[p, 2] * low[q, 2])
+        _inverse3(diagonal[i], inverse[i])
+    _back_substitute(lower, inverse, rhs, m)
 
 
 @numba.njit(cache=True)
@@ -511,6 +600,79 @@ def _add_chain_block(diagonal, lower, u, m, block):
                 lower[u - 1, p, q] -= block[p, q]
 
 
+@numba.njit(cache=True, inline='always')
+def _implicit_kinematic_line(x, v, f, particles, first, last, axial, implicit_bending, dt,
+                             half_h2, gravity, block, rhs, rhs_flat, band, diagonal, lower,
+                             inverse, multiplier):
+    """
+    Take the implicit step of one line whose two ends are on fixed or driven points.
+
+    The general assembly without the free points' bookkeeping: the line's interior is the
+    whole system, solved and applied at once.
+    """
+    m = last - first - 1
+    if m <= 0:
+        return
+    if implicit_bending:
+        band[:3 * m] = 0.0
+        for i in range(first, last):
+            spring_block_at(x, particles, i, False, half_h2, dt, axial, block)
+            _add_band_spring(band, i - first - 1, i - first, m, block)
+        for i in range(first, last - 1):
+            spring_block_at(x, particles, i, True, half_h2, dt, axial, block)
+            _add_band_spring(band, i - first - 1, i - first + 1, m, block)
+    else:
+        diagonal[:m] = 0.0
+        lower[:m] = 0.0
+        for i in range(first, last):
+            spring_block_at(x, particles, i, False, half_h2, dt, axial, block)
+            _add_chain_block(diagonal, lower, i - first, m, block)
+    for i in range(first + 1, last):
+        local = i - first - 1
+        mass = particles[i, MASS]
+        for p in range(3):
+            rhs[local, p] = f[i, p]
+        add_drag(v, i, particles[i, DRAG], rhs, local)
+        add_weight(rhs, local, mass, gravity)
+        if implicit_bending:
+            block[:] = 0.0
+            add_drag_block(v, i, dt * particles[i, DRAG], mass, block)
+            _add_band(band, local, local, block, 1.0)
+        else:
+            add_drag_block(v, i, dt * particles[i, DRAG], mass, diagonal[local])
+    if implicit_bending:
+        _cholesky_factor(band, 3 * m)
+        _cholesky_band_solve(band, rhs_flat, 3 * m)
+    else:
+        _block_thomas(diagonal, lower, inverse, block, rhs, m)
+    for i in range(m):
+        for p in range(3):
+            x[first + 1 + i, p] += half_h2 * rhs[i, p]
+            v[first + 1 + i, p] += dt * rhs[i, p]
+
+
+@numba.njit(cache=True, inline='always')
+def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
+                              line_real, points, gravity, max_iterations, implicit_bending,
+                              inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal, lower,
+                              inverse, multiplier):
+    """Take implicit_euler_run's steps when no point is free (its scratch arrays passed in)."""
+    half_h2 = 0.5 * dt * dt
+    for k in range(drive_x.shape[0]):
+        for i in range(x.shape[0]):
+            for p in range(3):
+                x[i, p] += dt * v[i, p]
+        _drive(points, point_x, point_v, drive_x, drive_v, k)
+        set_ends(x, v, lines, point_x, point_v)
+        line_forces(x, v, f, particles, lines)
+        for line in range(lines.shape[0]):
+            _implicit_kinematic_line(x, v, f, particles, lines[line, FIRST], lines[line, LAST],
+                                     lines[line, AXIAL] == 1, implicit_bending, dt, half_h2,
+                                     gravity, block, rhs, rhs_flat, band, diagonal, lower,
+                                     inverse, multiplier)
+        _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
+
+
 @numba.njit(cache=True)
 def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
                        line_real, points, gravity, max_iterations, implicit_bending):
@@ -559,6 +721,19 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     end_col = np.array([0, 3])
     end_free = np.zeros(2, dtype=np.bool_)
     free_index = np.zeros(2, dtype=np.int64)
+    if n_free == 0:  # every line end fixed or driven: each line is a system of its own
+        # (two call sites, so that the compiler specialises each on the matrix kind)
+        if implicit_bending:
+            _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
+                                      lines, line_real, points, gravity, max_iterations, True,
+                                      inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
+                                      lower, inverse, multiplier)
+        else:
+            _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
+                                      lines, line_real, points, gravity, max_iterations, False,
+                                      inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
+                                      lower, inverse, multiplier)
+        return
     for k in range(drive_x.shape[0]):
         for i in range(x.shape[0]):
             for p in range(3):

@@ -55,6 +55,23 @@ def _directions(x, d, length):
             d[i, p] /= max(length[i], 1e-300)
 
 
+@numba.njit(cache=True, inline='always')
+def over_limit(x, rest, first, last, max_strain):
+    """
+    Tell whether a structural spring of rows first..last of x is over the limit adjust sets.
+
+    rest[i] is the rest length of the spring (i, i + 1). A cheap test (no scratch arrays, no
+    array views) the integrators make before calling adjust on a line.
+    """
+    scale = 1.0 + max_strain
+    for i in range(first, last):
+        length = np.sqrt((x[i + 1, 0] - x[i, 0]) ** 2 + (x[i + 1, 1] - x[i, 1]) ** 2
+                         + (x[i + 1, 2] - x[i, 2]) ** 2)
+        if length > rest[i] * scale * (1.0 + TOLERANCE):
+            return True
+    return False
+
+
 @numba.njit(cache=True)
 def _solve_chain(u, inv_mass, active, rhs):
     """Solve (J W J^T) lam = rhs over the active springs (tridiagonal Thomas); rhs -> lam."""
@@ -109,6 +126,8 @@ def adjust(x, v, inv_mass, rest, max_strain, max_iterations):
     """
     n = x.shape[0] - 1
     scale = 1.0 + max_strain
+    if not over_limit(x, rest, 0, n, max_strain):
+        return 0  # the common case, without the projection's scratch arrays
     u = np.empty((n, 3))
     length = np.empty(n)
     active = np.zeros(n, dtype=np.bool_)

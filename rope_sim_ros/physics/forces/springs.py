@@ -31,7 +31,7 @@ import numpy as np
 from ..layout import (BEND_DAMPING, BEND_REST, BEND_STIFFNESS, DAMPING, REST, STIFFNESS)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def add_springs(x, v, out, particles, first, last, bending, axial):
     """
     Add the forces of one line's springs (i, i + stride) to `out`.
