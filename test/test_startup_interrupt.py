@@ -19,6 +19,7 @@ The executables are the launchers in bin/ as colcon installs them (what ``ros2 r
 Before a launcher's first statement the interpreter starts; these tries land there too.
 """
 
+import functools
 import os
 import signal
 import subprocess
@@ -34,8 +35,19 @@ DELAYS = (0.0, 0.002, 0.005, 0.01, 0.02, 0.03, 0.05, 0.075, 0.1)  # [s] after th
 TRIES = 3
 
 
+def _default_sigint(then=None):
+    """In the child before exec: take SIGINT's default action back, then run `then`."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    if then is not None:
+        then()
+
+
 def _run(command, env, cwd, delay=None, **popen):
     """Start command, send SIGINT delay s later (None: never), return (exit code, output)."""
+    # A test runner started in the background passes SIGINT on ignored, and the launchers
+    # rightly keep it ignored: the user's Ctrl-C is what is tried here, so restore it.
+    setup = popen.pop('preexec_fn', None)
+    popen['preexec_fn'] = functools.partial(_default_sigint, setup)
     process = subprocess.Popen(command, env=env, cwd=cwd, stdin=subprocess.DEVNULL,
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, **popen)
     if delay is not None:
