@@ -201,7 +201,7 @@ class LineDriver:
     @property
     def payload(self) -> bool:
         """Tell whether the bollard end hangs free, a payload of payload_mass > 0 kg."""
-        return getattr(self.simulator.params, 'payload_mass', 0.0) > 0.0
+        return self.params.has_payload
 
     @property
     def started(self) -> bool:

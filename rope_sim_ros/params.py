@@ -230,6 +230,11 @@ class LineParams:
     record_path: str = SPECS['record_path'].default
     pose_reliability: str = SPECS['pose_reliability'].default
 
+    @property
+    def has_payload(self) -> bool:
+        """Tell whether the bollard end is a free payload (payload_mass > 0)."""
+        return self.payload_mass > 0.0
+
     def with_values(self, values: Mapping[str, Any]) -> 'LineParams':
         """
         Return a copy with `values` validated and applied.

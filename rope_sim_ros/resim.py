@@ -239,10 +239,7 @@ def resim(path, out_path, params: LineParams, rate: Optional[float] = None,
         summary = simulate(params, fairlead.samples(), bollard.samples(), rate, [sink],
                            progress)
     except BaseException:
-        try:
-            sink.close(complete=False)
-        except BagError:
-            pass
+        sink.abandon()
         raise
     summary.dropped = sink.close()
     summary.start += base_ns / 1e9
@@ -314,10 +311,7 @@ def _replay(path, out_path, params: LineParams, namespace: str, progress) -> Res
             except (PoseError, TrajectoryError) as e:
                 skipped.append(f'{topic} at {ns / 1e9:.9f} s: {e}')
     except BaseException:
-        try:
-            sink.close(complete=False)
-        except BagError:
-            pass
+        sink.abandon()
         raise
     summary.dropped = sink.close()
     if summary.rows == 0:

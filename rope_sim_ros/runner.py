@@ -367,8 +367,7 @@ class BagSink:
         self.writer.add_topic(self.particles, PARTICLES_TYPE)
         self.writer.add_topic(self.fairlead_tension, WRENCH_TYPE)
         self.writer.add_topic(self.bollard_tension, WRENCH_TYPE)
-        self._payload = _has_payload(params)
-        if self._payload:
+        if params.has_payload:
             self.writer.add_topic(self.payload, POSE_TYPE)
 
     @property
@@ -413,9 +412,9 @@ class BagSink:
                     wrench_cdr(out.fairlead_force, published.fairlead_lever), log_ns)
         self._write(self.bollard_tension,
                     wrench_cdr(out.bollard_force, published.bollard_lever), log_ns)
-        position = getattr(out, 'payload_position', None)
-        if self._payload and position is not None:
-            self._write(self.payload, pose_stamped_cdr(ns, self.frame_id, position), log_ns)
+        if out.payload_position is not None:
+            self._write(self.payload, pose_stamped_cdr(ns, self.frame_id, out.payload_position),
+                        log_ns)
 
     def close(self, complete: bool = True) -> int:
         """
@@ -431,6 +430,18 @@ class BagSink:
         finally:
             self.writer.close()
         return self.writer.dropped - self._retries
+
+    def abandon(self) -> None:
+        """
+        Close the bag after an interruption or an error: keep what was recorded so far.
+
+        A failure to close is not reported: the interruption is what the caller raises.
+        """
+        from .bag import BagError
+        try:
+            self.close(complete=False)
+        except BagError:
+            pass
 
 
 # -- rope_sim run ---------------------------------------------------------------------------
@@ -491,11 +502,11 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
     writer = None
     try:
         if out_path is not None:
-            writer = OutWriter(out_path, payload=_has_payload(params))
+            writer = OutWriter(out_path, payload=params.has_payload)
             sinks.insert(0, lambda p: writer.write(
                 origin + p.output.t if origin else p.output.t, p.output.fairlead_force,
                 p.output.fairlead_tension, p.output.bollard_force, p.output.bollard_tension,
-                p.output.max_strain, getattr(p.output, 'payload_position', None)))
+                p.output.max_strain, p.output.payload_position))
         summary = simulate(params, fairlead, bollard, rate, sinks, progress)
     except BaseException:
         # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
@@ -510,20 +521,11 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
     return summary
 
 
-def _has_payload(params: LineParams) -> bool:
-    """Tell whether the line ends in a free payload (payload_mass > 0)."""
-    return getattr(params, 'payload_mass', 0.0) > 0.0
-
-
 def _close_quietly(writer, bag) -> None:
-    from .bag import BagError
     try:
         if writer is not None:
             writer.close()
     except OSError:
         pass
-    try:
-        if bag is not None:
-            bag.close(complete=False)
-    except BagError:
-        pass
+    if bag is not None:
+        bag.abandon()

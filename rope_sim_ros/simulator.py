@@ -242,7 +242,7 @@ class Simulator:
     @property
     def payload(self) -> bool:
         """Tell whether the bollard end is a free payload: payload_mass > 0."""
-        return self.props.payload_mass > 0.0
+        return self.params.has_payload
 
     def _choose_time_step(self, params: LineParams, props: RopeProperties) -> float:
         """

@@ -26,7 +26,6 @@ import os
 from pathlib import Path
 import signal
 import subprocess
-import time
 from types import SimpleNamespace
 
 from geometry_msgs.msg import PoseStamped
@@ -331,44 +330,7 @@ def test_a_burst_of_poses_is_taken_whole_and_losses_on_the_way_are_counted(sim_n
 
 
 # ------------------------------------------------------------------------ Ctrl-C
-
-
-@pytest.mark.parametrize('executable, args, delays', [
-    ('mooring_line', [], [0.1, 0.15, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5]),
-    ('ship_motion', [], [0.1, 0.2, 0.3]),
-    ('line_monitor', [], [0.1, 0.2, 0.3]),
-    ('bag_replay', ['missing_bag'], [0.1, 0.2]),
-    ('rope_sim', ['info', 'missing_bag'], [0.1, 0.2]),
-])
-def test_ctrl_c_during_start_up_exits_quietly(colcon_install, colcon_env, tmp_path,
-                                              executable, args, delays):
-    # From 0.1 s: before that the console script's own preamble runs (importlib.metadata),
-    # which no code of the package can reach: 50 ms on an idle machine, 80 to 100 ms with
-    # two busy processes on its two cores.
-    command = [str(colcon_install / 'lib' / 'rope_sim_ros' / executable), *args]
-    results = []
-    for delay in delays:
-        start = time.monotonic()
-        process = subprocess.Popen(command, env=colcon_env, cwd=tmp_path,
-                                   stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                                   stderr=subprocess.STDOUT)
-        try:
-            process.wait(max(0.0, start + delay - time.monotonic()))
-        except subprocess.TimeoutExpired:
-            process.send_signal(signal.SIGINT)
-        try:
-            output = process.communicate(timeout=30)[0].decode(errors='replace')
-        except subprocess.TimeoutExpired:  # the Ctrl-C was lost: it runs on
-            process.kill()
-            output = 'still running 30 s later\n' + process.communicate()[0].decode(
-                errors='replace')
-        results.append((delay, process.returncode, output))
-    # exit 0 (main() handled it), 130 (interrupted before), 2 (bag_replay and rope_sim:
-    # done with their error first); never a traceback or a death by the signal
-    bad = [(delay, code, output) for delay, code, output in results
-           if code not in (0, 130, 2) or 'Traceback' in output]
-    assert not bad, '\n'.join(f'Ctrl-C after {d} s: exit {c}\n{o}' for d, c, o in bad)
-    print(executable, [(d, c) for d, c, _ in results])
+# (Ctrl-C during start-up of the installed executables: test_startup_interrupt.py)
 
 
 def test_a_ctrl_c_lost_in_a_destructor_is_sent_again(monkeypatch):

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Ctrl-C in the first 0.1 s of an installed executable: no traceback, whenever it comes.
+Ctrl-C during the start-up of an installed executable: no traceback, whenever it comes.
 
 The executables are the launchers in bin/ as colcon installs them (what ``ros2 run`` runs).
 Before a launcher's first statement the interpreter starts; these tries land there too.
@@ -77,6 +77,25 @@ def test_ctrl_c_in_the_first_tenth_of_a_second_exits_quietly(colcon_install, col
            if code not in QUIET_EXITS or any(word in output for word in NOISE)]
     assert not bad, '\n'.join(f'Ctrl-C after {d} s: exit {c}\n{o}' for d, c, o in bad)
     print(executable, [(d, c) for d, c, _ in results])
+
+
+@pytest.mark.parametrize('executable, args, delays', [
+    ('mooring_line', [], [0.15, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5]),
+    ('ship_motion', [], [0.1, 0.2, 0.3]),
+    ('line_monitor', [], [0.1, 0.2, 0.3]),
+    ('bag_replay', ['missing_bag'], [0.1, 0.2]),
+    ('rope_sim', ['info', 'missing_bag'], [0.15, 0.2]),
+])
+def test_ctrl_c_later_in_start_up_exits_quietly(colcon_install, colcon_env, tmp_path,
+                                                executable, args, delays):
+    # Past the interpreter's start: exit 0 (main() handled it), 130 (the launcher or the
+    # entry point did) or 2 (bag_replay and rope_sim reported their bad argument first);
+    # never a traceback, nor an end by the signal itself.
+    command = [str(colcon_install / 'lib' / 'rope_sim_ros' / executable), *args]
+    results = [(delay, *_run(command, colcon_env, tmp_path, delay)) for delay in delays]
+    bad = [(delay, code, output) for delay, code, output in results
+           if code not in (0, 130, 2) or any(word in output for word in NOISE)]
+    assert not bad, '\n'.join(f'Ctrl-C after {d} s: exit {c}\n{o}' for d, c, o in bad)
 
 
 def _pending_ctrl_c():

@@ -205,7 +205,6 @@ class MooringLineNode(Node):
             raise StartupError(str(e)) from None
         # ticks since the newest sample of each end (see LIVE_INPUT)
         self._quiet_ticks = {end: 0 for end in ENDS}
-        self._payload = self.driver.payload  # publish payload/pose
         self._told_payload = False
 
         self._outputs = {
@@ -214,7 +213,7 @@ class MooringLineNode(Node):
             'bollard/tension': self.create_publisher(Wrench, 'bollard/tension', 10),
             EVENTS_TOPIC: self.create_publisher(String, EVENTS_TOPIC, 100),
         }
-        if self._payload:
+        if self.driver.payload:
             self._outputs['payload/pose'] = self.create_publisher(
                 PoseStamped, 'payload/pose', 10)
         self._fairlead_sub = self._pose_subscription(
@@ -558,8 +557,8 @@ class MooringLineNode(Node):
             'fairlead/tension': conversions.wrench(out.fairlead_force, published.fairlead_lever),
             'bollard/tension': conversions.wrench(out.bollard_force, published.bollard_lever),
         }
-        position = getattr(out, 'payload_position', None)
-        if self._payload and position is not None:
+        position = out.payload_position
+        if position is not None:
             pose = PoseStamped()
             pose.header.frame_id = frame_id
             pose.header.stamp = conversions.ns_to_stamp(stamp_ns)
