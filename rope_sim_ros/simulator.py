@@ -560,7 +560,7 @@ class Simulator:
         :param end_speed: the ends' largest speed over the steps just taken [m/s].
         """
         finite, largest = self.system.largest_load()
-        if not finite or not self.system.is_finite():
+        if not finite:
             return 'non-finite state'
         if self._bound[0] is not self.props:
             at_rest = tension_bound(self.props)

@@ -232,13 +232,14 @@ def max_strain(x, rest):
 
 
 @numba.njit(cache=True)
-def largest_load(x, v, particles, lines, line_real, gravity):
+def largest_load(x, v, point_x, point_v, particles, lines, line_real, gravity):
     """
-    Return whether the state is finite, and the largest end force or EA times strain [N].
+    Return whether the state (particles and points) is finite, and its largest load [N].
 
-    The load is NaN or inf where finite numbers overflow.
+    The load is the largest end force or EA times strain; NaN or inf where finite numbers
+    overflow.
     """
-    if not all_finite(x, v):
+    if not (all_finite(x, v) and all_finite(point_x, point_v)):
         return False, np.inf
     forces = np.empty((lines.shape[0], 2, 3))
     end_forces(x, v, particles, lines, gravity, forces)
@@ -701,7 +702,6 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     block = np.empty((3, 3))
     rhs_flat = np.empty(3 * widest)
     rhs = rhs_flat.reshape(widest, 3)
-    end_force = np.empty((1, 3))
     # structural springs only: 3x3 block-tridiagonal (block Thomas); with the bending
     # springs the band is wider (banded Cholesky)
     band = np.empty((3 * widest, 9) if implicit_bending else (0, 0))
@@ -709,18 +709,6 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     lower = np.empty((widest, 3, 3))
     inverse = np.empty((widest, 3, 3))
     multiplier = np.empty((widest, 3, 3))
-    solution = np.zeros_like(x)  # interior accelerations, by particle row
-    # free points: the Schur system, its right-hand side, and per line the coupling B and
-    # A^-1 B (by particle row), six columns: end A's point, then end B's
-    schur = np.empty((3 * n_free, 3 * n_free))
-    point_rhs = np.empty(3 * n_free)
-    coupling = np.empty((widest if n_free else 0, 3, 6))
-    solved_coupling = np.zeros((x.shape[0] if n_free else 0, 3, 6))
-    column = np.empty(3 * widest)
-    column_blocks = column.reshape(widest, 3)
-    end_col = np.array([0, 3])
-    end_free = np.zeros(2, dtype=np.bool_)
-    free_index = np.zeros(2, dtype=np.int64)
     if n_free == 0:  # every line end fixed or driven: each line is a system of its own
         # (two call sites, so that the compiler specialises each on the matrix kind)
         if implicit_bending:
@@ -734,6 +722,19 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                                       inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
                                       lower, inverse, multiplier)
         return
+    solution = np.zeros_like(x)  # interior accelerations, by particle row
+    # free points: the Schur system, its right-hand side, and per line the coupling B and
+    # A^-1 B (by particle row), six columns: end A's point, then end B's
+    schur = np.empty((3 * n_free, 3 * n_free))
+    point_rhs = np.empty(3 * n_free)
+    end_force = np.empty((1, 3))
+    coupling = np.empty((widest, 3, 6))
+    solved_coupling = np.zeros((x.shape[0], 3, 6))
+    column = np.empty(3 * widest)
+    column_blocks = column.reshape(widest, 3)
+    end_col = np.array([0, 3])
+    end_free = np.zeros(2, dtype=np.bool_)
+    free_index = np.zeros(2, dtype=np.int64)
     for k in range(drive_x.shape[0]):
         for i in range(x.shape[0]):
             for p in range(3):
@@ -745,15 +746,14 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         line_forces(x, v, f, particles, lines)
-        if n_free:
-            schur[:] = 0.0
-            for q in range(n_points):
-                j = free_of[q]
-                if j >= 0:
-                    own = points[q, OWN_MASS]
-                    for p in range(3):
-                        point_rhs[3 * j + p] = own * gravity[p]
-                        schur[3 * j + p, 3 * j + p] += own
+        schur[:] = 0.0
+        for q in range(n_points):
+            j = free_of[q]
+            if j >= 0:
+                own = points[q, OWN_MASS]
+                for p in range(3):
+                    point_rhs[3 * j + p] = own * gravity[p]
+                    schur[3 * j + p, 3 * j + p] += own
         for line in range(n_lines):
             first, last = lines[line, FIRST], lines[line, LAST]
             axial = lines[line, AXIAL] == 1
@@ -868,24 +868,23 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                         for p in range(3):
                             s += coupling[i, p, c] * solved_coupling[first + 1 + i, p, d]
                     schur[ro, co] -= s
-        if n_free:
-            dense_cholesky_solve(schur, point_rhs)
-            for line in range(n_lines):
-                first, last = lines[line, FIRST], lines[line, LAST]
-                for c in range(6):
-                    q = lines[line, END_A + c // 3]
-                    if points[q, KIND] != FREE:
-                        continue
-                    a = point_rhs[3 * free_of[q] + c % 3]
-                    for i in range(first + 1, last):
-                        for p in range(3):
-                            solution[i, p] -= solved_coupling[i, p, c] * a
-            for q in range(n_points):
-                j = free_of[q]
-                if j >= 0:
+        dense_cholesky_solve(schur, point_rhs)
+        for line in range(n_lines):
+            first, last = lines[line, FIRST], lines[line, LAST]
+            for c in range(6):
+                q = lines[line, END_A + c // 3]
+                if points[q, KIND] != FREE:
+                    continue
+                a = point_rhs[3 * free_of[q] + c % 3]
+                for i in range(first + 1, last):
                     for p in range(3):
-                        point_x[q, p] += half_h2 * point_rhs[3 * j + p]
-                        point_v[q, p] += dt * point_rhs[3 * j + p]
+                        solution[i, p] -= solved_coupling[i, p, c] * a
+        for q in range(n_points):
+            j = free_of[q]
+            if j >= 0:
+                for p in range(3):
+                    point_x[q, p] += half_h2 * point_rhs[3 * j + p]
+                    point_v[q, p] += dt * point_rhs[3 * j + p]
         for line in range(n_lines):
             for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
                 for p in range(3):

@@ -249,6 +249,13 @@ class System:
 
     def refresh(self) -> None:
         """Rebuild the tables from the lines' types and rest lengths and the points' masses."""
+        self._build_tables()
+        # what every step passes after the state, built once: a step runs at kHz
+        self._tables = (self.particles, self.lines_table, self.line_real, self.points_table,
+                        self.gravity)
+
+    def _build_tables(self) -> None:
+        """Build particles, lines_table, line_real and points_table."""
         starts = self._starts
         self.particles = np.zeros((int(starts[-1]), PARTICLE_COLUMNS))
         self.lines_table = np.zeros((len(self.lines), LINE_COLUMNS), dtype=np.int64)
@@ -327,15 +334,12 @@ class System:
 
         :param compiled: False runs the same kernels' Python code (``.py_func``), for tests.
         """
-        args = (self.x, self.v, self.point_x, self.point_v, drive_x, drive_v, dt,
-                self.particles, self.lines_table, self.line_real, self.points_table,
-                self.gravity, max_iterations)
         if integrator == 'implicit_euler':
-            run = kernels.implicit_euler_run
-            args = args + (implicit_bending,)
+            run, last = kernels.implicit_euler_run, (max_iterations, implicit_bending)
         else:
-            run = kernels.improved_euler_run
-        (run if compiled else run.py_func)(*args)
+            run, last = kernels.improved_euler_run, (max_iterations,)
+        (run if compiled else run.py_func)(self.x, self.v, self.point_x, self.point_v, drive_x,
+                                           drive_v, dt, *self._tables, *last)
 
     def end_forces(self) -> np.ndarray:
         """Force of each line on the points of its ends, (L, 2, 3) [N] (see kernels)."""
@@ -345,13 +349,8 @@ class System:
 
     def largest_load(self) -> tuple:
         """Return whether the state is finite, and its largest end force or EA strain [N]."""
-        return kernels.largest_load(self.x, self.v, self.particles, self.lines_table,
-                                    self.line_real, self.gravity)
-
-    def is_finite(self) -> bool:
-        """Tell whether every position and velocity is a finite number."""
-        return bool(kernels.all_finite(self.x, self.v)
-                    and np.isfinite(self.point_x).all() and np.isfinite(self.point_v).all())
+        return kernels.largest_load(self.x, self.v, self.point_x, self.point_v, self.particles,
+                                    self.lines_table, self.line_real, self.gravity)
 
     def energy(self) -> tuple:
         """
