@@ -35,7 +35,6 @@ import numpy as np
 
 from .params import LineParams, ParameterError
 from .physics import catenary
-from .physics import kernels
 from .physics.integrators import (automatic_time_step, end_distances, implicit_bending,
                                   motion_spread, relax, stability_limit)
 from .physics.materials import MaterialLibrary, MaterialProperties
@@ -627,6 +626,5 @@ class Simulator:
 
     def _forces(self) -> tuple:
         """Return the forces on the bollard and the fairlead and the largest strain."""
-        bollard, fairlead = self.system.end_forces()[0]
-        strain = kernels.max_strain(self.rope.x, self.rope.rest)
-        return bollard, fairlead, strain
+        forces, strains = self.system.loads()
+        return forces[0, 0], forces[0, 1], float(strains[0])

@@ -232,22 +232,23 @@ def max_strain(x, rest):
 
 
 @numba.njit(cache=True)
-def largest_load(x, v, point_x, point_v, particles, lines, line_real, gravity):
+def largest_load(x, v, point_x, point_v, particles, lines, line_real, gravity, forces,
+                 strains):
     """
     Return whether the state (particles and points) is finite, and its largest load [N].
 
     The load is the largest end force or EA times strain; NaN or inf where finite numbers
-    overflow.
+    overflow. Also fills forces (L, 2, 3) with end_forces and strains (L,) with each line's
+    largest strain (left as they are when the state is not finite).
     """
     if not (all_finite(x, v) and all_finite(point_x, point_v)):
         return False, np.inf
-    forces = np.empty((lines.shape[0], 2, 3))
     end_forces(x, v, particles, lines, gravity, forces)
     largest = 0.0
     for k in range(lines.shape[0]):
         first, last = lines[k, FIRST], lines[k, LAST]
-        strain = max_strain(x[first:last + 1], particles[first:last, REST])
-        load = line_real[k, AXIAL_STIFFNESS] * strain
+        strains[k] = max_strain(x[first:last + 1], particles[first:last, REST])
+        load = line_real[k, AXIAL_STIFFNESS] * strains[k]
         if np.isnan(load):
             return True, np.nan
         largest = max(largest, load)

@@ -202,6 +202,7 @@ class System:
         self.lines: List[Line] = []
         self.gravity = np.asarray(environment.gravity, dtype=float)
         self._packed = False
+        self.steps = 0  # steps taken: tells whether loads() must compute again
 
     def add_point(self, point: Point) -> int:
         """Add a point; return its index."""
@@ -253,6 +254,9 @@ class System:
         # what every step passes after the state, built once: a step runs at kHz
         self._tables = (self.particles, self.lines_table, self.line_real, self.points_table,
                         self.gravity)
+        self._forces = np.zeros((len(self.lines), 2, 3))
+        self._strains = np.zeros(len(self.lines))
+        self._loads_at = -1  # the step count at which _forces and _strains were computed
 
     def _build_tables(self) -> None:
         """Build particles, lines_table, line_real and points_table."""
@@ -340,6 +344,7 @@ class System:
             run, last = kernels.improved_euler_run, (max_iterations,)
         (run if compiled else run.py_func)(self.x, self.v, self.point_x, self.point_v, drive_x,
                                            drive_v, dt, *self._tables, *last)
+        self.steps += 1
 
     def end_forces(self) -> np.ndarray:
         """Force of each line on the points of its ends, (L, 2, 3) [N] (see kernels)."""
@@ -348,9 +353,33 @@ class System:
         return out
 
     def largest_load(self) -> tuple:
-        """Return whether the state is finite, and its largest end force or EA strain [N]."""
-        return kernels.largest_load(self.x, self.v, self.point_x, self.point_v, self.particles,
-                                    self.lines_table, self.line_real, self.gravity)
+        """
+        Return whether the state is finite, and its largest end force or EA strain [N].
+
+        The end forces and strains it computes on the way are what loads() returns until the
+        next step.
+        """
+        finite, largest = kernels.largest_load(
+            self.x, self.v, self.point_x, self.point_v, self.particles, self.lines_table,
+            self.line_real, self.gravity, self._forces, self._strains)
+        self._loads_at = self.steps if finite else -1
+        return finite, largest
+
+    def loads(self) -> tuple:
+        """
+        Return the end forces (L, 2, 3) [N] and each line's largest strain (L,) now.
+
+        Computed once per state: the check of a state (largest_load) and its outputs share
+        them. Call refresh() after writing x or v other than by step().
+        """
+        if self._loads_at != self.steps:
+            self.largest_load()
+            if self._loads_at != self.steps:  # not finite: computed for what it is
+                kernels.end_forces(self.x, self.v, self.particles, self.lines_table,
+                                   self.gravity, self._forces)
+                for k, line in enumerate(self.lines):
+                    self._strains[k] = kernels.max_strain(line.x, line.rest)
+        return self._forces.copy(), self._strains.copy()
 
     def energy(self) -> tuple:
         """
