@@ -72,3 +72,19 @@ POINT_COLUMNS = 3
 FIXED = 0
 DRIVEN = 1
 FREE = 2
+
+# ENV array (ENV_COLUMNS,), float: what the lines live in (objects.Environment). A level of
+# -inf means "none" (no water, no seabed); an all-zero quay normal means no quay.
+ENV_GRAVITY = 0  # 3 entries: gravity vector [m/s^2]
+ENV_WATER_LEVEL = 3  # z of the still water surface [m]
+ENV_WATER_DENSITY = 4  # [kg/m^3]
+ENV_AIR_DENSITY = 5  # [kg/m^3]
+ENV_CURRENT = 6  # 3 entries: uniform current below the surface [m/s]
+ENV_SEABED_LEVEL = 9  # z of the flat seabed [m]
+ENV_SEABED_STIFFNESS = 10  # MoorDyn's kBot [Pa/m]
+ENV_SEABED_DAMPING = 11  # MoorDyn's cBot [Pa s/m]
+ENV_SEABED_FRICTION = 12  # Coulomb friction coefficient mu
+ENV_QUAY_EDGE = 13  # 3 entries: a point on the top edge of the quay face (z: deck level)
+ENV_QUAY_NORMAL = 16  # 3 entries: outward horizontal unit normal of the face (0: no quay)
+ENV_QUAY_DEPTH = 19  # how far below the deck the quay block reaches [m]
+ENV_COLUMNS = 20
