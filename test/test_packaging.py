@@ -42,11 +42,12 @@ SHARE_FILES = (
 )
 
 
-# Kernels the node and the runner cannot do without: the two steps, the end forces (the
-# tensions) and the end trajectories. Any other kernel they call must not compile either.
+# Kernels the node and the runner cannot do without: the two steps, the state check (it
+# also gives the tensions) and the end trajectories. Any other kernel they call must not
+# compile either.
 ENTRY_KERNELS = tuple('rope_sim_ros.' + name for name in (
     'physics.kernels.implicit_euler_run', 'physics.kernels.improved_euler_run',
-    'physics.kernels.end_forces', 'trajectory._sample'))
+    'physics.kernels.largest_load', 'trajectory._sample'))
 
 # Runs the runner (both integrators) and the node's warm-up from the installed package, then
 # prints numba's statistics of every dispatcher: what came from the cache, what compiled.
