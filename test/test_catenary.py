@@ -23,7 +23,8 @@ import numpy as np
 import pytest
 from rope_sim_ros.physics.catenary import (
     catenary_points, catenary_profile, CatenaryError, chain_equilibrium, initial_shape,
-    solve_catenary)
+    loaded_chain_equilibrium, node_weights, seabed_profile, solve_catenary,
+    solve_seabed_catenary, wetted_fraction)
 
 # The base case of test/data/README.md.
 END_A = np.zeros(3)
@@ -285,6 +286,151 @@ def test_initial_shape_is_fast():
         timings.append(time.perf_counter() - start)
     # ~0.3 ms here; the bound only catches a solver that crawls (it runs on node restarts).
     assert min(timings) < 0.02
+
+
+# ---------------------------------------------------------------------- water and seabed
+
+# MoorDyn's validation chain and the wire in water (test/data/README.md, water/).
+W_CHAIN = 3324.385105  # submerged [N/m]
+EA_CHAIN = 1.674e9
+D_CHAIN = 0.252
+W_WIRE_WATER = 51.129200
+W_WIRE_AIR = 6.5 * 9.81  # MoorDyn's water cases have no air
+
+
+def _water_rows(name: str) -> list:
+    with open(REFERENCE_DIR / 'water' / name, newline='') as stream:
+        return list(csv.DictReader(line for line in stream if not line.startswith('#')))
+
+
+def _nodes(name: str) -> np.ndarray:
+    """Return the disc_x, disc_y, disc_z columns (the exact discrete rest) of a nodes file."""
+    return np.loadtxt(REFERENCE_DIR / 'water' / name, delimiter=',', skiprows=2)[:, 4:7]
+
+
+QSCHAIN_ROWS = [r for r in _water_rows('qschain_static.csv') if r['run'] == 'N0']
+
+
+@pytest.mark.parametrize('row', QSCHAIN_ROWS, ids=lambda row: row['case'])
+def test_seabed_catenary_matches_reference(row):
+    # cont_*: the reference's own elastic catenary on a rigid frictionless seabed
+    length, span = float(row['L0_m']), float(row['span_m'])
+    rise = float(row['fairlead_height_m'])
+    solution = solve_seabed_catenary(span, rise, 0.0, length, W_CHAIN, EA_CHAIN)
+    assert _relative(solution.horizontal_tension, float(row['cont_H_N'])) < 1e-8
+    assert _relative(solution.tension_b, float(row['cont_T_B_N'])) < 1e-8
+    assert solution.laid_length == pytest.approx(float(row['cont_laid_length_m']), abs=1e-6)
+    assert solution.suspended_a == 0.0 and solution.tension_a == solution.horizontal_tension
+    x, z = seabed_profile(solution, W_CHAIN, EA_CHAIN, [0.0, 0.5 * solution.laid_length,
+                                                        length])
+    np.testing.assert_allclose(x, [0.0, 0.5 * solution.laid_length
+                                   * (1.0 + solution.horizontal_tension / EA_CHAIN), span],
+                               atol=1e-9 * length)
+    np.testing.assert_allclose(z, [0.0, 0.0, rise], atol=1e-9 * length)
+
+
+def test_seabed_catenary_u_shape_is_symmetric_and_closes():
+    # Both ends 20 m above the seabed, 120 m of chain over 100 m: it lies in the middle.
+    solution = solve_seabed_catenary(100.0, 0.0, -20.0, 120.0, W_CHAIN, EA_CHAIN)
+    assert solution.suspended_a == pytest.approx(solution.suspended_b, rel=1e-9)
+    assert solution.laid_length > 0.0
+    s = np.linspace(0.0, 120.0, 241)
+    x, z = seabed_profile(solution, W_CHAIN, EA_CHAIN, s)
+    assert x[-1] == pytest.approx(100.0, abs=1e-7) and z[-1] == pytest.approx(0.0, abs=1e-7)
+    assert z.min() == pytest.approx(-20.0, abs=1e-12)
+    assert np.all(np.diff(x) > 0.0)  # no fold at touchdown or lift-off
+
+
+def test_seabed_catenary_is_none_where_the_line_hangs_free_or_lies_slack():
+    assert solve_seabed_catenary(36.0, 8.0, -50.0, 40.0, 25.0, 5e7) is None  # far above
+    assert solve_seabed_catenary(10.0, 0.0, 0.0, 40.0, 25.0, 5e7) is None  # heaped slack
+
+
+def test_wetted_fraction_is_the_mean_of_the_ramp():
+    dv, level = 0.1, 2.0
+    assert wetted_fraction(-5.0, -4.0, level, dv) == 1.0
+    assert wetted_fraction(5.0, 4.0, level, dv) == 0.0
+    assert wetted_fraction(level, level, level, dv) == pytest.approx(0.5)
+    for z_a, z_b in ((1.9, 2.3), (2.04, 1.0), (1.97, 2.01), (2.0, 2.0 + 1e-10)):
+        z = np.linspace(z_a, z_b, 200001)
+        ramp = np.clip((level - z) / dv + 0.5, 0.0, 1.0)
+        assert wetted_fraction(z_a, z_b, level, dv) == pytest.approx(ramp.mean(), abs=1e-5)
+    # a segment sinking through the surface: no jump
+    heights = np.linspace(1.5, 2.5, 2001)
+    fractions = wetted_fraction(heights, heights + 0.3, level, dv)
+    assert np.abs(np.diff(fractions)).max() < 2e-3
+    assert np.all(wetted_fraction(0.0, 1.0, -np.inf, dv) == 0.0)
+
+
+def test_loaded_chain_of_equal_weights_is_the_chain():
+    chain = chain_equilibrium(END_A, END_B, LENGTH, 20, W_POLYESTER, 5e7, GRAVITY)
+    weights = np.full(21, W_POLYESTER * LENGTH / 20)
+    weights[[0, -1]] *= 0.5
+    loaded = loaded_chain_equilibrium(END_A, END_B, LENGTH, weights, 5e7, GRAVITY)
+    np.testing.assert_allclose(loaded.positions, chain.positions, atol=1e-9)
+    np.testing.assert_allclose(loaded.force_b, chain.force_b, rtol=1e-9)
+    # a buoyant line is the same line upside down
+    floating = loaded_chain_equilibrium(END_A, END_B, LENGTH, -weights, 5e7, GRAVITY)
+    flipped = chain_equilibrium(END_A, END_B, LENGTH, 20, W_POLYESTER, 5e7, -GRAVITY)
+    np.testing.assert_allclose(floating.positions, flipped.positions, atol=1e-9)
+
+
+def test_wire_wholly_in_water_starts_at_its_exact_rest():
+    # heave_wire_N20_initial_nodes.csv: the surface 100 m above A
+    positions = initial_shape(END_A, END_B, LENGTH, 20, W_WIRE_AIR, 1e8, GRAVITY,
+                              submerged_weight_per_length=W_WIRE_WATER, water_level=100.0,
+                              volume_diameter=0.04)
+    np.testing.assert_allclose(positions, _nodes('heave_wire_N20_initial_nodes.csv'),
+                               atol=1e-7)
+    row = _water_rows('heave_ic.csv')[0]
+    weights = node_weights(positions, np.full(20, 2.0), W_WIRE_AIR, W_WIRE_WATER, 100.0, 0.04)
+    chain = loaded_chain_equilibrium(END_A, END_B, LENGTH, weights, 1e8, GRAVITY)
+    want = [float(row[f'disc_F_B{axis}_N']) for axis in 'xyz']
+    np.testing.assert_allclose(chain.force_b, want, rtol=1e-7, atol=1e-6)
+
+
+def test_line_through_the_surface_rests_with_each_node_weighed_where_it_lies():
+    # The wire with the water 3 m above A: its low part is wet, its ends dry.
+    positions = initial_shape(END_A, END_B, LENGTH, 20, W_WIRE_AIR, 1e8, GRAVITY,
+                              submerged_weight_per_length=W_WIRE_WATER, water_level=-1.0,
+                              volume_diameter=0.04)
+    weights = node_weights(positions, np.full(20, 2.0), W_WIRE_AIR, W_WIRE_WATER, -1.0, 0.04)
+    inner = weights[1:-1]
+    assert inner.min() == pytest.approx(2.0 * W_WIRE_WATER)  # some wet
+    assert inner.max() == pytest.approx(2.0 * W_WIRE_AIR)  # some dry
+    again = loaded_chain_equilibrium(END_A, END_B, LENGTH, weights, 1e8, GRAVITY)
+    np.testing.assert_allclose(positions, again.positions, atol=1e-9)
+
+
+def test_chain_start_lies_on_the_seabed_at_its_sink_depth():
+    sink = W_CHAIN / (1.0e5 * D_CHAIN)
+    positions = initial_shape(END_A, [400.0, 0.0, 50.0], 410.0, 41, 390.0 * 9.81, EA_CHAIN,
+                              GRAVITY, submerged_weight_per_length=W_CHAIN, water_level=50.0,
+                              volume_diameter=D_CHAIN, seabed_level=0.0, seabed_sink=sink)
+    np.testing.assert_allclose(positions[[0, -1]], [END_A, [400.0, 0.0, 50.0]], atol=1e-9)
+    assert positions[:, 2].min() == pytest.approx(-sink, abs=1e-9)
+    # the exact discrete rest on the soft seabed (Newton on all nodes) is a few cm away
+    assert np.abs(positions - _nodes('qschain_WD0050_N41_nodes.csv')).max() < 0.05
+
+
+def test_buoyant_line_arcs_up_in_water():
+    positions = initial_shape(END_A, END_B, LENGTH, 20, W_POLYESTER, 5e7, GRAVITY,
+                              submerged_weight_per_length=-6.841648, water_level=100.0,
+                              volume_diameter=0.064)
+    assert positions[:, 2].max() > 11.0  # arcs above its chord (11.42 m at N = 400)
+
+
+@pytest.mark.parametrize('kwargs, name', [
+    ({'water_level': math.nan}, 'water_level'),
+    ({'seabed_level': math.inf}, 'seabed_level'),
+    ({'seabed_sink': -1.0}, 'seabed_sink'),
+    ({'volume_diameter': -0.1}, 'volume_diameter'),
+    ({'submerged_weight_per_length': math.nan, 'water_level': 1.0},
+     'submerged_weight_per_length'),
+])
+def test_initial_shape_rejects_bad_water_and_seabed(kwargs, name):
+    with pytest.raises(CatenaryError, match=name):
+        initial_shape(END_A, END_B, LENGTH, 20, W_POLYESTER, 5e7, GRAVITY, **kwargs)
 
 
 # -------------------------------------------------------------------------------- errors

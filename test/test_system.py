@@ -148,3 +148,39 @@ def test_explicit_and_implicit_agree_on_a_swinging_bridle():
     assert swing > 0.3
     # 0.3 % of the swing measured
     assert np.abs(paths['implicit_euler'] - paths['improved_euler']).max() < 0.02 * swing
+
+
+@pytest.mark.parametrize('integrator', ['improved_euler', 'implicit_euler'])
+def test_a_bridle_under_water_holds_its_mass_less_what_everything_displaces(integrator):
+    """The bridle sunk in still water: the anchors hold the submerged weights only."""
+    wet_wire = LineType(mass_per_length=6.5, axial_stiffness=1.0e8, axial_damping=8000.0,
+                        diameter=0.04, normal_drag=1.2, tangential_drag=0.008,
+                        normal_added_mass=1.0)
+    system = System(Environment(gravity=(0.0, 0.0, -G), water_level=100.0,
+                                current=(0.0, 0.2, 0.0)))
+    left = system.add_point(Point('fixed', [-12.0, 0.0, 30.0]))
+    right = system.add_point(Point('fixed', [12.0, 0.0, 30.0]))
+    knot = system.add_point(Point('free', [0.0, 0.0, 14.0], mass=2000.0, volume=0.5,
+                                  drag_area=1.0, added_mass=0.5))
+    for anchor in (left, right):
+        start = system.points[anchor].position
+        system.add_line(Line.uniform(wet_wire, 20.0, 10,
+                                     _straight(start, [0.0, 0.0, 14.0], 10),
+                                     (anchor, knot)))
+    system.pack()
+    _settle(system)
+    dt = _step_of(WIRE, 20.0, 10, integrator)
+    _run(system, integrator, dt, 1.0)  # and it stays there
+    assert np.abs(system.point_v[knot]).max() < 1e-6
+    forces = system.end_forces()
+    area = np.pi * 0.04 ** 2 / 4.0
+    submerged = (2000.0 - 1025.0 * 0.5 + 2 * (6.5 - 1025.0 * area) * 20.0) * G
+    # (the drag of the lines turned a little by the current has a vertical part: 4e-6)
+    assert -(forces[0, 0, 2] + forces[1, 0, 2]) == pytest.approx(submerged, rel=1e-5)
+    # the current pushes it all downstream: the anchors hold the whole drag, the knot's
+    # 1/2 rho CdA U^2 and the lines'
+    drag = forces[0, 0, 1] + forces[1, 0, 1]
+    knot_drag = 0.5 * 1025.0 * 1.0 * 0.2 ** 2
+    lines_drag = 0.5 * 1025.0 * 1.2 * 0.04 * 0.2 ** 2 * 40.0
+    assert drag == pytest.approx(knot_drag + lines_drag, rel=0.01)
+    assert system.point_x[knot, 1] > 0.0

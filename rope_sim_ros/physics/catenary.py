@@ -32,6 +32,7 @@ against these equilibria.
 from collections.abc import Callable
 from dataclasses import dataclass
 import math
+from typing import Optional
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -442,12 +443,17 @@ def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
 # ------------------------------------------------------------------- lumped-mass chain
 
 
-def _chain_residual(x: np.ndarray, span: float, rise: float, segments: int, l0: float,
-                    wl0: float, ea: float) -> tuple[np.ndarray, np.ndarray]:
-    """Closure of the chain at B, and its Jacobian, for x = (H, V of the first segment)."""
+def _chain_residual(x: np.ndarray, span: float, rise: float, l0: float,
+                    offsets: np.ndarray, ea: float) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Closure of the chain at B, and its Jacobian, for x = (H, V of the first segment).
+
+    offsets (N,): what the interior nodes before each segment add to its vertical tension
+    component (their weights summed from A; 0 for the first segment).
+    """
     h, v0 = float(x[0]), float(x[1])
-    # Each interior node adds its weight w l0 to the vertical component of the next segment.
-    v = v0 + wl0 * np.arange(segments)
+    segments = len(offsets)
+    v = v0 + offsets
     t = np.hypot(h, v)
     inv_t = 1.0 / t
     inv_t3 = inv_t ** 3
@@ -463,22 +469,39 @@ def _chain_residual(x: np.ndarray, span: float, rise: float, segments: int, l0: 
     return f, jac
 
 
-def _chain_verticals(span: float, rise: float, length: float, segments: int, w: float,
+def _chain_verticals(span: float, rise: float, length: float, loads: np.ndarray,
                      ea: float) -> tuple[float, np.ndarray]:
-    """Return H and the vertical components (N,) of the segments' tensions, from A to B."""
+    """
+    Return H and the vertical components (N,) of the segments' tensions, from A to B.
+
+    loads (N - 1,): the weights of the interior nodes [N], any sign (a buoyant node pulls
+    up); their sum must not be 0 unless every one is (the caller's weightless case).
+    """
+    if loads.sum() < 0.0:
+        # A buoyant chain is a heavy one upside down: flip the vertical.
+        h, v = _chain_verticals(span, -rise, length, -loads, ea)
+        return h, -v
     if rise < 0.0:
         # Solve from B so that the unknown is the lower end's V (see solve_catenary).
-        h, v = _chain_verticals(span, -rise, length, segments, w, ea)
+        h, v = _chain_verticals(span, -rise, length, loads[::-1], ea)
         return h, -v[::-1]
+    segments = len(loads) + 1
     l0 = length / segments
-    wl0 = w * l0
-    seed = solve_catenary(span, rise, length, w, ea)
-    # The catenary's V at the middle of the first segment is the chain's first segment's V.
-    start = np.array([seed.horizontal_tension, seed.vertical_a + 0.5 * wl0])
+    offsets = np.concatenate([[0.0], np.cumsum(loads)])
+    # Seed from the catenary of the mean weight (of a uniform chain: its own), whose V at the
+    # middle of the first segment is the chain's first segment's V.
+    w = max(loads.sum(), 1e-3 * np.abs(loads).sum()) / (length - l0) if segments > 1 else 0.0
+    if w > 0.0:
+        seed = solve_catenary(span, rise, length, w, ea)
+        start = np.array([seed.horizontal_tension, seed.vertical_a + 0.5 * w * l0])
+    else:  # one segment: a straight spring
+        chord = math.hypot(span, rise)
+        tension = ea * max(chord / length - 1.0, 1e-9)
+        start = np.array([tension * span / chord, tension * rise / chord])
     span = max(span, _MIN_SPAN_FRACTION * length)
-    h, v0 = _newton(lambda x: _chain_residual(x, span, rise, segments, l0, wl0, ea),
+    h, v0 = _newton(lambda x: _chain_residual(x, span, rise, l0, offsets, ea),
                     start, length, 'lumped-mass chain')
-    return float(h), v0 + wl0 * np.arange(segments)
+    return float(h), v0 + offsets
 
 
 def _weightless_chain(end_a: np.ndarray, end_b: np.ndarray, length: float, segments: int,
@@ -527,50 +550,342 @@ def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segment
     segments = _check_segments(segments)
     if _is_weightless(w, gravity):
         return _weightless_chain(end_a, end_b, length, segments, ea)
+    weights = np.full(segments + 1, w * length / segments)
+    weights[[0, -1]] *= 0.5
+    return _loaded_chain(end_a, end_b, length, weights, ea, gravity)
+
+
+def loaded_chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float,
+                             node_weights: ArrayLike, axial_stiffness: float,
+                             gravity: ArrayLike) -> ChainEquilibrium:
+    """
+    Return the static equilibrium of a lumped-mass chain whose nodes weigh node_weights.
+
+    As chain_equilibrium, N = len(node_weights) - 1 equal segments, but every node has its
+    own weight along gravity, of either sign: a node in water weighs its submerged weight,
+    which is negative on a line lighter than water (node_weights from node_weights()).
+
+    :param end_a: (3,) end A [m].
+    :param end_b: (3,) end B [m].
+    :param length: unstretched length L [m], > 0.
+    :param node_weights: (N + 1,) weight of each node [N] (the ends' go into the end
+        forces), finite.
+    :param axial_stiffness: EA [N], > 0.
+    :param gravity: (3,) gravity vector [m/s^2]; it gives the direction 'down'.
+
+    :returns: Positions, end forces and segment tensions.
+
+    :raises CatenaryError: an input is invalid, or Newton did not converge.
+    """
+    end_a, end_b, gravity, length, _, ea = _check_line(
+        end_a, end_b, gravity, length, 0.0, axial_stiffness)
+    weights = np.asarray(node_weights, dtype=float).reshape(-1)
+    _check_segments(len(weights) - 1)
+    if not np.all(np.isfinite(weights)):
+        raise CatenaryError('node_weights must be finite')
+    if not np.any(gravity) or not np.any(weights[1:-1]):
+        chain = _weightless_chain(end_a, end_b, length, len(weights) - 1, ea)
+        if np.any(gravity):
+            down = gravity / np.linalg.norm(gravity)
+            chain = ChainEquilibrium(chain.positions, chain.force_a + weights[0] * down,
+                                     chain.force_b + weights[-1] * down,
+                                     chain.segment_tension, chain.horizontal_tension)
+        return chain
+    if weights[1:-1].sum() == 0.0:
+        raise CatenaryError('node_weights of the interior sum to 0 with mixed signs: no '
+                            'unique equilibrium to seed')
+    return _loaded_chain(end_a, end_b, length, weights, ea, gravity)
+
+
+def _loaded_chain(end_a: np.ndarray, end_b: np.ndarray, length: float, weights: np.ndarray,
+                  ea: float, gravity: np.ndarray) -> ChainEquilibrium:
+    """Solve the chain whose nodes weigh `weights` (N + 1,), checked inputs."""
+    segments = len(weights) - 1
     up, horizontal, span, rise = _vertical_frame(end_a, end_b, gravity)
     l0 = length / segments
-    wl0 = w * l0
-    h, v = _chain_verticals(span, rise, length, segments, w, ea)
+    h, v = _chain_verticals(span, rise, length, weights[1:-1], ea)
     t = np.hypot(h, v)
     stretched = l0 * (1.0 + t / ea)
     steps = np.outer(stretched * h / t, horizontal) + np.outer(stretched * v / t, up)
     positions = end_a + np.vstack([np.zeros(3), np.cumsum(steps, axis=0)])
     fraction = np.linspace(0.0, 1.0, segments + 1)
     positions = _close_on_end(positions, fraction, end_b, positions[-1])
-    half_weight = 0.5 * wl0 * up
     return ChainEquilibrium(
         positions=positions,
-        force_a=h * horizontal + v[0] * up - half_weight,
-        force_b=-h * horizontal - v[-1] * up - half_weight,
+        force_a=h * horizontal + v[0] * up - weights[0] * up,
+        force_b=-h * horizontal - v[-1] * up - weights[-1] * up,
         segment_tension=t,
         horizontal_tension=float(h),
     )
 
 
-def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: int,
-                  weight_per_length: float, axial_stiffness: float,
-                  gravity: ArrayLike) -> np.ndarray:
+# ------------------------------------------------------------------- water and seabed
+
+
+def wetted_fraction(z_a: ArrayLike, z_b: ArrayLike, water_level: float,
+                    volume_diameter: float) -> np.ndarray:
     """
-    Return node positions to start a simulation at rest.
+    Return the wetted fraction of segments with ends at heights z_a, z_b [m].
 
-    The chain's exact equilibrium if Newton reaches it, else the elastic catenary sampled at
-    s = linspace(0, L, N + 1), else the straight line between the ends. Never non-finite.
+    The mean over the segment of r(z) = clip((water_level - z) / dv + 0.5, 0, 1), z linear
+    between its ends: the physics' smooth submergence, a ramp one volume diameter dv wide
+    centred on the surface. With t(z) the ramp's argument and P(t) the integral of the
+    clipped ramp from 0 to t, the mean is (P(t_b) - P(t_a)) / (t_b - t_a), r(z_mid) when
+    the ends are level within 1e-9 m. No water (water_level -inf): 0.
 
-    :param end_a: (3,) end A [m].
-    :param end_b: (3,) end B [m].
+    :param z_a: heights of the segments' first ends [m].
+    :param z_b: heights of their second ends [m].
+    :param water_level: height of the still surface [m]; -inf: no water.
+    :param volume_diameter: dv [m]; a dv below 1e-6 m is taken as 1e-6 m (a sharp surface).
+
+    :returns: Fractions in [0, 1], shaped like z_a.
+    """
+    z_a = np.asarray(z_a, dtype=float)
+    z_b = np.asarray(z_b, dtype=float)
+    if water_level == -math.inf:
+        return np.zeros(np.broadcast(z_a, z_b).shape)
+    dv = max(float(volume_diameter), 1e-6)
+    t_a = (water_level - z_a) / dv + 0.5
+    t_b = (water_level - z_b) / dv + 0.5
+
+    def integral(t):
+        clipped = np.clip(t, 0.0, 1.0)
+        return 0.5 * clipped * clipped + np.maximum(t - 1.0, 0.0)
+
+    level = np.abs(z_b - z_a) < 1e-9
+    with np.errstate(divide='ignore', invalid='ignore'):
+        mean = (integral(t_b) - integral(t_a)) / (t_b - t_a)
+    middle = np.clip(0.5 * (t_a + t_b), 0.0, 1.0)
+    return np.clip(np.where(level, middle, mean), 0.0, 1.0)
+
+
+def node_weights(positions: ArrayLike, rest: ArrayLike, weight_per_length: float,
+                 submerged_weight_per_length: float, water_level: float,
+                 volume_diameter: float) -> np.ndarray:
+    """
+    Return each node's weight [N] (along gravity; negative: it floats) where it is now.
+
+    The physics' lumping: node i carries half of each adjacent segment; a segment weighs
+    weight_per_length (in air) over its dry part and submerged_weight_per_length over its
+    wetted fraction (wetted_fraction) of its rest length.
+
+    :param positions: (N + 1, 3) node positions [m] (z up: the surface is a level of z).
+    :param rest: (N,) rest lengths of the segments [m].
+    :param weight_per_length: w in air [N/m] ((m - rho_air A_v) g).
+    :param submerged_weight_per_length: w in water [N/m] ((m - rho_water A_v) g).
+    :param water_level: height of the still surface [m]; -inf: no water.
+    :param volume_diameter: dv [m] (see wetted_fraction).
+
+    :returns: (N + 1,) weights [N].
+    """
+    x = np.asarray(positions, dtype=float)
+    rest = np.asarray(rest, dtype=float)
+    wet = wetted_fraction(x[:-1, 2], x[1:, 2], water_level, volume_diameter)
+    segment = rest * (weight_per_length + wet * (submerged_weight_per_length
+                                                 - weight_per_length))
+    weights = np.zeros(len(x))
+    weights[:-1] += 0.5 * segment
+    weights[1:] += 0.5 * segment
+    return weights
+
+
+@dataclass(frozen=True)
+class SeabedCatenary:
+    """
+    An elastic catenary lying partly on a flat, frictionless seabed (planar convention).
+
+    From A: a suspended part down to the touchdown point, a straight part lying on the
+    seabed, a suspended part up to B; the tension is horizontal (H) where the line meets the
+    seabed and H throughout the laid part. An end on the seabed has no suspended part.
+
+    :ivar horizontal_tension: H [N].
+    :ivar suspended_a: unstretched length of the suspended part at A [m].
+    :ivar laid_length: unstretched length lying on the seabed [m] (> 0).
+    :ivar suspended_b: the same at B [m].
+    :ivar height_a: height of A above the seabed [m] (>= 0).
+    :ivar height_b: the same of B [m].
+    :ivar tension_a: tension at A [N], hypot(H, w suspended_a).
+    :ivar tension_b: tension at B [N].
+    """
+
+    horizontal_tension: float
+    suspended_a: float
+    laid_length: float
+    suspended_b: float
+    height_a: float
+    height_b: float
+    tension_a: float
+    tension_b: float
+
+
+def _hanging(h: float, w: float, ea: float, sigma: ArrayLike) -> tuple:
+    """
+    Return (x, z) of a suspended part at unstretched arc length sigma from its touchdown.
+
+    The tension there is horizontal (H = h); at sigma it is (H, w sigma).
+    """
+    sigma = np.asarray(sigma, dtype=float)
+    u = w * sigma / h
+    x = h / w * np.arcsinh(u) + h * sigma / ea
+    z = h / w * (u * u / (np.sqrt(1.0 + u * u) + 1.0)) + 0.5 * w * sigma * sigma / ea
+    return x, z
+
+
+def _hanging_length(height: float, h: float, w: float, ea: float) -> float:
+    """Return the unstretched length of a suspended part that rises `height` at tension H."""
+    if height <= 0.0:
+        return 0.0
+    a = h / w
+    # Newton on z(u) = a (sqrt(1 + u^2) - 1) + a^2 w u^2 / (2 EA) = height (u = w s / H): z
+    # is convex and increasing, so Newton from the inextensible root (above) comes down
+    # monotonically.
+    u = math.sqrt((1.0 + height / a) ** 2 - 1.0)
+    for _ in range(100):
+        root = math.sqrt(1.0 + u * u)
+        z = a * u * u / (root + 1.0) + 0.5 * a * a * w * u * u / ea
+        slope = a * u / root + a * a * w * u / ea
+        step = (z - height) / slope
+        u -= step
+        if abs(step) <= 1e-15 * u:
+            break
+    return a * u
+
+
+def solve_seabed_catenary(span: float, rise: float, bed: float, length: float,
+                          weight_per_length: float,
+                          axial_stiffness: float) -> Optional[SeabedCatenary]:
+    """
+    Solve the elastic catenary between A = (0, 0) and B = (span, rise) over a seabed.
+
+    The frictionless case of MoorPy's catenary with seabed contact (its profile types 2,
+    4 and 5: an end on the seabed or both above it, the laid part straight at tension H),
+    for the seabed at height `bed` relative to A. An end below the seabed is taken as on
+    it. Solves the one closure in H, x_A(H) + (L - s_A - s_B)(1 + H / EA) + x_B(H) = span,
+    by bisection (it grows with H).
+
+    :param span: horizontal distance from A to B [m], >= 0.
+    :param rise: height of B above A [m].
+    :param bed: height of the seabed above A [m].
     :param length: unstretched length L [m], > 0.
-    :param segments: N >= 1.
-    :param weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
+    :param weight_per_length: w [N/m], > 0.
     :param axial_stiffness: EA [N], > 0.
-    :param gravity: (3,) gravity vector [m/s^2].
 
-    :returns: (N + 1, 3) positions, first = end A, last = end B.
+    :returns: The solution; None when the line does not reach the seabed (it hangs free:
+        solve_catenary), or lies slack on it (no tension can lay it: H would be 0).
 
-    :raises CatenaryError: an input is invalid (solver failures fall back instead).
+    :raises CatenaryError: an input is invalid.
     """
-    end_a, end_b, gravity, length, w, ea = _check_line(
-        end_a, end_b, gravity, length, weight_per_length, axial_stiffness)
-    segments = _check_segments(segments)
+    span = _check_non_negative('span', span)
+    rise = _check_finite('rise', rise)
+    bed = _check_finite('bed', bed)
+    length = _check_positive('length', length)
+    w = _check_positive('weight_per_length', weight_per_length)
+    ea = _check_positive('axial_stiffness', axial_stiffness)
+    height_a, height_b = max(-bed, 0.0), max(rise - bed, 0.0)
+
+    def closure(h):
+        s_a = _hanging_length(height_a, h, w, ea)
+        s_b = _hanging_length(height_b, h, w, ea)
+        laid = length - s_a - s_b
+        x_a = float(_hanging(h, w, ea, s_a)[0])
+        x_b = float(_hanging(h, w, ea, s_b)[0])
+        return x_a + x_b + laid * (1.0 + h / ea) - span, s_a, s_b, laid
+
+    # The largest H that still lays some line: the suspended parts then take all of L.
+    low, high = 1e-12 * w * length, w * length
+    while closure(high)[3] > 0.0:
+        high *= 4.0
+        if high > 1e6 * ea:
+            return None
+    for _ in range(200):
+        middle = math.sqrt(low * high)
+        if closure(middle)[3] > 0.0:
+            low = middle
+        else:
+            high = middle
+        if high - low <= 1e-14 * high:
+            break
+    top = low
+    if closure(top)[0] < 0.0:
+        return None  # even just touching, the line is too long for the span: it hangs free
+    low = 1e-12 * w * length
+    if closure(low)[0] >= 0.0:
+        return None  # slack on the seabed
+    high = top
+    for _ in range(400):
+        middle = 0.5 * (low + high) if high < 4.0 * low else math.sqrt(low * high)
+        if closure(middle)[0] < 0.0:
+            low = middle
+        else:
+            high = middle
+        if high - low <= 4e-16 * high:
+            break
+    h = 0.5 * (low + high)
+    _, s_a, s_b, laid = closure(h)
+    return SeabedCatenary(h, s_a, laid, s_b, height_a, height_b,
+                          math.hypot(h, w * s_a), math.hypot(h, w * s_b))
+
+
+def seabed_profile(solution: SeabedCatenary, weight_per_length: float,
+                   axial_stiffness: float, s: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Return the planar shape of a solved seabed catenary.
+
+    :param solution: from solve_seabed_catenary with the same line properties.
+    :param weight_per_length: w [N/m], > 0.
+    :param axial_stiffness: EA [N], > 0.
+    :param s: unstretched arc lengths from A [m] (any shape).
+
+    :returns: (x, z): positions relative to A [m], shaped like s.
+    """
+    w = _check_positive('weight_per_length', weight_per_length)
+    ea = _check_positive('axial_stiffness', axial_stiffness)
+    s = np.asarray(s, dtype=float)
+    h = solution.horizontal_tension
+    s_a, laid = solution.suspended_a, solution.laid_length
+    x_a, _ = _hanging(h, w, ea, s_a)
+    bed = -solution.height_a
+    hanging_a = _hanging(h, w, ea, np.clip(s_a - s, 0.0, None))
+    on_bed = x_a + (np.clip(s, s_a, s_a + laid) - s_a) * (1.0 + h / ea)
+    hanging_b = _hanging(h, w, ea, np.clip(s - s_a - laid, 0.0, None))
+    x = np.where(s < s_a, x_a - hanging_a[0], on_bed + hanging_b[0])
+    z = bed + np.where(s < s_a, hanging_a[1], hanging_b[1])
+    return x, z
+
+
+def _seabed_points(end_a: np.ndarray, end_b: np.ndarray, length: float, segments: int,
+                   w: float, ea: float, bed: float) -> Optional[np.ndarray]:
+    """Return the nodes of the seabed catenary (z up, seabed at z = bed), or None."""
+    chord = end_b - end_a
+    span = float(np.hypot(chord[0], chord[1]))
+    if span > 1e-12 * length:
+        horizontal = np.array([chord[0], chord[1], 0.0]) / span
+    else:
+        horizontal = np.array([1.0, 0.0, 0.0])
+    solution = solve_seabed_catenary(span, float(chord[2]), bed - float(end_a[2]), length, w,
+                                     ea)
+    if solution is None:
+        return None
+    s = np.linspace(0.0, length, segments + 1)
+    x, z = seabed_profile(solution, w, ea, s)
+    # the profile starts at A, or where A is below the seabed, on the seabed above it
+    points = end_a * np.array([1.0, 1.0, 0.0]) + np.outer(x, horizontal)
+    points[:, 2] = z + max(float(end_a[2]), bed)
+    return _close_on_end(points, s / length, end_b, points[-1]) + np.outer(
+        1.0 - s / length, end_a - points[0])
+
+
+# Fixed-point passes of a line crossing the surface: the node weights follow the shape, the
+# shape the weights. A hanging line settles in a few; one floating on the surface may
+# cycle, and the best pass is only a start for relax.
+_WEIGHT_PASSES = 30
+_WEIGHT_TOLERANCE = 1e-10
+
+
+def _uniform_shape(end_a, end_b, length, segments, w, ea, gravity) -> Optional[np.ndarray]:
+    """Return the chain's equilibrium, else the catenary, of one weight w (any sign), or None."""
+    if w < 0.0:  # a buoyant line hangs upwards
+        w, gravity = -w, -gravity
     shapes = (
         lambda: chain_equilibrium(end_a, end_b, length, segments, w, ea, gravity).positions,
         lambda: catenary_points(end_a, end_b, length, w, ea, gravity,
@@ -583,4 +898,114 @@ def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: i
             continue
         if np.all(np.isfinite(positions)):
             return positions
-    return _straight_line(end_a, end_b, segments)
+    return None
+
+
+def _water_shape(end_a, end_b, length, segments, w_air, w_water, water_level, dv, ea,
+                 gravity) -> Optional[np.ndarray]:
+    """Return the chain's equilibrium with each node's weight where it lies, or a guess."""
+    mid = 0.5 * (end_a[2] + end_b[2])
+    positions = _uniform_shape(end_a, end_b, length, segments,
+                               w_water if mid < water_level else w_air, ea, gravity)
+    if positions is None:
+        return None
+    rest = np.full(segments, length / segments)
+    weights = node_weights(positions, rest, w_air, w_water, water_level, dv)
+    scale = max(abs(w_air), abs(w_water)) * length / segments
+    best, best_change = positions, math.inf
+    for k in range(_WEIGHT_PASSES):
+        try:
+            positions = loaded_chain_equilibrium(end_a, end_b, length, weights, ea,
+                                                 gravity).positions
+        except CatenaryError:
+            break
+        if not np.all(np.isfinite(positions)):
+            break
+        new = node_weights(positions, rest, w_air, w_water, water_level, dv)
+        change = float(np.abs(new - weights).max())
+        if change < best_change:
+            best, best_change = positions, change
+        if change <= _WEIGHT_TOLERANCE * scale:
+            return positions
+        # a line floating on the surface flips between sinking and floating: damp it
+        weights = new if k < 5 else 0.5 * (weights + new)
+    return best
+
+
+def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: int,
+                  weight_per_length: float, axial_stiffness: float,
+                  gravity: ArrayLike, *, submerged_weight_per_length: Optional[float] = None,
+                  water_level: float = -math.inf, volume_diameter: float = 0.0,
+                  seabed_level: float = -math.inf, seabed_sink: float = 0.0) -> np.ndarray:
+    """
+    Return node positions to start a simulation at rest.
+
+    Without water and seabed: the chain's exact equilibrium if Newton reaches it, else the
+    elastic catenary sampled at s = linspace(0, L, N + 1), else the straight line between
+    the ends. Never non-finite.
+
+    With water (a finite water_level and submerged_weight_per_length): each node weighs
+    what node_weights() gives where it lies, and the shape is the chain's equilibrium with
+    those weights (a few fixed-point passes: exact for a line that hangs through the
+    surface or lies below it; for one floating on the surface only a start). With a seabed
+    that the line would pass through: the seabed catenary (solve_seabed_catenary) with the
+    weight at the seabed, laid at seabed_level - seabed_sink (where a soft seabed holds a
+    laid line), else the shape with its nodes lifted out of the seabed. Water and seabed are
+    levels of z (REP-103: z up); the seabed catenary needs gravity along -z (else the nodes
+    are only lifted).
+
+    :param end_a: (3,) end A [m].
+    :param end_b: (3,) end B [m].
+    :param length: unstretched length L [m], > 0.
+    :param segments: N >= 1.
+    :param weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0 (in
+        air: (m - rho_air A_v) |g|).
+    :param axial_stiffness: EA [N], > 0.
+    :param gravity: (3,) gravity vector [m/s^2].
+    :param submerged_weight_per_length: weight per unstretched metre in water [N/m], (m -
+        rho_water A_v) |g|, any sign (negative: the line floats); None: no water.
+    :param water_level: z of the still surface [m]; -inf: no water.
+    :param volume_diameter: dv [m], the width of the surface's ramp (wetted_fraction).
+    :param seabed_level: z of the seabed [m]; -inf: none.
+    :param seabed_sink: how far a laid line sinks into the seabed [m], >= 0: w / (k_b d).
+
+    :returns: (N + 1, 3) positions, first = end A, last = end B.
+
+    :raises CatenaryError: an input is invalid (solver failures fall back instead).
+    """
+    end_a, end_b, gravity, length, w, ea = _check_line(
+        end_a, end_b, gravity, length, weight_per_length, axial_stiffness)
+    segments = _check_segments(segments)
+    water_level = _check_level('water_level', water_level)
+    seabed_level = _check_level('seabed_level', seabed_level)
+    seabed_sink = _check_non_negative('seabed_sink', seabed_sink)
+    volume_diameter = _check_non_negative('volume_diameter', volume_diameter)
+    water = water_level > -math.inf and submerged_weight_per_length is not None
+    w_water = (_check_finite('submerged_weight_per_length', submerged_weight_per_length)
+               if water else w)
+    if water:
+        positions = _water_shape(end_a, end_b, length, segments, w, w_water, water_level,
+                                 volume_diameter, ea, gravity)
+    else:
+        positions = _uniform_shape(end_a, end_b, length, segments, w, ea, gravity)
+    if positions is None:
+        positions = _straight_line(end_a, end_b, segments)
+    bed = seabed_level - seabed_sink
+    if seabed_level == -math.inf or positions[:, 2].min() >= bed:
+        return positions
+    w_bed = w_water if water and seabed_level < water_level else w
+    g = float(np.linalg.norm(gravity))
+    if w_bed > 0.0 and g > 0.0 and np.allclose(gravity / g, [0.0, 0.0, -1.0], atol=1e-9):
+        laid = _seabed_points(end_a, end_b, length, segments, w_bed, ea, bed)
+        if laid is not None and np.all(np.isfinite(laid)):
+            return laid
+    lifted = positions.copy()
+    lifted[1:-1, 2] = np.maximum(lifted[1:-1, 2], bed)
+    return lifted
+
+
+def _check_level(name: str, value: float) -> float:
+    value = float(value)
+    if math.isnan(value) or value == math.inf:
+        raise CatenaryError(f'{name} must be finite or -inf (none), got {value}')
+    return value

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The choice of the time step, and bringing a start shape to rest.
+The choice of the time step, the start shape, and bringing a start shape to rest.
 
 The integrators themselves are kernels.improved_euler_run and kernels.implicit_euler_run,
 which step a whole System (objects.py).
@@ -22,13 +22,17 @@ The seed's improved Euler (eq. 7) is Heun's method: an Euler predictor, then the
 two accelerations for the velocity and the trapezoid of the two velocities for the position.
 On an undamped oscillator its amplification is |G|^2 = 1 + (w dt)^4 / 4 > 1 for every step,
 so it lives on the line's damping: the automatic step is the largest one for which every
-axial mode of the chain, with its damping, is stable, times a safety factor.
+axial mode of the chain, with its damping, is stable, times a safety factor. Ground contact
+and water drag add modes of their own (contact_rates, drag_rate).
 """
+
+import math
 
 import numba
 import numpy as np
 
-from .objects import System
+from . import catenary
+from .objects import Environment, LineType, System
 from .rope import RopeProperties
 from .superelastic import MAX_ITERATIONS
 
@@ -40,6 +44,81 @@ def _heun_growth(z: np.ndarray) -> np.ndarray:
     return np.abs(1.0 + z + 0.5 * z * z)
 
 
+def _has_ground(environment: Environment) -> bool:
+    """Tell whether a seabed or a quay can touch the line."""
+    quay = getattr(environment, 'quay_normal', (0.0, 0.0, 0.0))
+    return (getattr(environment, 'seabed_level', -math.inf) > -math.inf
+            or bool(np.any(np.asarray(quay, dtype=float))))
+
+
+def contact_rates(props: RopeProperties) -> tuple:
+    """
+    Return the ground contact's (stiffness rate [1/s^2], damping rate [1/s]) on a particle.
+
+    A particle in the ground (seabed or quay) of a line of nominal diameter d feels k_b d
+    len_i per metre of penetration and c_b d len_i per m/s (MoorDyn's kBot, cBot), over its
+    mass m len_i: k_b d / m and c_b d / m, the same for every particle. Its added mass
+    would lower both; it is left out, which errs on the safe side. (0, 0) without ground.
+    Heun's method is stable on the damping alone only below a step of 2 / (c_b d / m):
+    1.1 ms for the 40 mm wire and 0.27 ms for the 64 mm polyester on MoorDyn's default
+    c_b = 3e5 Pa s/m, where their axial modes alone allow 0.4 to 2 ms.
+    """
+    environment = props.environment
+    if not _has_ground(environment):
+        return 0.0, 0.0
+    d = getattr(props.line_type, 'diameter', 0.0)
+    m = props.mass_per_length
+    return (getattr(environment, 'seabed_stiffness', 0.0) * d / m,
+            getattr(environment, 'seabed_damping', 0.0) * d / m)
+
+
+def _payload_contact_rates(props: RopeProperties) -> tuple:
+    """
+    Return the contact's (stiffness, damping) rates on a free payload, as contact_rates.
+
+    A payload of volume V touches with width and length V^(1/3) (its contact area V^(2/3)),
+    over its lumped mass (its own and half a segment). (0, 0) without ground or volume.
+    """
+    volume = getattr(props, 'payload_volume', 0.0)
+    if props.payload_mass <= 0.0 or volume <= 0.0 or not _has_ground(props.environment):
+        return 0.0, 0.0
+    area = volume ** (2.0 / 3.0)
+    environment = props.environment
+    return (environment.seabed_stiffness * area / props.end_mass,
+            environment.seabed_damping * area / props.end_mass)
+
+
+def drag_rate(props: RopeProperties, speed: float) -> float:
+    """
+    Return how fast the drag takes a particle's velocity [1/s] at a relative speed [m/s].
+
+    Quadratic drag c |u| u changes with the velocity at up to 2 c |u|: per unit mass, in
+    water (1/2 rho_w (Cd d + CdAx pi d)) 2 |u| / m, in air the same with rho_air, and the
+    seed's isotropic K_A 2 |u| / m (the larger of water and air, plus K_A). Heun's method
+    is stable on it below a step of 2 / rate; the rate grows with the speed, so it cannot
+    set a fixed step: the current's part (a line at rest in it) joins the automatic step,
+    the motion's part is the simulator's to divide steps by.
+    """
+    t = props.line_type
+    environment = props.environment
+    d = getattr(t, 'diameter', 0.0)
+    per_speed = (max(getattr(t, 'normal_drag', 0.0), 0.0)
+                 + math.pi * max(getattr(t, 'tangential_drag', 0.0), 0.0)) * d
+    water = getattr(environment, 'water_level', -math.inf) > -math.inf
+    density = max(getattr(environment, 'water_density', 0.0) if water else 0.0,
+                  getattr(environment, 'air_density', 0.0))
+    return (density * per_speed + 2.0 * props.air_drag_coefficient) * speed / (
+        props.mass_per_length)
+
+
+def _current_speed(props: RopeProperties) -> float:
+    """Return the current's speed [m/s] where there is water (0 without)."""
+    environment = props.environment
+    if getattr(environment, 'water_level', -math.inf) == -math.inf:
+        return 0.0
+    return float(np.linalg.norm(getattr(environment, 'current', (0.0, 0.0, 0.0))))
+
+
 def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
     """
     Eigenvalues of the chain's axial modes, from the slowest to the fastest.
@@ -49,6 +128,13 @@ def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
     of lumped mass M_e (a payload and half a segment). A free end is never lighter than
     half a particle, so it never raises the bound; a lighter free point would. Each mode
     is damped in proportion to its stiffness (w^2 beta).
+
+    The same modes slack (the structural springs idle, every damper and bending spring
+    acting: s^2 + beta w^2 s + r w^2 = 0, r the bending springs' share of the stiffness).
+    With ground contact each mode also appears with the contact's stiffness and damping
+    added (a particle's Gershgorin row grows by them): s^2 + (beta w^2 + g_c) s + w^2 + k_c
+    = 0, w^2 from 0 (the contact alone); in a current, with the drag's rate at rest in it.
+    Every family counts: some particles touch, some do not.
     """
     m = props.particle_mass
     k = props.structural_stiffness + props.bending_stiffness
@@ -56,22 +142,43 @@ def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
     w2_max = 4.0 * k / m
     if props.payload_mass > 0.0:
         w2_max = max(w2_max, 2.0 * k / props.end_mass)
-    w2 = w2_max * np.geomspace(1e-8, 1.0, count)
-    # roots of s^2 + (c/k) w^2 s + w^2 = 0, both branches (overdamped modes have two)
-    half = 0.5 * (c / k) * w2
-    root = np.sqrt((half * half - w2).astype(complex))
-    return np.concatenate([-half + root, -half - root])
+    w2 = np.concatenate([[0.0], w2_max * np.geomspace(1e-8, 1.0, count)])
+    # taut, and slack: a slack segment's spring does nothing, its damper still acts, so the
+    # modes of a slack line are its dampers' and bending springs' (rates up to 4 c / m; with
+    # MoorDyn's critical damping per segment, BA = l sqrt(EA m), Heun's method then needs
+    # half the step the taut line does: a chain let fall blew up at 0.7 of that)
+    base = [(w2, (c / k) * w2), ((props.bending_stiffness / k) * w2, (c / k) * w2)]
+    families = list(base)
+    stiffness, damping = contact_rates(props)
+    drag = drag_rate(props, _current_speed(props))
+    for stiff, damp in base:
+        if stiffness > 0.0 or damping > 0.0:
+            families.append((stiff + stiffness, damp + damping + drag))
+        if drag > 0.0:
+            families.append((stiff, damp + drag))
+    stiffness, damping = _payload_contact_rates(props)
+    if stiffness > 0.0 or damping > 0.0:  # its own row: its springs only via the line end
+        end = np.array([0.0, 2.0 * k / props.end_mass])
+        families.append((end + stiffness, (c / k) * end + damping))
+    modes = []
+    for stiff, damp in families:
+        # roots of s^2 + damp s + stiff = 0, both branches (overdamped modes have two)
+        half = 0.5 * damp
+        root = np.sqrt((half * half - stiff).astype(complex))
+        modes += [-half + root, -half - root]
+    return np.concatenate(modes)
 
 
 def stability_limit(props: RopeProperties) -> float:
     """
-    Largest stable improved-Euler step [s] for the line's axial modes.
+    Largest stable improved-Euler step [s] for the line's axial and contact modes.
 
     Returns 0 when no step is stable (an undamped line).
     """
     if props.structural_damping + props.bending_damping <= 0.0:
         return 0.0  # |G| > 1 for every mode: rounding would hide it at tiny steps
     modes = _mode_eigenvalues(props)
+    modes = modes[modes != 0.0]
     lo, hi = 0.0, 4.0 / np.abs(modes).max()
     if _heun_growth(1e-9 * hi * modes).max() > 1.0:
         return 0.0
@@ -122,6 +229,48 @@ def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler
 def implicit_bending(props: RopeProperties, dt: float) -> bool:
     """Whether the implicit step must include the bending springs in its matrix."""
     return dt * dt * props.bending_stiffness / props.particle_mass > IMPLICIT_BENDING_THRESHOLD
+
+
+def line_weights(line_type: LineType, environment: Environment) -> tuple:
+    """
+    Return a line's weight per metre in air and in water [N/m] along gravity.
+
+    (m - rho_air A_v) |g| and (m - rho_water A_v) |g|, A_v = pi dv^2 / 4 with dv the volume
+    diameter (the nominal one where it is 0): the physics' weight and buoyancy of a metre
+    wholly in the one or the other. The second is negative for a line lighter than water.
+    """
+    g = math.hypot(*environment.gravity)
+    dv = getattr(line_type, 'volume_diameter', 0.0) or line_type.diameter
+    area = 0.25 * math.pi * dv * dv
+    m = line_type.mass_per_length
+    return ((m - getattr(environment, 'air_density', 0.0) * area) * g,
+            (m - getattr(environment, 'water_density', 0.0) * area) * g)
+
+
+def start_shape(line_type: LineType, environment: Environment, end_a, end_b, length: float,
+                segments: int) -> np.ndarray:
+    """
+    Return the start shape (N+1, 3) of a uniform line between two ends in its environment.
+
+    catenary.initial_shape with the line's weight in air and in water (line_weights), the
+    surface's ramp width dv, and a seabed (or none) at which a laid line sinks by its weight
+    over k_b d, as it does in the physics. relax then brings it to the model's exact rest.
+
+    :raises catenary.CatenaryError: an input is invalid.
+    """
+    w_air, w_water = line_weights(line_type, environment)
+    water_level = getattr(environment, 'water_level', -math.inf)
+    seabed_level = getattr(environment, 'seabed_level', -math.inf)
+    dv = getattr(line_type, 'volume_diameter', 0.0) or line_type.diameter
+    w_bed = w_water if seabed_level < water_level else w_air
+    support = getattr(environment, 'seabed_stiffness', 0.0) * line_type.diameter
+    sink = max(w_bed, 0.0) / support if support > 0.0 else 0.0
+    return catenary.initial_shape(
+        end_a, end_b, length, segments, max(w_air, 0.0), line_type.axial_stiffness,
+        np.asarray(environment.gravity, dtype=float),
+        submerged_weight_per_length=w_water if water_level > -math.inf else None,
+        water_level=water_level, volume_diameter=dv, seabed_level=seabed_level,
+        seabed_sink=sink)
 
 
 @numba.njit(cache=True)

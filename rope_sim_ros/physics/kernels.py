@@ -30,11 +30,19 @@ the one place that sums them. Tests run these same functions interpreted (``.py_
 import numba
 import numpy as np
 
+from .forces.contact import add_contact, add_contact_block
 from .forces.drag import add_drag, add_drag_block
+from .forces.fluid import (accelerate, add_line_drag, add_line_drag_block, add_mass_block,
+                           add_point_drag, add_point_drag_block, line_pass, point_fraction)
 from .forces.gravity import add_weight
 from .forces.springs import add_springs, spring_block_at
-from .layout import (ADJUST, AXIAL, AXIAL_STIFFNESS, BENDING, DRAG, DRIVEN, END_A, FIRST,
-                     FREE, INV_MASS, KIND, LAST, MASS, MAX_STRAIN, OWN_MASS, REST, TOTAL_MASS)
+from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BENDING, DIAMETER, DRAG,
+                     DRAG_AREA, DRIVEN, END_A, ENV_AIR_DENSITY, ENV_CURRENT, ENV_GRAVITY,
+                     ENV_QUAY_NORMAL, ENV_SEABED_LEVEL, ENV_WATER_DENSITY, ENV_WATER_LEVEL,
+                     FIRST, FLUID, FREE, INV_MASS, KIND, LAST, LENGTH, MASS, MAX_STRAIN,
+                     NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS, POINT_SINK, REST, SINK, SIZE,
+                     TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS, TOTAL_MASS, VOLUME,
+                     VOLUME_AREA, VOLUME_DIAMETER)
 from .superelastic import adjust, over_limit
 
 
@@ -51,40 +59,211 @@ def line_forces(x, v, out, particles, lines):
             add_springs(x, v, out, particles, first, last, True, axial)
 
 
+@numba.njit(cache=True, inline='always')
+def has_water(env):
+    """Tell whether there is water: a water level above -inf."""
+    return env[ENV_WATER_LEVEL] > -np.inf
+
+
+@numba.njit(cache=True, inline='always')
+def has_contact(env):
+    """Tell whether anything can be touched: a seabed above -inf or a quay."""
+    return (env[ENV_SEABED_LEVEL] > -np.inf or env[ENV_QUAY_NORMAL] != 0.0
+            or env[ENV_QUAY_NORMAL + 1] != 0.0)
+
+
+@numba.njit(cache=True, inline='always')
+def line_passes(x, particles, lines, line_real, env, sub, tangent):
+    """
+    Fill every line's submerged lengths sub (P,) and tangents tangent (P, 3) where needed.
+
+    A line without fluid terms, or without water, keeps sub as it is (zero from the start);
+    tangents only for the lines whose terms read them.
+    """
+    wet = has_water(env)
+    level = env[ENV_WATER_LEVEL]
+    for k in range(lines.shape[0]):
+        if lines[k, FLUID] != 1:
+            continue
+        tangents = lines[k, TANGENTS] == 1
+        if wet or tangents:
+            line_pass(x, particles, lines[k, FIRST], lines[k, LAST], level,
+                      line_real[k, VOLUME_DIAMETER], wet, tangents, sub, tangent)
+
+
+@numba.njit(cache=True, inline='always')
+def _environment(x, v, i, particles, line_real, k, tangents, contact, env, sub, tangent, out,
+                 out_row):
+    """
+    Add particle i's fluid drag and contact force (of line k) to out[out_row].
+
+    Return (a, b, weight): its mass matrix a I + b q q^T (mass plus added mass) and the mass
+    whose weight it carries, m - D (D: the displaced water and air).
+    """
+    mass = particles[i, MASS]
+    length = particles[i, LENGTH]
+    wet = sub[i]
+    dry = length - wet
+    rho_w = env[ENV_WATER_DENSITY]
+    rho_a = env[ENV_AIR_DENSITY]
+    displaced = line_real[k, VOLUME_AREA] * (rho_w * wet + rho_a * dry)
+    ca = line_real[k, NORMAL_ADDED_MASS]
+    if tangents:
+        c_n = line_real[k, NORMAL_DRAG]
+        c_t = line_real[k, TANGENTIAL_DRAG]
+        if wet > 0.0:
+            add_line_drag(v, i, tangent, i, rho_w * wet * c_n, rho_w * wet * c_t,
+                          env[ENV_CURRENT], env[ENV_CURRENT + 1], env[ENV_CURRENT + 2], out,
+                          out_row)
+        if dry > 0.0 and rho_a > 0.0:
+            add_line_drag(v, i, tangent, i, rho_a * dry * c_n, rho_a * dry * c_t, 0.0, 0.0,
+                          0.0, out, out_row)
+    if contact:
+        add_contact(x, v, i, line_real[k, DIAMETER], length, particles[i, SINK], env, out,
+                    out_row)
+    return (mass + ca * displaced, (line_real[k, TANGENTIAL_ADDED_MASS] - ca) * displaced,
+            mass - displaced)
+
+
+@numba.njit(cache=True, inline='always')
+def _environment_block(x, v, i, particles, line_real, k, tangents, contact, env, sub, tangent,
+                       b, h, half_h2, block):
+    """
+    Add particle i's b q q^T and h C + h^2/2 S of its fluid drag and contact to block.
+
+    b: the anisotropic part of its mass matrix (from _environment); C, S: minus the
+    Jacobians in v and x.
+    """
+    if b != 0.0:
+        add_mass_block(0.0, b, tangent, i, block)
+    if tangents:
+        wet = sub[i]
+        dry = particles[i, LENGTH] - wet
+        c_n = line_real[k, NORMAL_DRAG]
+        c_t = line_real[k, TANGENTIAL_DRAG]
+        rho_w = env[ENV_WATER_DENSITY]
+        rho_a = env[ENV_AIR_DENSITY]
+        if wet > 0.0:
+            add_line_drag_block(v, i, tangent, i, rho_w * wet * c_n, rho_w * wet * c_t,
+                                env[ENV_CURRENT], env[ENV_CURRENT + 1], env[ENV_CURRENT + 2],
+                                h, block)
+        if dry > 0.0 and rho_a > 0.0:
+            add_line_drag_block(v, i, tangent, i, rho_a * dry * c_n, rho_a * dry * c_t, 0.0,
+                                0.0, 0.0, h, block)
+    if contact:
+        add_contact_block(x, v, i, line_real[k, DIAMETER], particles[i, LENGTH],
+                          particles[i, SINK], env, h, half_h2, block)
+
+
+@numba.njit(cache=True, inline='always')
+def _point_environment(point_x, point_v, q, points, contact, env, out, out_row):
+    """
+    Add free point q's own fluid drag and contact force to out[out_row].
+
+    Return (added, weight): its added mass Ca_p D and the mass whose weight it carries,
+    m - D (D: the water and air its volume displaces).
+    """
+    own = points[q, OWN_MASS]
+    volume = points[q, VOLUME]
+    area = points[q, DRAG_AREA]
+    if volume == 0.0 and area == 0.0:
+        return 0.0, own
+    wet = 0.0
+    if has_water(env):
+        wet = point_fraction(point_x[q, 2], env[ENV_WATER_LEVEL], max(points[q, SIZE], 1e-6))
+    rho_w = env[ENV_WATER_DENSITY]
+    rho_a = env[ENV_AIR_DENSITY]
+    displaced = volume * (rho_w * wet + rho_a * (1.0 - wet))
+    if area > 0.0:
+        if wet > 0.0:
+            add_point_drag(point_v, q, 0.5 * rho_w * area * wet, env[ENV_CURRENT],
+                           env[ENV_CURRENT + 1], env[ENV_CURRENT + 2], out, out_row)
+        if wet < 1.0:
+            add_point_drag(point_v, q, 0.5 * rho_a * area * (1.0 - wet), 0.0, 0.0, 0.0, out,
+                           out_row)
+    if contact:
+        size = points[q, SIZE]
+        add_contact(point_x, point_v, q, size, size, points[q, POINT_SINK], env, out, out_row)
+    return points[q, ADDED_MASS] * displaced, own - displaced
+
+
+@numba.njit(cache=True, inline='always')
+def _point_environment_block(point_x, point_v, q, points, contact, env, h, half_h2, block):
+    """Add h C + h^2/2 S of free point q's own drag and contact to block (3, 3)."""
+    area = points[q, DRAG_AREA]
+    if area > 0.0:
+        wet = 0.0
+        if has_water(env):
+            wet = point_fraction(point_x[q, 2], env[ENV_WATER_LEVEL],
+                                 max(points[q, SIZE], 1e-6))
+        if wet > 0.0:
+            add_point_drag_block(point_v, q, 0.5 * env[ENV_WATER_DENSITY] * area * wet,
+                                 env[ENV_CURRENT], env[ENV_CURRENT + 1], env[ENV_CURRENT + 2],
+                                 h, block)
+        if wet < 1.0:
+            add_point_drag_block(point_v, q, 0.5 * env[ENV_AIR_DENSITY] * area * (1.0 - wet),
+                                 0.0, 0.0, 0.0, h, block)
+    if contact:
+        size = points[q, SIZE]
+        add_contact_block(point_x, point_v, q, size, size, points[q, POINT_SINK], env, h,
+                          half_h2, block)
+
+
 @numba.njit(cache=True)
-def end_forces(x, v, particles, lines, gravity, out):
+def end_forces(x, v, particles, lines, line_real, env, out):
     """
     Force of each line on the points its ends sit on into out (L, 2, 3): end A, end B.
 
-    The springs and dampers at the end particle plus the weight of the half segment lumped
-    there, as MoorDyn reports for a coupled point: it converges to the catenary's end tension
-    at second order in N. (The half segment's air drag acts on a free point's motion too, but
-    is not part of this reported force.)
+    The springs and dampers at the end particle plus the weight, buoyancy, fluid drag (with
+    the end's velocity) and contact of the half segment lumped there: MoorDyn's force on a
+    coupled point (not the end particle's inertia). It converges to the catenary's end
+    tension at second order in N. (The seed's isotropic air drag of the half segment acts on
+    a free point's motion too, but is not part of this reported force.)
     """
     f = np.empty_like(x)
     line_forces(x, v, f, particles, lines)
+    sub = np.zeros(x.shape[0])
+    tangent = np.zeros_like(x)
+    line_passes(x, particles, lines, line_real, env, sub, tangent)
+    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    contact = has_contact(env)
     for k in range(lines.shape[0]):
+        fluid = lines[k, FLUID] == 1
+        tangents = lines[k, TANGENTS] == 1
         for e in range(2):
             row = lines[k, FIRST] if e == 0 else lines[k, LAST]
             for p in range(3):
                 out[k, e, p] = f[row, p]
-            add_weight(out[k], e, particles[row, MASS], gravity)
+            weight = particles[row, MASS]
+            if fluid or contact:
+                _, _, weight = _environment(x, v, row, particles, line_real, k, tangents,
+                                            contact, env, sub, tangent, out[k], e)
+            add_weight(out[k], e, weight, gravity)
 
 
 @numba.njit(cache=True)
-def _point_forces(x, v, f, particles, lines, points, gravity, out):
+def _point_forces(x, v, f, particles, lines, line_real, points, point_x, point_v, env,
+                  gravity, contact, sub, tangent, out, iso, aniso):
     """
     Net force on each free point into out (Q, 3), from the line forces f before gravity.
 
-    Its own weight plus, for every line end on it, that end's springs, dampers, half-segment
-    weight and drag. Rows of fixed and driven points are left as they are.
+    Its own weight, buoyancy, drag and contact plus, for every line end on it, that end's
+    springs, dampers and the environment terms of the half segment lumped there. Its mass
+    matrix: iso[q] I + aniso[q] (Q, 3, 3): its own mass and added mass and every end
+    particle's mass matrix. Rows of fixed and driven points are left as they are.
     """
     for q in range(points.shape[0]):
         if points[q, KIND] == FREE:
             for p in range(3):
                 out[q, p] = 0.0
-            add_weight(out, q, points[q, OWN_MASS], gravity)
+            added, weight = _point_environment(point_x, point_v, q, points, contact, env, out,
+                                               q)
+            add_weight(out, q, weight, gravity)
+            iso[q] = points[q, TOTAL_MASS] + added
+            aniso[q] = 0.0
     for k in range(lines.shape[0]):
+        fluid = lines[k, FLUID] == 1
+        tangents = lines[k, TANGENTS] == 1
         for e in range(2):
             q = lines[k, END_A + e]
             if points[q, KIND] != FREE:
@@ -92,34 +271,70 @@ def _point_forces(x, v, f, particles, lines, points, gravity, out):
             row = lines[k, FIRST] if e == 0 else lines[k, LAST]
             for p in range(3):
                 out[q, p] += f[row, p]
-            add_weight(out, q, particles[row, MASS], gravity)
+            weight = particles[row, MASS]
+            if fluid or contact:
+                a, b, weight = _environment(x, v, row, particles, line_real, k, tangents,
+                                            contact, env, sub, tangent, out, q)
+                iso[q] += a - particles[row, MASS]  # its mass is in TOTAL_MASS already
+                if b != 0.0:
+                    add_mass_block(0.0, b, tangent, row, aniso[q])
+            add_weight(out, q, weight, gravity)
             add_drag(v, row, particles[row, DRAG], out, q)
 
 
 @numba.njit(cache=True)
-def _accelerations(x, v, a, particles, lines, points, gravity, point_a):
+def _accelerations(x, v, a, particles, lines, line_real, points, point_x, point_v, env,
+                   gravity, contact, sub, tangent, point_a, iso, aniso, work):
     """
     Accelerations of every particle into a (P, 3), of every free point into point_a (Q, 3).
 
     Rows of line ends are meaningless (their points set them).
     """
     line_forces(x, v, a, particles, lines)
-    _point_forces(x, v, a, particles, lines, points, gravity, point_a)
+    line_passes(x, particles, lines, line_real, env, sub, tangent)
+    _point_forces(x, v, a, particles, lines, line_real, points, point_x, point_v, env,
+                  gravity, contact, sub, tangent, point_a, iso, aniso)
     for q in range(points.shape[0]):
         if points[q, KIND] == FREE:
+            plain = True
             for p in range(3):
-                point_a[q, p] /= points[q, TOTAL_MASS]
-    _particle_accelerations(v, a, particles, gravity)
+                for r in range(3):
+                    plain &= aniso[q, p, r] == 0.0
+            if plain:
+                for p in range(3):
+                    point_a[q, p] /= iso[q]
+            else:  # added mass along the end segments: the full 3x3 mass matrix
+                for p in range(3):
+                    aniso[q, p, p] += iso[q]
+                _inverse3(aniso[q], work)
+                f0, f1, f2 = point_a[q, 0], point_a[q, 1], point_a[q, 2]
+                for p in range(3):
+                    point_a[q, p] = work[p, 0] * f0 + work[p, 1] * f1 + work[p, 2] * f2
+    _particle_accelerations(x, v, a, particles, lines, line_real, env, gravity, contact, sub,
+                            tangent)
 
 
 @numba.njit(cache=True, inline='always')
-def _particle_accelerations(v, a, particles, gravity):
-    """Turn the line forces in a (P, 3) into accelerations: drag, over the mass, gravity."""
-    for i in range(v.shape[0]):
-        add_drag(v, i, particles[i, DRAG], a, i)
-        mass = particles[i, MASS]
-        for p in range(3):
-            a[i, p] = a[i, p] / mass + gravity[p]
+def _particle_accelerations(x, v, a, particles, lines, line_real, env, gravity, contact, sub,
+                            tangent):
+    """
+    Turn the line forces in a (P, 3) into accelerations of the lines' interior particles.
+
+    Drag, contact, weight and buoyancy, then the inverse of the mass matrix (mass and added
+    mass); the line ends' rows are left as they are (their points set them).
+    """
+    for k in range(lines.shape[0]):
+        fluid = lines[k, FLUID] == 1
+        tangents = lines[k, TANGENTS] == 1
+        for i in range(lines[k, FIRST] + 1, lines[k, LAST]):
+            add_drag(v, i, particles[i, DRAG], a, i)
+            mass = particles[i, MASS]
+            if fluid or contact:
+                m, b, weight = _environment(x, v, i, particles, line_real, k, tangents,
+                                            contact, env, sub, tangent, a, i)
+                accelerate(m, b, tangent, i, weight, gravity, a, i)
+            else:
+                accelerate(mass, 0.0, tangent, i, mass, gravity, a, i)
 
 
 @numba.njit(cache=True, inline='always')
@@ -232,8 +447,7 @@ def max_strain(x, rest):
 
 
 @numba.njit(cache=True)
-def largest_load(x, v, point_x, point_v, particles, lines, line_real, gravity, forces,
-                 strains):
+def largest_load(x, v, point_x, point_v, particles, lines, line_real, env, forces, strains):
     """
     Return whether the state (particles and points) is finite, and its largest load [N].
 
@@ -243,7 +457,7 @@ def largest_load(x, v, point_x, point_v, particles, lines, line_real, gravity, f
     """
     if not (all_finite(x, v) and all_finite(point_x, point_v)):
         return False, np.inf
-    end_forces(x, v, particles, lines, gravity, forces)
+    end_forces(x, v, particles, lines, line_real, env, forces)
     largest = 0.0
     for k in range(lines.shape[0]):
         first, last = lines[k, FIRST], lines[k, LAST]
@@ -264,7 +478,7 @@ def largest_load(x, v, point_x, point_v, particles, lines, line_real, gravity, f
 
 @numba.njit(cache=True)
 def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                       line_real, points, gravity, max_iterations):
+                       line_real, points, env, max_iterations):
     """
     Take len(drive_x) improved Euler steps of the whole system in place.
 
@@ -273,9 +487,16 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     :param drive_x, drive_v: driven points' positions and velocities at the end of each step
         (n, Q, 3) (rows of other points ignored).
     :param particles, lines, line_real, points: the tables of layout.py.
-    :param gravity: (3,) [m/s^2].
+    :param env: the ENV array (layout.ENV_*): gravity, water, air, current, seabed, quay.
     """
     n_points = points.shape[0]
+    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    contact = has_contact(env)
+    sub = np.zeros(x.shape[0])  # submerged length of each particle
+    tangent = np.zeros_like(x)  # unit tangent of each particle
+    iso = np.zeros(n_points)  # a free point's mass matrix: iso I + aniso
+    aniso = np.zeros((n_points, 3, 3))
+    work = np.empty((3, 3))
     inv_mass = np.ascontiguousarray(particles[:, INV_MASS])  # for the strain limit
     rest = np.ascontiguousarray(particles[:, REST])
     a1 = np.empty_like(x)
@@ -289,14 +510,18 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     if not np.any(points[:, KIND] == FREE):  # every line end fixed or driven: no points
         for k in range(drive_x.shape[0]):
             line_forces(x, v, a1, particles, lines)
-            _particle_accelerations(v, a1, particles, gravity)
+            line_passes(x, particles, lines, line_real, env, sub, tangent)
+            _particle_accelerations(x, v, a1, particles, lines, line_real, env, gravity,
+                                    contact, sub, tangent)
             for i in range(x.shape[0]):
                 for d in range(3):
                     xp[i, d] = x[i, d] + dt * v[i, d]
                     vp[i, d] = v[i, d] + dt * a1[i, d]
             _set_ends_at(xp, vp, lines, points, point_x, point_v, drive_x, drive_v, k)
             line_forces(xp, vp, a2, particles, lines)
-            _particle_accelerations(vp, a2, particles, gravity)
+            line_passes(xp, particles, lines, line_real, env, sub, tangent)
+            _particle_accelerations(xp, vp, a2, particles, lines, line_real, env, gravity,
+                                    contact, sub, tangent)
             for i in range(x.shape[0]):
                 for d in range(3):
                     x[i, d] += 0.5 * dt * (v[i, d] + vp[i, d])
@@ -306,7 +531,8 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
         return
     for k in range(drive_x.shape[0]):
-        _accelerations(x, v, a1, particles, lines, points, gravity, pa1)
+        _accelerations(x, v, a1, particles, lines, line_real, points, point_x, point_v, env,
+                       gravity, contact, sub, tangent, pa1, iso, aniso, work)
         for i in range(x.shape[0]):
             for d in range(3):
                 xp[i, d] = x[i, d] + dt * v[i, d]
@@ -322,7 +548,8 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                 else:
                     pxp[q, d], pvp[q, d] = point_x[q, d], point_v[q, d]
         set_ends(xp, vp, lines, pxp, pvp)
-        _accelerations(xp, vp, a2, particles, lines, points, gravity, pa2)
+        _accelerations(xp, vp, a2, particles, lines, line_real, points, pxp, pvp, env,
+                       gravity, contact, sub, tangent, pa2, iso, aniso, work)
         for i in range(x.shape[0]):
             for d in range(3):
                 x[i, d] += 0.5 * dt * (v[i, d] + vp[i, d])
@@ -603,9 +830,36 @@ def _add_chain_block(diagonal, lower, u, m, block):
 
 
 @numba.njit(cache=True, inline='always')
-def _implicit_kinematic_line(x, v, f, particles, first, last, axial, implicit_bending, dt,
-                             half_h2, gravity, block, rhs, rhs_flat, band, diagonal, lower,
-                             inverse, multiplier):
+def _particle_system(x, v, f, i, particles, line_real, k, environment, tangents, contact, env,
+                     gravity, sub, tangent, dt, half_h2, rhs, local, block):
+    """
+    Set particle i's (line k's) right-hand side rhs[local] and its diagonal block.
+
+    rhs: its spring force f[i] plus drag, contact, weight and buoyancy; block: its mass
+    matrix (added mass in) + h C + h^2/2 S of the drag and the contact. environment: the
+    line has fluid terms or something to touch (else only the seed's terms).
+    """
+    for p in range(3):
+        rhs[local, p] = f[i, p]
+    mass = particles[i, MASS]
+    a, b, weight = mass, 0.0, mass
+    if environment:
+        a, b, weight = _environment(x, v, i, particles, line_real, k, tangents, contact, env,
+                                    sub, tangent, rhs, local)
+    add_drag(v, i, particles[i, DRAG], rhs, local)
+    add_weight(rhs, local, weight, gravity)
+    block[:] = 0.0
+    add_drag_block(v, i, dt * particles[i, DRAG], a, block)
+    if environment:
+        _environment_block(x, v, i, particles, line_real, k, tangents, contact, env, sub,
+                           tangent, b, dt, half_h2, block)
+
+
+@numba.njit(cache=True, inline='always')
+def _implicit_kinematic_line(x, v, f, particles, line_real, k, first, last, axial,
+                             implicit_bending, dt, half_h2, env, gravity, environment,
+                             tangents, contact, sub, tangent, block, rhs, rhs_flat, band,
+                             diagonal, lower, inverse, multiplier):
     """
     Take the implicit step of one line whose two ends are on fixed or driven points.
 
@@ -631,17 +885,14 @@ def _implicit_kinematic_line(x, v, f, particles, first, last, axial, implicit_be
             _add_chain_block(diagonal, lower, i - first, m, block)
     for i in range(first + 1, last):
         local = i - first - 1
-        mass = particles[i, MASS]
-        for p in range(3):
-            rhs[local, p] = f[i, p]
-        add_drag(v, i, particles[i, DRAG], rhs, local)
-        add_weight(rhs, local, mass, gravity)
+        _particle_system(x, v, f, i, particles, line_real, k, environment, tangents, contact,
+                         env, gravity, sub, tangent, dt, half_h2, rhs, local, block)
         if implicit_bending:
-            block[:] = 0.0
-            add_drag_block(v, i, dt * particles[i, DRAG], mass, block)
             _add_band(band, local, local, block, 1.0)
         else:
-            add_drag_block(v, i, dt * particles[i, DRAG], mass, diagonal[local])
+            for p in range(3):
+                for q in range(3):
+                    diagonal[local, p, q] += block[p, q]
     if implicit_bending:
         _cholesky_factor(band, 3 * m)
         _cholesky_band_solve(band, rhs_flat, 3 * m)
@@ -655,11 +906,13 @@ def _implicit_kinematic_line(x, v, f, particles, first, last, axial, implicit_be
 
 @numba.njit(cache=True, inline='always')
 def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                              line_real, points, gravity, max_iterations, implicit_bending,
+                              line_real, points, env, max_iterations, implicit_bending,
                               inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal, lower,
-                              inverse, multiplier):
+                              inverse, multiplier, sub, tangent):
     """Take implicit_euler_run's steps when no point is free (its scratch arrays passed in)."""
     half_h2 = 0.5 * dt * dt
+    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    contact = has_contact(env)
     for k in range(drive_x.shape[0]):
         for i in range(x.shape[0]):
             for p in range(3):
@@ -667,17 +920,20 @@ def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, part
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         line_forces(x, v, f, particles, lines)
+        line_passes(x, particles, lines, line_real, env, sub, tangent)
         for line in range(lines.shape[0]):
-            _implicit_kinematic_line(x, v, f, particles, lines[line, FIRST], lines[line, LAST],
-                                     lines[line, AXIAL] == 1, implicit_bending, dt, half_h2,
-                                     gravity, block, rhs, rhs_flat, band, diagonal, lower,
-                                     inverse, multiplier)
+            _implicit_kinematic_line(x, v, f, particles, line_real, line, lines[line, FIRST],
+                                     lines[line, LAST], lines[line, AXIAL] == 1,
+                                     implicit_bending, dt, half_h2, env, gravity,
+                                     lines[line, FLUID] == 1 or contact,
+                                     lines[line, TANGENTS] == 1, contact, sub, tangent, block,
+                                     rhs, rhs_flat, band, diagonal, lower, inverse, multiplier)
         _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
 
 
 @numba.njit(cache=True)
 def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                       line_real, points, gravity, max_iterations, implicit_bending):
+                       line_real, points, env, max_iterations, implicit_bending):
     """
     Take len(drive_x) implicit Euler steps of the whole system in place.
 
@@ -690,6 +946,10 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     inv_mass = np.ascontiguousarray(particles[:, INV_MASS])  # for the strain limit
     rest = np.ascontiguousarray(particles[:, REST])
     half_h2 = 0.5 * dt * dt
+    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    contact = has_contact(env)
+    sub = np.zeros(x.shape[0])  # submerged length of each particle
+    tangent = np.zeros_like(x)  # unit tangent of each particle
     free_of = np.full(n_points, -1, dtype=np.int64)
     n_free = 0
     for q in range(n_points):
@@ -714,14 +974,14 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
         # (two call sites, so that the compiler specialises each on the matrix kind)
         if implicit_bending:
             _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
-                                      lines, line_real, points, gravity, max_iterations, True,
+                                      lines, line_real, points, env, max_iterations, True,
                                       inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
-                                      lower, inverse, multiplier)
+                                      lower, inverse, multiplier, sub, tangent)
         else:
             _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
-                                      lines, line_real, points, gravity, max_iterations, False,
+                                      lines, line_real, points, env, max_iterations, False,
                                       inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
-                                      lower, inverse, multiplier)
+                                      lower, inverse, multiplier, sub, tangent)
         return
     solution = np.zeros_like(x)  # interior accelerations, by particle row
     # free points: the Schur system, its right-hand side, and per line the coupling B and
@@ -729,6 +989,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     schur = np.empty((3 * n_free, 3 * n_free))
     point_rhs = np.empty(3 * n_free)
     end_force = np.empty((1, 3))
+    point_force = np.empty((1, 3))
     coupling = np.empty((widest, 3, 6))
     solved_coupling = np.zeros((x.shape[0], 3, 6))
     column = np.empty(3 * widest)
@@ -747,17 +1008,28 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         line_forces(x, v, f, particles, lines)
+        line_passes(x, particles, lines, line_real, env, sub, tangent)
         schur[:] = 0.0
         for q in range(n_points):
             j = free_of[q]
             if j >= 0:
-                own = points[q, OWN_MASS]
+                point_force[0] = 0.0
+                added, weight = _point_environment(point_x, point_v, q, points, contact, env,
+                                                   point_force, 0)
+                block[:] = 0.0
+                _point_environment_block(point_x, point_v, q, points, contact, env, dt,
+                                         half_h2, block)
+                mass = points[q, OWN_MASS] + added
                 for p in range(3):
-                    point_rhs[3 * j + p] = own * gravity[p]
-                    schur[3 * j + p, 3 * j + p] += own
+                    point_rhs[3 * j + p] = point_force[0, p] + weight * gravity[p]
+                    schur[3 * j + p, 3 * j + p] += mass
+                    for r in range(3):
+                        schur[3 * j + p, 3 * j + r] += block[p, r]
         for line in range(n_lines):
             first, last = lines[line, FIRST], lines[line, LAST]
             axial = lines[line, AXIAL] == 1
+            environment = lines[line, FLUID] == 1 or contact
+            tangents = lines[line, TANGENTS] == 1
             m = last - first - 1
             coupled = False
             for e in range(2):
@@ -788,16 +1060,12 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                                  free_index, True, band, diagonal, lower, coupling, schur)
                     else:
                         _add_band_spring(band, i - first - 1, i - first + 1, m, block)
-            # mass, weight and drag of the interior particles
+            # mass, weight, buoyancy, drag and contact of the interior particles
             for i in range(first + 1, last):
                 local = i - first - 1
-                mass = particles[i, MASS]
-                for p in range(3):
-                    rhs[local, p] = f[i, p]
-                add_drag(v, i, particles[i, DRAG], rhs, local)
-                add_weight(rhs, local, mass, gravity)
-                block[:] = 0.0
-                add_drag_block(v, i, dt * particles[i, DRAG], mass, block)
+                _particle_system(x, v, f, i, particles, line_real, line, environment,
+                                 tangents, contact, env, gravity, sub, tangent, dt, half_h2,
+                                 rhs, local, block)
                 if implicit_bending:
                     _add_band(band, local, local, block, 1.0)
                 else:
@@ -810,13 +1078,9 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                     continue
                 row = first if e == 0 else last
                 j = free_index[e]
-                block[:] = 0.0
-                mass = particles[row, MASS]
-                add_drag_block(v, row, dt * particles[row, DRAG], mass, block)
-                for p in range(3):
-                    end_force[0, p] = f[row, p]
-                add_drag(v, row, particles[row, DRAG], end_force, 0)
-                add_weight(end_force, 0, mass, gravity)
+                _particle_system(x, v, f, row, particles, line_real, line, environment,
+                                 tangents, contact, env, gravity, sub, tangent, dt, half_h2,
+                                 end_force, 0, block)
                 for p in range(3):
                     point_rhs[3 * j + p] += end_force[0, p]
                     for q in range(3):

@@ -32,12 +32,19 @@ PARTICLE table (P, PARTICLE_COLUMNS), one row per particle of every line, lines 
 
 LINE table (L, LINE_COLUMNS), integers: FIRST, LAST (its particle rows), END_A, END_B (the
 points its particles FIRST and LAST sit on), AXIAL (1: axial damping, 0: the seed's
-K_SD (V_A - V_B)), BENDING (1 if it has bending springs), ADJUST (1: apply the strain limit).
+K_SD (V_A - V_B)), BENDING (1 if it has bending springs), ADJUST (1: apply the strain limit),
+FLUID (1 if water or air acts on it beyond the seed's drag: a diameter or a volume diameter),
+TANGENTS (1 if its fluid terms need the particles' tangents: drag or unequal added masses).
 
-LINE_REAL table (L, LINE_REAL_COLUMNS): MAX_STRAIN, AXIAL_STIFFNESS (EA [N]).
+LINE_REAL table (L, LINE_REAL_COLUMNS): MAX_STRAIN, AXIAL_STIFFNESS (EA [N]), DIAMETER (d, for
+drag and contact [m]), VOLUME_DIAMETER (dv, the surface ramp's width [m]), VOLUME_AREA
+(A_v = pi dv^2 / 4 [m^2]), NORMAL_DRAG (1/2 Cd d [m]), TANGENTIAL_DRAG (1/2 CdAx pi d [m]),
+NORMAL_ADDED_MASS (Ca), TANGENTIAL_ADDED_MASS (CaAx).
 
 POINT table (Q, POINT_COLUMNS): KIND (FIXED, DRIVEN or FREE), OWN_MASS [kg], TOTAL_MASS (own
-mass plus the half segments of every line end on it [kg]).
+mass plus the half segments of every line end on it [kg]); a free point's VOLUME [m^3],
+DRAG_AREA (CdA [m^2]), ADDED_MASS (coefficient Ca_p), SIZE (V^(1/3): its surface ramp's width
+and contact width and length [m]) and POINT_SINK (its contact's damping ramp depth [m]).
 """
 
 MASS = 0
@@ -49,7 +56,9 @@ DAMPING = 5
 BEND_REST = 6
 BEND_STIFFNESS = 7
 BEND_DAMPING = 8
-PARTICLE_COLUMNS = 9
+LENGTH = 9
+SINK = 10
+PARTICLE_COLUMNS = 11
 
 FIRST = 0
 LAST = 1
@@ -58,16 +67,30 @@ END_B = 3
 AXIAL = 4
 BENDING = 5
 ADJUST = 6
-LINE_COLUMNS = 7
+FLUID = 7
+TANGENTS = 8
+LINE_COLUMNS = 9
 
 MAX_STRAIN = 0
 AXIAL_STIFFNESS = 1
-LINE_REAL_COLUMNS = 2
+DIAMETER = 2
+VOLUME_DIAMETER = 3
+VOLUME_AREA = 4
+NORMAL_DRAG = 5
+TANGENTIAL_DRAG = 6
+NORMAL_ADDED_MASS = 7
+TANGENTIAL_ADDED_MASS = 8
+LINE_REAL_COLUMNS = 9
 
 KIND = 0
 OWN_MASS = 1
 TOTAL_MASS = 2
-POINT_COLUMNS = 3
+VOLUME = 3
+DRAG_AREA = 4
+ADDED_MASS = 5
+SIZE = 6
+POINT_SINK = 7
+POINT_COLUMNS = 8
 
 FIXED = 0
 DRIVEN = 1

@@ -12,10 +12,17 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Rope material presets: mass per length, axial stiffness EA and MBL per nominal diameter."""
+"""
+Rope material presets per nominal diameter: mass per length, EA, MBL and hydrodynamics.
+
+The hydrodynamic coefficients have MoorDyn's meanings: Cd on the nominal diameter d, CdAx on
+the circumference pi d, Ca and CaAx of the volume displaced by the volume-equivalent
+diameter dv (config/materials.yaml says where each value comes from).
+"""
 
 from dataclasses import dataclass
-from typing import Mapping
+import math
+from typing import Any, Mapping
 
 import yaml
 
@@ -34,6 +41,12 @@ class MaterialProperties:
     :ivar axial_stiffness: static EA [N].
     :ivar mbl: minimum breaking load [N].
     :ivar working_load_limit: OCIMF MEG4 working load limit [N].
+    :ivar volume_diameter_ratio: volume-equivalent diameter / nominal diameter, dv / d.
+    :ivar normal_drag_coefficient: MoorDyn's Cd, on the nominal diameter.
+    :ivar tangential_drag_coefficient: MoorDyn's CdAx, on the circumference pi d.
+    :ivar normal_added_mass_coefficient: MoorDyn's Ca, of the displaced volume.
+    :ivar tangential_added_mass_coefficient: MoorDyn's CaAx, of the displaced volume.
+    :ivar diameter: the nominal diameter d they were evaluated at [m].
     """
 
     name: str
@@ -41,10 +54,36 @@ class MaterialProperties:
     axial_stiffness: float
     mbl: float
     working_load_limit: float
+    volume_diameter_ratio: float = 1.0
+    normal_drag_coefficient: float = 0.0
+    tangential_drag_coefficient: float = 0.0
+    normal_added_mass_coefficient: float = 0.0
+    tangential_added_mass_coefficient: float = 0.0
+    diameter: float = 0.0
+
+    @property
+    def volume_diameter(self) -> float:
+        """Volume-equivalent diameter dv = ratio * d [m]."""
+        return self.volume_diameter_ratio * self.diameter
 
 
 def _polynomial(terms, diameter: float) -> float:
     return float(sum(c * diameter ** p for c, p in terms))
+
+
+def _raw(name: str, entry: Mapping, key: str) -> Any:
+    """Return entry[key], or say which preset lacks it."""
+    if key not in entry:
+        raise MaterialError(f'material {name!r} in the materials file has no {key!r}')
+    return entry[key]
+
+
+def _finite(name: str, key: str, value: Any) -> float:
+    """Return value as a float if it is a finite number >= 0, else say what is wrong."""
+    if (isinstance(value, bool) or not isinstance(value, (int, float))
+            or not (math.isfinite(value) and value >= 0.0)):
+        raise MaterialError(f'material {name!r}: {key} = {value!r} is not a number >= 0')
+    return float(value)
 
 
 class MaterialLibrary:
@@ -79,7 +118,8 @@ class MaterialLibrary:
         """
         Evaluate a preset at a nominal diameter [m].
 
-        :raises MaterialError: unknown preset name.
+        :raises MaterialError: unknown preset name, or an entry lacking a value or with one
+            that is not allowed (named).
         """
         if name not in self._entries:
             raise MaterialError(
@@ -91,9 +131,39 @@ class MaterialLibrary:
             ea = float(stiffness['mbl_multiple']) * mbl
         else:
             ea = _polynomial(stiffness, diameter)
+        mass = _polynomial(entry['mass_per_length'], diameter)
+        ratio = _raw(name, entry, 'volume_diameter_ratio')
+        if isinstance(ratio, dict):
+            # from the fibre's density: the line displaces its mass / density per metre
+            ratio = math.sqrt(4.0 * mass / (math.pi * _form(name, ratio, 'density'))) / diameter
+        else:
+            ratio = _finite(name, 'volume_diameter_ratio', ratio)
+        drag = _raw(name, entry, 'normal_drag_coefficient')
+        if isinstance(drag, dict):
+            # MoorPy's Cd is on dv: the same force per metre on d needs Cd dv / d
+            drag = _form(name, drag, 'on_volume_diameter') * ratio
+        else:
+            drag = _finite(name, 'normal_drag_coefficient', drag)
+        other = {key: _finite(name, key, _raw(name, entry, key)) for key in (
+            'tangential_drag_coefficient', 'normal_added_mass_coefficient',
+            'tangential_added_mass_coefficient')}
         return MaterialProperties(
             name=name,
-            mass_per_length=_polynomial(entry['mass_per_length'], diameter),
+            mass_per_length=mass,
             axial_stiffness=ea,
             mbl=mbl,
-            working_load_limit=float(entry['working_load_fraction']) * mbl)
+            working_load_limit=float(entry['working_load_fraction']) * mbl,
+            volume_diameter_ratio=ratio,
+            normal_drag_coefficient=drag,
+            diameter=diameter,
+            **other)
+
+
+def _form(name: str, value: Mapping, key: str) -> float:
+    """Return the number of a one-entry map {key: number}, refusing any other key."""
+    number = value.get(key)
+    if (isinstance(number, bool) or not isinstance(number, (int, float))
+            or not (math.isfinite(number) and number > 0.0)):
+        raise MaterialError(
+            f'material {name!r}: {value!r} is not allowed here; expected {{{key}: number > 0}}')
+    return float(number)

@@ -16,18 +16,21 @@
 The objects of a mooring system, each owning its state, as MoorDyn has them.
 
 - LineType: what a line is made of (per metre numbers, damping model, strain limit).
-- Environment: gravity (and air density); water and seabed will come here.
+- Environment: gravity, air, water (level, density, a uniform current), a flat seabed and an
+  optional quay block (forces/fluid.py and forces/contact.py say how they act).
 - Point: where line ends meet. FIXED (never moves), DRIVEN (its position and velocity are set
   every substep from outside: a fairlead on a ship, a crane tip) or FREE (a lumped body with a
-  mass: a payload, a shackle joining lines; volume, drag area and added mass will come).
+  mass, a volume, a drag area and an added-mass coefficient: a payload, a shackle joining
+  lines).
 - Line: a LineType, N segments with a rest length each (a winch will change them), the N+1
   particles' positions and velocities, and the two points its ends sit on.
 - System: any number of lines and points, stepped together by one integrator (kernels.py).
 
 A line's end particle coincides with its point: the point sets it, and the line returns to
-the point its end force (springs and dampers, plus the weight and drag of the half segment
-lumped at the end). A free point's acceleration is (its weight + the sum of those end
-forces) / (its mass + the attached half-segment masses).
+the point its end force (springs and dampers, plus the weight, buoyancy, drag and contact of
+the half segment lumped at the end). A free point's acceleration is (its weight, buoyancy,
+drag and contact + the sum of those end forces) over its mass matrix (its mass and added
+mass plus the attached half segments' masses and added masses).
 
 The System packs everything into the flat tables of layout.py, once (pack) and again when a
 line's rest lengths or a point change (refresh). After packing, every Line's x and v and every
@@ -35,19 +38,45 @@ Point's position and velocity are views into the System's arrays: writing them m
 state the kernels step.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import math
+import numbers
 from typing import List, Sequence
 
 import numpy as np
 
 from . import kernels
-from .layout import (AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST, BEND_STIFFNESS,
-                     BENDING, DAMPING, DRAG, DRIVEN, FIRST, FIXED, FREE, INV_MASS,
-                     KIND, LAST, LINE_COLUMNS, LINE_REAL_COLUMNS, MASS, MAX_STRAIN, OWN_MASS,
-                     PARTICLE_COLUMNS, POINT_COLUMNS, REST, STIFFNESS, TOTAL_MASS)
+from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST,
+                     BEND_STIFFNESS, BENDING, DAMPING, DIAMETER, DRAG, DRAG_AREA, DRIVEN,
+                     ENV_AIR_DENSITY, ENV_COLUMNS, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_DEPTH,
+                     ENV_QUAY_EDGE, ENV_QUAY_NORMAL, ENV_SEABED_DAMPING, ENV_SEABED_FRICTION,
+                     ENV_SEABED_LEVEL, ENV_SEABED_STIFFNESS, ENV_WATER_DENSITY,
+                     ENV_WATER_LEVEL, FIRST, FIXED, FLUID, FREE, INV_MASS, KIND, LAST, LENGTH,
+                     LINE_COLUMNS, LINE_REAL_COLUMNS, MASS, MAX_STRAIN, NORMAL_ADDED_MASS,
+                     NORMAL_DRAG, OWN_MASS, PARTICLE_COLUMNS, POINT_COLUMNS, POINT_SINK, REST,
+                     SINK, SIZE, STIFFNESS, TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS,
+                     TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
 
 KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE}
+SMALLEST_SINK = 1e-4  # [m]: the contact damping's ramp depth at least (a buoyant line's)
+
+
+def _finite(name: str, value, low: float = -math.inf) -> None:
+    """Raise ValueError unless value is a finite number >= low."""
+    if not (isinstance(value, numbers.Real) and math.isfinite(value) and value >= low):
+        allowed = 'a finite number' + (f' >= {low:g}' if low > -math.inf else '')
+        raise ValueError(f'{name} {value!r} must be {allowed}')
+
+
+def _vector(name: str, value) -> tuple:
+    """Return value as a tuple of 3 finite floats, or raise ValueError."""
+    try:
+        vector = tuple(float(c) for c in value)
+    except (TypeError, ValueError):
+        vector = ()
+    if len(vector) != 3 or not all(math.isfinite(c) for c in vector):
+        raise ValueError(f'{name} {value!r} must be a list of 3 finite numbers')
+    return vector
 
 
 @dataclass(frozen=True)
@@ -58,7 +87,7 @@ class LineType:
     :ivar mass_per_length: [kg/m].
     :ivar axial_stiffness: EA [N].
     :ivar axial_damping: BA [N s]: a segment's damping coefficient is BA / its rest length.
-    :ivar diameter: nominal diameter [m] (for the hydrodynamics to come).
+    :ivar diameter: nominal diameter d [m]: drag and contact width.
     :ivar mbl: minimum breaking load [N] (for the parting model to come).
     :ivar bending_stiffness_ratio: bending spring stiffness / structural spring stiffness.
     :ivar bending_damping_ratio: bending spring damping / structural spring damping.
@@ -66,6 +95,12 @@ class LineType:
     :ivar air_drag_coefficient: K_A per metre [N s^2 / m^3]: f = -K_A |v| v.
     :ivar max_strain: super-elasticity threshold (strain).
     :ivar superelastic_adjustment: apply the strain-limit projection.
+    :ivar volume_diameter: volume-equivalent diameter dv [m] (0: the diameter): buoyancy,
+        added mass and the width of the water surface's ramp.
+    :ivar normal_drag: Cd, on the nominal diameter (MoorDyn's Cd).
+    :ivar tangential_drag: CdAx, on the circumference pi d (MoorDyn's CdAx).
+    :ivar normal_added_mass: Ca (MoorDyn's Ca), on the volume A_v = pi dv^2 / 4 per metre.
+    :ivar tangential_added_mass: CaAx (MoorDyn's CaAx).
     """
 
     mass_per_length: float
@@ -79,6 +114,22 @@ class LineType:
     air_drag_coefficient: float = 0.0
     max_strain: float = 0.25
     superelastic_adjustment: bool = True
+    volume_diameter: float = 0.0
+    normal_drag: float = 0.0
+    tangential_drag: float = 0.0
+    normal_added_mass: float = 0.0
+    tangential_added_mass: float = 0.0
+
+    def __post_init__(self):
+        """Check the fluid's numbers (finite, >= 0)."""
+        for name in ('diameter', 'volume_diameter', 'normal_drag', 'tangential_drag',
+                     'normal_added_mass', 'tangential_added_mass'):
+            _finite(name, getattr(self, name), 0.0)
+
+    @property
+    def displacing_diameter(self) -> float:
+        """Return dv: the volume diameter, or the diameter where it is 0 [m]."""
+        return self.volume_diameter if self.volume_diameter > 0.0 else self.diameter
 
     @property
     def wave_speed(self) -> float:
@@ -89,19 +140,89 @@ class LineType:
 @dataclass(frozen=True)
 class Environment:
     """
-    What the lines live in.
+    What the lines live in. Heights are z in the System's frame (REP-103: z up).
 
-    :ivar gravity: gravity vector [m/s^2], (3,), z up (REP-103).
-    :ivar air_density: [kg/m^3] (the seed's drag takes K_A directly; kept for what comes).
+    :ivar gravity: gravity vector [m/s^2], (3,).
+    :ivar air_density: [kg/m^3]: buoyancy, drag and added mass above the water (the seed's
+        isotropic drag takes its K_A directly).
+    :ivar water_level: z of the still water surface [m]; -inf: no water.
+    :ivar water_density: [kg/m^3].
+    :ivar current: uniform velocity of the water [m/s], (3,).
+    :ivar seabed_level: z of the flat seabed [m]; -inf: no seabed.
+    :ivar seabed_stiffness: MoorDyn's kBot [Pa/m].
+    :ivar seabed_damping: MoorDyn's cBot [Pa s/m].
+    :ivar seabed_friction: MoorDyn's FrictionCoefficient mu.
+    :ivar quay_edge: a point on the top edge of the quay's face [m], (3,); its z is the deck.
+    :ivar quay_normal: the face's outward normal, towards the water, (3,) (its horizontal part
+        counts); all zero: no quay.
+    :ivar quay_depth: how far below the deck the quay block reaches [m].
     """
 
     gravity: tuple = (0.0, 0.0, -9.81)
     air_density: float = 1.225
+    water_level: float = -math.inf
+    water_density: float = 1025.0
+    current: tuple = (0.0, 0.0, 0.0)
+    seabed_level: float = -math.inf
+    seabed_stiffness: float = 3.0e6
+    seabed_damping: float = 3.0e5
+    seabed_friction: float = 0.0
+    quay_edge: tuple = (0.0, 0.0, 0.0)
+    quay_normal: tuple = (0.0, 0.0, 0.0)
+    quay_depth: float = 1.0e4
+
+    def __post_init__(self):
+        """Check every number: a one-line error naming the first that is wrong."""
+        for name in ('gravity', 'current', 'quay_edge', 'quay_normal'):
+            object.__setattr__(self, name, _vector(name, getattr(self, name)))
+        for name in ('air_density', 'water_density', 'seabed_stiffness', 'seabed_damping',
+                     'seabed_friction', 'quay_depth'):
+            _finite(name, getattr(self, name), 0.0)
+        if not (isinstance(self.water_level, numbers.Real) and not math.isnan(self.water_level)):
+            raise ValueError(f'water_level {self.water_level!r} must be a number '
+                             '(-inf: no water)')
+        if not (isinstance(self.seabed_level, numbers.Real)
+                and (math.isfinite(self.seabed_level) or self.seabed_level == -math.inf)):
+            raise ValueError(f'seabed_level {self.seabed_level!r} must be a finite number '
+                             '(-inf: no seabed)')
+        nx, ny, nz = self.quay_normal
+        if nz != 0.0 and nx == 0.0 and ny == 0.0:
+            raise ValueError(f'quay_normal {self.quay_normal!r} must have a horizontal part '
+                             '(all zero: no quay)')
 
     @property
     def g(self) -> float:
         """|gravity| [m/s^2]."""
         return math.hypot(*self.gravity)
+
+    @property
+    def has_water(self) -> bool:
+        """Tell whether there is water (a water level above -inf)."""
+        return self.water_level > -math.inf
+
+    def array(self) -> np.ndarray:
+        """Return the ENV array the kernels take (layout.ENV_*), quay normal made a unit."""
+        env = np.zeros(ENV_COLUMNS)
+        env[ENV_GRAVITY:ENV_GRAVITY + 3] = self.gravity
+        env[ENV_WATER_LEVEL] = self.water_level
+        env[ENV_WATER_DENSITY] = self.water_density
+        env[ENV_AIR_DENSITY] = self.air_density
+        env[ENV_CURRENT:ENV_CURRENT + 3] = self.current
+        env[ENV_SEABED_LEVEL] = self.seabed_level
+        env[ENV_SEABED_STIFFNESS] = self.seabed_stiffness
+        env[ENV_SEABED_DAMPING] = self.seabed_damping
+        env[ENV_SEABED_FRICTION] = self.seabed_friction
+        env[ENV_QUAY_EDGE:ENV_QUAY_EDGE + 3] = self.quay_edge
+        horizontal = math.hypot(self.quay_normal[0], self.quay_normal[1])
+        if horizontal > 0.0:
+            env[ENV_QUAY_NORMAL:ENV_QUAY_NORMAL + 2] = np.divide(self.quay_normal[:2],
+                                                                 horizontal)
+        env[ENV_QUAY_DEPTH] = self.quay_depth
+        return env
+
+    def fluid_density_at(self, z: float) -> float:
+        """Return the density of what is at height z: water below the level, else air."""
+        return self.water_density if z < self.water_level else self.air_density
 
 
 class Point:
@@ -112,16 +233,26 @@ class Point:
     :ivar mass: own mass [kg] (a free point's; 0 for the others).
     :ivar position: (3,) [m], a view into the System's state once packed.
     :ivar velocity: (3,) [m/s], likewise.
+    :ivar volume: the water (or air) it displaces when wholly in it [m^3] (a free point's).
+    :ivar drag_area: Cd times its frontal area [m^2]: isotropic drag 1/2 rho CdA |u| u.
+    :ivar added_mass: its added-mass coefficient Ca_p: added mass Ca_p rho V, isotropic.
     """
 
-    def __init__(self, kind: str, position, mass: float = 0.0, velocity=None):
+    def __init__(self, kind: str, position, mass: float = 0.0, velocity=None,
+                 volume: float = 0.0, drag_area: float = 0.0, added_mass: float = 0.0):
         """Make a point of `kind` at `position` (a free point needs mass or a line)."""
         if kind not in KINDS:
             raise ValueError(f'point kind {kind!r} is not one of {", ".join(KINDS)}')
         if not (math.isfinite(mass) and mass >= 0.0):
             raise ValueError(f'point mass {mass!r} must be a finite number >= 0')
+        for name, value in (('point volume', volume), ('point drag_area', drag_area),
+                            ('point added_mass', added_mass)):
+            _finite(name, value, 0.0)
         self.kind = kind
         self.mass = float(mass)
+        self.volume = float(volume)
+        self.drag_area = float(drag_area)
+        self.added_mass = float(added_mass)
         self.position = np.array(position, dtype=float).reshape(3)
         self.velocity = (np.zeros(3) if velocity is None
                          else np.array(velocity, dtype=float).reshape(3))
@@ -201,6 +332,7 @@ class System:
         self.points: List[Point] = []
         self.lines: List[Line] = []
         self.gravity = np.asarray(environment.gravity, dtype=float)
+        self.env = environment.array()  # what the kernels read (set_current writes in it)
         self._packed = False
         self.steps = 0  # steps taken: tells whether loads() must compute again
 
@@ -253,7 +385,7 @@ class System:
         self._build_tables()
         # what every step passes after the state, built once: a step runs at kHz
         self._tables = (self.particles, self.lines_table, self.line_real, self.points_table,
-                        self.gravity)
+                        self.env)
         self._forces = np.zeros((len(self.lines), 2, 3))
         self._strains = np.zeros(len(self.lines))
         self._loads_at = -1  # the step count at which _forces and _strains were computed
@@ -265,10 +397,19 @@ class System:
         self.lines_table = np.zeros((len(self.lines), LINE_COLUMNS), dtype=np.int64)
         self.line_real = np.zeros((len(self.lines), LINE_REAL_COLUMNS))
         self.points_table = np.zeros((len(self.points), POINT_COLUMNS))
+        env = self.environment
         for q, point in enumerate(self.points):
             self.points_table[q, KIND] = KINDS[point.kind]
             self.points_table[q, OWN_MASS] = point.mass
             self.points_table[q, TOTAL_MASS] = point.mass
+            self.points_table[q, VOLUME] = point.volume
+            self.points_table[q, DRAG_AREA] = point.drag_area
+            self.points_table[q, ADDED_MASS] = point.added_mass
+            size = point.volume ** (1.0 / 3.0)
+            self.points_table[q, SIZE] = size
+            # its static sink into the ground under its submerged weight
+            sinking = (point.mass - point.volume * self._ground_density()) * env.g
+            self.points_table[q, POINT_SINK] = self._ramp(sinking, size * size)
         for k, line in enumerate(self.lines):
             first, last = int(starts[k]), int(starts[k + 1]) - 1
             t = line.line_type
@@ -280,6 +421,8 @@ class System:
             lumped[:-1] += 0.5 * rest
             lumped[1:] += 0.5 * rest
             rows[:, DRAG] = t.air_drag_coefficient * lumped
+            rows[:, LENGTH] = lumped
+            rows[:, SINK] = self._sink(t)
             rows[:-1, REST] = rest
             rows[:-1, STIFFNESS] = t.axial_stiffness / rest
             rows[:-1, DAMPING] = t.axial_damping / rest
@@ -290,13 +433,27 @@ class System:
                 rows[:-2, BEND_STIFFNESS] = t.bending_stiffness_ratio * (
                     t.axial_stiffness / mean)
                 rows[:-2, BEND_DAMPING] = t.bending_damping_ratio * (t.axial_damping / mean)
-            self.lines_table[k] = (
+            self.lines_table[k, :ADJUST + 1] = (
                 first, last, line.ends[0], line.ends[1], t.damping_model == 'axial',
                 line.segments >= 2 and (t.bending_stiffness_ratio > 0.0
                                         or t.bending_damping_ratio > 0.0),
                 t.superelastic_adjustment)
             self.line_real[k, MAX_STRAIN] = t.max_strain
             self.line_real[k, AXIAL_STIFFNESS] = t.axial_stiffness
+            dv = t.displacing_diameter
+            real = self.line_real[k]
+            real[DIAMETER] = t.diameter
+            real[VOLUME_DIAMETER] = dv
+            real[VOLUME_AREA] = 0.25 * math.pi * dv * dv
+            real[NORMAL_DRAG] = 0.5 * t.normal_drag * t.diameter
+            real[TANGENTIAL_DRAG] = 0.5 * t.tangential_drag * math.pi * t.diameter
+            real[NORMAL_ADDED_MASS] = t.normal_added_mass
+            real[TANGENTIAL_ADDED_MASS] = t.tangential_added_mass
+            drag = real[NORMAL_DRAG] > 0.0 or real[TANGENTIAL_DRAG] > 0.0
+            self.lines_table[k, FLUID] = real[VOLUME_AREA] > 0.0 or drag
+            self.lines_table[k, TANGENTS] = drag or (
+                real[VOLUME_AREA] > 0.0
+                and t.normal_added_mass != t.tangential_added_mass)
             for e, row in ((0, first), (1, last)):
                 self.points_table[line.ends[e], TOTAL_MASS] += masses[0 if e == 0 else -1]
         for k, line in enumerate(self.lines):
@@ -313,6 +470,33 @@ class System:
         for q in range(len(self.points)):
             if self.points_table[q, KIND] == FREE and not self.points_table[q, TOTAL_MASS] > 0.0:
                 raise ValueError(f'free point {q} has no mass and no line')
+
+    def _ground_density(self) -> float:
+        """Return the density of the fluid on the seabed (water unless it is dry)."""
+        env = self.environment
+        return (env.water_density if env.water_level > env.seabed_level
+                else env.air_density)
+
+    def _ramp(self, weight: float, area: float) -> float:
+        """Return the contact damping's ramp depth: the sink of `weight` [N] on `area` [m^2]."""
+        stiffness = self.environment.seabed_stiffness * area
+        if not (weight > 0.0 and stiffness > 0.0):
+            return SMALLEST_SINK
+        return max(weight / stiffness, SMALLEST_SINK)
+
+    def _sink(self, t: LineType) -> float:
+        """Return a line's contact ramp depth: its static sink w_sub / (k_b d) [m]."""
+        dv = t.displacing_diameter
+        w_sub = (t.mass_per_length - self._ground_density() * 0.25 * math.pi * dv * dv) \
+            * self.environment.g
+        return self._ramp(w_sub, t.diameter)
+
+    def set_current(self, current) -> None:
+        """Set the water's uniform current (3,) [m/s] now, without rebuilding anything."""
+        vector = _vector('current', current)
+        self.environment = replace(self.environment, current=vector)
+        self.env[ENV_CURRENT:ENV_CURRENT + 3] = vector
+        self._loads_at = -1  # the end forces' drag changes with it
 
     # -- what the integrators and the outputs need -----------------------------------------
 
@@ -349,7 +533,8 @@ class System:
     def end_forces(self) -> np.ndarray:
         """Force of each line on the points of its ends, (L, 2, 3) [N] (see kernels)."""
         out = np.empty((len(self.lines), 2, 3))
-        kernels.end_forces(self.x, self.v, self.particles, self.lines_table, self.gravity, out)
+        kernels.end_forces(self.x, self.v, self.particles, self.lines_table, self.line_real,
+                           self.env, out)
         return out
 
     def largest_load(self) -> tuple:
@@ -361,7 +546,7 @@ class System:
         """
         finite, largest = kernels.largest_load(
             self.x, self.v, self.point_x, self.point_v, self.particles, self.lines_table,
-            self.line_real, self.gravity, self._forces, self._strains)
+            self.line_real, self.env, self._forces, self._strains)
         self._loads_at = self.steps if finite else -1
         return finite, largest
 
@@ -376,7 +561,7 @@ class System:
             self.largest_load()
             if self._loads_at != self.steps:  # not finite: computed for what it is
                 kernels.end_forces(self.x, self.v, self.particles, self.lines_table,
-                                   self.gravity, self._forces)
+                                   self.line_real, self.env, self._forces)
                 for k, line in enumerate(self.lines):
                     self._strains[k] = kernels.max_strain(line.x, line.rest)
         return self._forces.copy(), self._strains.copy()
@@ -386,8 +571,10 @@ class System:
         Return (kinetic, potential, elastic) energy of the lines and free points [J].
 
         Kinetic of every particle (a line end on a free point counted with the point, once),
-        potential of every lumped mass in gravity (0 at the origin), elastic of the
-        structural and bending springs.
+        potential of every lumped mass in gravity less the air it displaces (0 at the
+        origin), elastic of the structural and bending springs. Not counted: the added
+        masses' kinetic energy, and the buoyancy of water (its potential depends on how each
+        segment crosses the surface).
         """
         kinetic = potential = elastic = 0.0
         g = self.gravity
@@ -397,12 +584,28 @@ class System:
                 on_free[row] = self.points_table[line.ends[e], KIND] == FREE
         moving = ~on_free
         m = self.particles[:, MASS]
+        air = self.environment.air_density
+        if not self.environment.has_water:
+            areas = np.concatenate([np.full(line.segments + 1,
+                                            self.line_real[k, VOLUME_AREA])
+                                    for k, line in enumerate(self.lines)] or [np.zeros(0)])
+            net = m - air * areas * self.particles[:, LENGTH]
+        else:
+            net = m
         kinetic += 0.5 * float(np.sum(m[moving] * np.einsum('ij,ij->i', self.v, self.v)[moving]))
-        potential -= float(np.sum(m[moving] * (self.x[moving] @ g)))
+        potential -= float(np.sum(net[moving] * (self.x[moving] @ g)))
         for q in self.free_points:
             total = self.points_table[q, TOTAL_MASS]
             kinetic += 0.5 * total * float(self.point_v[q] @ self.point_v[q])
-            potential -= total * float(self.point_x[q] @ g)
+            lifted = total
+            if not self.environment.has_water:
+                lifted -= air * self.points_table[q, VOLUME]
+                for k, line in enumerate(self.lines):
+                    for e, row in ((0, self.lines_table[k, FIRST]),
+                                   (1, self.lines_table[k, LAST])):
+                        if line.ends[e] == q:
+                            lifted -= m[row] - net[row]
+            potential -= lifted * float(self.point_x[q] @ g)
         for k in range(len(self.lines)):
             first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST]
             rows = self.particles[first:last + 1]
@@ -417,13 +620,47 @@ class System:
 
     def damper_power(self) -> float:
         """
-        Power the dampers and the air drag take out of the motion now [W] (>= 0).
+        Power the dampers and the drag take out of the motion now [W] (>= 0 without current).
 
-        Axial: c ((v_j - v_i) . u)^2 per spring; seed: c |v_j - v_i|^2; air drag:
-        kappa |v|^3 per particle. With every point fixed or free, the energy (energy()) falls
-        at exactly this rate.
+        Axial: c ((v_j - v_i) . u)^2 per spring; seed: c |v_j - v_i|^2; the seed's air drag:
+        kappa |v|^3 per particle; the fluid drag: c_n |v_n|^3 + c_t |v_t|^3 per particle and
+        c |v|^3 per free point (relative to the water's current, whose work it leaves out).
+        With every point fixed or free, in air, the energy (energy()) falls at exactly this
+        rate.
         """
         power = 0.0
+        sub = np.zeros(len(self.x))
+        tangent = np.zeros_like(self.x)
+        kernels.line_passes(self.x, self.particles, self.lines_table, self.line_real, self.env,
+                            sub, tangent)
+        env = self.environment
+        relative = self.v - np.where(sub[:, None] > 0.0, np.asarray(env.current), 0.0)
+        for k in range(len(self.lines)):
+            if not self.lines_table[k, TANGENTS]:
+                continue
+            first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST] + 1
+            wet = sub[first:last]
+            dry = self.particles[first:last, LENGTH] - wet
+            for part, rho, u in ((wet, env.water_density, relative[first:last]),
+                                 (dry, env.air_density, self.v[first:last])):
+                q = tangent[first:last]
+                along = np.einsum('ij,ij->i', u, q)
+                normal = np.linalg.norm(u - along[:, None] * q, axis=1)
+                power += float(np.sum(rho * part * (
+                    self.line_real[k, NORMAL_DRAG] * normal ** 3
+                    + self.line_real[k, TANGENTIAL_DRAG] * np.abs(along) ** 3)))
+        for q in self.free_points:
+            area = self.points_table[q, DRAG_AREA]
+            if area > 0.0:
+                wet = 0.0
+                if env.has_water:
+                    size = max(self.points_table[q, SIZE], 1e-6)
+                    wet = min(max((env.water_level - self.point_x[q, 2]) / size + 0.5, 0.0),
+                              1.0)
+                for part, rho, u in ((wet, env.water_density,
+                                      self.point_v[q] - np.asarray(env.current)),
+                                     (1.0 - wet, env.air_density, self.point_v[q])):
+                    power += 0.5 * rho * area * part * float(np.linalg.norm(u)) ** 3
         for k in range(len(self.lines)):
             first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST]
             rows = self.particles[first:last + 1]

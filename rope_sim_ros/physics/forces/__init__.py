@@ -20,6 +20,13 @@ contribution to the step matrix M + h C + h^2/2 S (C, S: minus the force's Jacob
 x). Adding a term is one module here and one line in kernels.py's assembly. All are numba
 functions (njit, cache=True); the tests may run them interpreted through ``.py_func``.
 
-The particle table (see layout.py) holds, per particle, what the terms read: its lumped mass,
-its drag factor and the rest length, stiffness and damping of the springs starting at it.
+The particle table (see layout.py) holds, per particle, what the terms read: its lumped mass
+and length, its drag factor and the rest length, stiffness and damping of the springs starting
+at it; the line table the fluid's coefficients; the ENV array what the lines live in.
+
+- gravity: weight (less the displaced fluid's, from fluid);
+- springs: structural and bending springs with their dampers;
+- drag: the seed's isotropic air drag;
+- fluid: buoyancy, MoorDyn's normal and tangential drag in water and air, added mass;
+- contact: seabed and quay.
 """

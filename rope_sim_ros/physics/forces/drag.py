@@ -17,8 +17,8 @@ The seed's isotropic quadratic air drag (eq. 5): f = -kappa |v| v on each partic
 
 kappa = K_A times the particle's lumped length (the DRAG column of the particle table). Its
 velocity Jacobian is -kappa (|v| I + v v^T / |v|): the implicit step adds h times it (negated)
-to the particle's diagonal block. Water (Morison drag, added mass) and seabed terms will come
-as modules beside this one.
+to the particle's diagonal block. It stays beside MoorDyn's drag (fluid.py) for reproducing
+the seed's paper: the two add up when both are set.
 """
 
 import numba
