@@ -50,6 +50,10 @@ class Spec:
     :ivar low_open: the lower bound itself is not allowed (e.g. length > 0).
     :ivar choices: allowed strings.
     :ivar read_only: a change needs a restart (the node refuses it at run time).
+    :ivar special: a number outside low..high that is allowed too, with its own meaning
+        (-inf: no water; -1: the material's value), or None.
+    :ivar special_meaning: what `special` means, a few words.
+    :ivar horizontal: a vector whose z component must be 0.
     """
 
     default: Any
@@ -60,6 +64,9 @@ class Spec:
     low_open: bool = False
     choices: tuple = ()
     read_only: bool = True
+    special: Optional[float] = None
+    special_meaning: str = ''
+    horizontal: bool = False
 
 
 SPECS: Mapping[str, Spec] = {
@@ -84,12 +91,80 @@ SPECS: Mapping[str, Spec] = {
         1.0e-4, '', 'bending spring damping relative to a structural spring', 0.0, 10.0,
         read_only=False),
     'air_drag_coefficient': Spec(
-        0.0, 'N*s^2/m^3', 'quadratic air drag K_A per metre of rope: f = -K_A |v| v '
-        '(0.5 rho Cd d is about 0.05 for a 64 mm line)', 0.0, 1.0e4, read_only=False),
+        0.0, 'N*s^2/m^3', "the seed paper's isotropic quadratic drag K_A per metre of rope: "
+        'f = -K_A |v| v (0.5 rho Cd d is about 0.05 for a 64 mm line in air), on top of the '
+        "drag of the line's own coefficients in air and water", 0.0, 1.0e4, read_only=False),
     'gravity': Spec([0.0, 0.0, -9.81], 'm/s^2', 'gravity vector in frame_id (REP-103: z up)'),
+    # Water and ground. Read-only because the line starts at rest in its equilibrium in
+    # them (buoyant, lying on the seabed): a change needs that start again, i.e. a restart.
+    'water_level': Spec(
+        -math.inf, 'm', 'z of the still water surface in frame_id; -.inf (the default) = no '
+        'water, a finite value switches the water on', -1.0e5, 1.0e5,
+        special=-math.inf, special_meaning='no water'),
+    'water_density': Spec(
+        1025.0, 'kg/m^3', 'density of the water (sea water 1025, fresh water 1000)',
+        0.0, 2.0e4, low_open=True),
+    'air_density': Spec(
+        1.225, 'kg/m^3', 'density of the air above the water: its buoyancy and, with the '
+        "line's drag coefficients, its drag (0 = no air, as MoorDyn)", 0.0, 100.0),
+    'current': Spec(
+        [0.0, 0.0, 0.0], 'm/s', 'uniform current velocity below the water surface, in '
+        'frame_id; settable at run time (no restart)', high=50.0, read_only=False),
+    'seabed_level': Spec(
+        -math.inf, 'm', 'z of the flat seabed in frame_id; -.inf (the default) = no seabed',
+        -1.0e5, 1.0e5, special=-math.inf, special_meaning='no seabed'),
+    'seabed_stiffness': Spec(
+        3.0e6, 'Pa/m', "ground contact stiffness, MoorDyn's kBot: normal force k delta d per "
+        "metre of line at a penetration delta (d: nominal diameter); also the quay's",
+        0.0, 1.0e12, low_open=True),
+    'seabed_damping': Spec(
+        3.0e5, 'Pa*s/m', "ground contact damping, MoorDyn's cBot: -c v_normal d per metre of "
+        "line in contact (fading in over the line's static sink depth); also the quay's",
+        0.0, 1.0e12),
+    'seabed_friction': Spec(
+        0.0, '', "friction coefficient mu of the seabed and the quay, MoorDyn's "
+        'FrictionCoefficient: against sliding, mu 200 N*s/m times the slip speed up to '
+        "mu times the contact force (MoorDyn's regularised Coulomb); 0 = frictionless",
+        0.0, 10.0),
+    'quay_edge': Spec(
+        [0.0, 0.0, 0.0], 'm', 'a point on the top edge of the quay face in frame_id; its z is '
+        'the deck level'),
+    'quay_normal': Spec(
+        [0.0, 0.0, 0.0], '', 'horizontal direction [nx, ny, 0] out of the quay face towards '
+        'the water (normalised); all zero (the default) = no quay', horizontal=True),
+    'quay_depth': Spec(
+        1.0e4, 'm', 'how far below the deck the quay block reaches (its face ends there)',
+        0.0, 1.0e5, low_open=True),
+    # The line's hydrodynamics, MoorDyn's meanings (its line tables carry over); -1 takes
+    # the material's value (config/materials.yaml), since 0 is a legitimate coefficient.
+    'normal_drag_coefficient': Spec(
+        -1.0, '', "MoorDyn's Cd: drag normal to the line, on the nominal diameter; -1 = the "
+        "material's", 0.0, 100.0, special=-1.0, special_meaning="the material's"),
+    'tangential_drag_coefficient': Spec(
+        -1.0, '', "MoorDyn's CdAx: drag along the line, on the circumference pi d; -1 = the "
+        "material's", 0.0, 100.0, special=-1.0, special_meaning="the material's"),
+    'normal_added_mass_coefficient': Spec(
+        -1.0, '', "MoorDyn's Ca: added mass normal to the line, of the displaced volume; "
+        "-1 = the material's", 0.0, 100.0, special=-1.0, special_meaning="the material's"),
+    'tangential_added_mass_coefficient': Spec(
+        -1.0, '', "MoorDyn's CaAx: added mass along the line, of the displaced volume; "
+        "-1 = the material's", 0.0, 100.0, special=-1.0, special_meaning="the material's"),
+    'volume_diameter': Spec(
+        0.0, 'm', 'diameter of the volume the line displaces (buoyancy, added mass); 0 = the '
+        "material's volume_diameter_ratio times diameter. Set it to diameter for MoorDyn's "
+        'one-diameter convention', 0.0, 2.0),
     'payload_mass': Spec(
         0.0, 'kg', 'mass of a free payload hanging at the bollard end [kg]; 0 keeps a fixed '
         'or pose-driven bollard', 0.0, 1.0e7),
+    'payload_volume': Spec(
+        0.0, 'm^3', 'volume the payload displaces (its buoyancy and added mass in water), '
+        "MoorDyn's point Volume", 0.0, 1.0e5),
+    'payload_drag_area': Spec(
+        0.0, 'm^2', "payload drag coefficient times area, MoorDyn's point CdA: isotropic "
+        'drag 0.5 rho CdA |u| u in water and air', 0.0, 1.0e5),
+    'payload_added_mass_coefficient': Spec(
+        0.5, '', "payload added mass in units of the displaced fluid's mass, MoorDyn's point "
+        'Ca (0.5: a sphere)', 0.0, 100.0),
     'max_strain': Spec(
         0.25, '', 'super-elasticity threshold: no structural spring is left stretched beyond '
         'this strain', 0.0, 10.0, low_open=True, read_only=False),
@@ -140,14 +215,31 @@ def allowed(spec: Spec) -> str:
         return 'one of ' + ', '.join(spec.choices)
     if isinstance(spec.default, str):
         return 'any text'
+    unit = f' {spec.unit}' if spec.unit else ''
     if isinstance(spec.default, list):
+        if spec.horizontal:
+            return 'a list of 3 finite numbers [x, y, 0] (z must be 0)'
+        if spec.high is not None:
+            return f'a list of 3 finite numbers, each within +-{spec.high:g}{unit}'
         return 'a list of 3 finite numbers'
     if isinstance(spec.default, bool):
         return 'true or false'
     low = '' if spec.low is None else f'{">" if spec.low_open else ">="} {spec.low:g}'
     high = '' if spec.high is None else f'<= {spec.high:g}'
-    unit = f' {spec.unit}' if spec.unit else ''
-    return ' and '.join(p for p in (low, high) if p) + unit
+    text = ' and '.join(p for p in (low, high) if p) + unit
+    if spec.special is not None:
+        text += f', or {_special_text(spec.special)} ({spec.special_meaning})'
+    return text
+
+
+def _special_text(value: float) -> str:
+    """Write a special value as a user types it (YAML's -.inf for minus infinity)."""
+    return '-.inf' if value == -math.inf else f'{value:g}'
+
+
+# How a level of "none" (-inf) may be written besides the number itself: YAML 1.1 reads
+# -.inf as a float, but -inf (what Python and the ROS tools print) as a string.
+MINUS_INFINITY = ('-inf', '-.inf', '-infinity')
 
 
 def check(name: str, value: Any) -> Any:
@@ -174,7 +266,9 @@ def check(name: str, value: Any) -> Any:
         return value
     if isinstance(default, list):
         if (not isinstance(value, (list, tuple)) or len(value) != 3
-                or not all(_is_finite_number(v) for v in value)):
+                or not all(_is_finite_number(v) for v in value)
+                or (spec.high is not None and max(abs(v) for v in value) > spec.high)
+                or (spec.horizontal and value[2] != 0.0)):
             raise bad
         return [float(v) for v in value]
     if isinstance(default, int):
@@ -182,6 +276,8 @@ def check(name: str, value: Any) -> Any:
             if not (_is_finite_number(value) and float(value).is_integer()):
                 raise bad
         value = int(value)
+    elif _is_special(spec, value):
+        return float(spec.special)
     elif not _is_finite_number(value):
         raise bad
     else:
@@ -191,6 +287,15 @@ def check(name: str, value: Any) -> Any:
     if spec.high is not None and value > spec.high:
         raise bad
     return value
+
+
+def _is_special(spec: Spec, value: Any) -> bool:
+    """Tell whether value is the spec's special value (-inf may also be written as text)."""
+    if spec.special is None or isinstance(value, bool):
+        return False
+    if isinstance(value, str):
+        return spec.special == -math.inf and value.strip().lower() in MINUS_INFINITY
+    return isinstance(value, (int, float)) and value == spec.special
 
 
 def _is_finite_number(value: Any) -> bool:
@@ -214,7 +319,27 @@ class LineParams:
     bending_damping_ratio: float = SPECS['bending_damping_ratio'].default
     air_drag_coefficient: float = SPECS['air_drag_coefficient'].default
     gravity: list = field(default_factory=lambda: list(SPECS['gravity'].default))
+    water_level: float = SPECS['water_level'].default
+    water_density: float = SPECS['water_density'].default
+    air_density: float = SPECS['air_density'].default
+    current: list = field(default_factory=lambda: list(SPECS['current'].default))
+    seabed_level: float = SPECS['seabed_level'].default
+    seabed_stiffness: float = SPECS['seabed_stiffness'].default
+    seabed_damping: float = SPECS['seabed_damping'].default
+    seabed_friction: float = SPECS['seabed_friction'].default
+    quay_edge: list = field(default_factory=lambda: list(SPECS['quay_edge'].default))
+    quay_normal: list = field(default_factory=lambda: list(SPECS['quay_normal'].default))
+    quay_depth: float = SPECS['quay_depth'].default
+    normal_drag_coefficient: float = SPECS['normal_drag_coefficient'].default
+    tangential_drag_coefficient: float = SPECS['tangential_drag_coefficient'].default
+    normal_added_mass_coefficient: float = SPECS['normal_added_mass_coefficient'].default
+    tangential_added_mass_coefficient: float = SPECS[
+        'tangential_added_mass_coefficient'].default
+    volume_diameter: float = SPECS['volume_diameter'].default
     payload_mass: float = SPECS['payload_mass'].default
+    payload_volume: float = SPECS['payload_volume'].default
+    payload_drag_area: float = SPECS['payload_drag_area'].default
+    payload_added_mass_coefficient: float = SPECS['payload_added_mass_coefficient'].default
     max_strain: float = SPECS['max_strain'].default
     superelastic_adjustment: bool = SPECS['superelastic_adjustment'].default
     integrator: str = SPECS['integrator'].default
@@ -234,6 +359,21 @@ class LineParams:
     def has_payload(self) -> bool:
         """Tell whether the bollard end is a free payload (payload_mass > 0)."""
         return self.payload_mass > 0.0
+
+    @property
+    def has_water(self) -> bool:
+        """Tell whether there is water (a finite water_level)."""
+        return math.isfinite(self.water_level)
+
+    @property
+    def has_seabed(self) -> bool:
+        """Tell whether there is a seabed (a finite seabed_level)."""
+        return math.isfinite(self.seabed_level)
+
+    @property
+    def has_quay(self) -> bool:
+        """Tell whether there is a quay (a non-zero quay_normal)."""
+        return any(self.quay_normal)
 
     def with_values(self, values: Mapping[str, Any]) -> 'LineParams':
         """

@@ -34,9 +34,9 @@ from typing import List, Optional
 import numpy as np
 
 from .params import LineParams, ParameterError
-from .physics import catenary
-from .physics.integrators import (automatic_time_step, end_distances, implicit_bending,
-                                  motion_spread, relax, stability_limit)
+from .physics.integrators import (automatic_time_step, drag_rate, end_distances,
+                                  implicit_bending, motion_spread, relax, stability_limit,
+                                  start_shape)
 from .physics.materials import MaterialLibrary, MaterialProperties
 from .physics.objects import Line, Point, System
 from .physics.rope import critical_axial_damping, RopeProperties, tension_bound
@@ -91,10 +91,17 @@ def load_materials() -> MaterialLibrary:
 
 
 def rope_properties(params: LineParams, material: MaterialProperties) -> RopeProperties:
-    """Resolve the parameters into the physical numbers of the line."""
+    """
+    Resolve the parameters into the physical numbers of the line.
+
+    A coefficient of -1 and a volume_diameter of 0 take the material's value; quay_normal
+    is made a unit vector (all zeros stay zeros: no quay).
+    """
     mass = params.mass_per_length or material.mass_per_length
     ea = params.axial_stiffness or material.axial_stiffness
     ba = params.axial_damping or critical_axial_damping(params.length, mass, ea)
+    normal = np.array(params.quay_normal, dtype=float)
+    size = float(np.linalg.norm(normal))
     return RopeProperties(
         segments=params.segments, length=params.length, mass_per_length=mass,
         axial_stiffness=ea, axial_damping=ba,
@@ -104,7 +111,47 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
         air_drag_coefficient=params.air_drag_coefficient,
         gravity=tuple(params.gravity), max_strain=params.max_strain,
         superelastic_adjustment=params.superelastic_adjustment,
-        payload_mass=params.payload_mass)
+        payload_mass=params.payload_mass,
+        diameter=params.diameter,
+        volume_diameter=params.volume_diameter or material.volume_diameter,
+        mbl=material.mbl,
+        normal_drag=_own(params.normal_drag_coefficient, material.normal_drag_coefficient),
+        tangential_drag=_own(params.tangential_drag_coefficient,
+                             material.tangential_drag_coefficient),
+        normal_added_mass=_own(params.normal_added_mass_coefficient,
+                               material.normal_added_mass_coefficient),
+        tangential_added_mass=_own(params.tangential_added_mass_coefficient,
+                                   material.tangential_added_mass_coefficient),
+        air_density=params.air_density, water_level=params.water_level,
+        water_density=params.water_density, current=tuple(params.current),
+        seabed_level=params.seabed_level, seabed_stiffness=params.seabed_stiffness,
+        seabed_damping=params.seabed_damping, seabed_friction=params.seabed_friction,
+        quay_edge=tuple(params.quay_edge),
+        quay_normal=tuple(normal / size if size > 0.0 else normal),
+        quay_depth=params.quay_depth, payload_volume=params.payload_volume,
+        payload_drag_area=params.payload_drag_area,
+        payload_added_mass=params.payload_added_mass_coefficient)
+
+
+def _own(value: float, material_value: float) -> float:
+    """Return a coefficient parameter, or the material's where it is -1 (see params.py)."""
+    return material_value if value < 0.0 else value
+
+
+def wet_fraction(z, water_level: float, width) -> np.ndarray:
+    """
+    How much of a body of height `width` centred at z is under water, 0..1 (elementwise).
+
+    The smooth submergence of the physics, clip((water_level - z) / width + 0.5, 0, 1) (a
+    width of 0: 1 below the surface, else 0); no water (water_level = -inf) gives 0.
+    """
+    z = np.asarray(z, dtype=float)
+    width = np.broadcast_to(np.asarray(width, dtype=float), z.shape)
+    if not math.isfinite(water_level):
+        return np.zeros(z.shape)
+    depth = water_level - z
+    ramp = depth / np.where(width > 0.0, width, 1.0) + 0.5
+    return np.clip(np.where(width > 0.0, ramp, (depth > 0.0).astype(float)), 0.0, 1.0)
 
 
 def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
@@ -113,19 +160,34 @@ def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
 
     Particle N is at top, particle 0 (the payload) lowest, along gravity (-z without it).
     Each segment is stretched by the tension it carries: the weight of the payload and of
-    the line below it (the lumped masses below: the payload's half segment first).
+    the line below it (the lumped masses below: the payload's half segment first), less
+    the buoyancy of the air or water each lumped mass is in (a segment that would carry
+    a net upward pull is left at its rest length). Which fluid depends on where the
+    particles end up: a few passes settle it (each moves them by the stretch only).
     """
     gravity = np.asarray(props.gravity, dtype=float)
     g = float(np.linalg.norm(gravity))
     down = gravity / g if g > 0.0 else np.array([0.0, 0.0, -1.0])
     n = props.segments
-    m = props.particle_mass
-    below = props.payload_mass + 0.5 * m + m * np.arange(n)  # mass under segment j
-    lengths = props.segment_length * (1.0 + g * below / props.axial_stiffness)
-    shape = np.empty((n + 1, 3))
-    shape[n] = top
-    for j in range(n - 1, -1, -1):
-        shape[j] = shape[j + 1] + lengths[j] * down
+    lumped = np.full(n + 1, props.segment_length)
+    lumped[[0, -1]] *= 0.5
+    masses = props.mass_per_length * lumped
+    masses[0] += props.payload_mass
+    volumes = props.volume_area * lumped
+    widths = np.full(n + 1, props.volume_diameter or props.diameter)
+    volumes[0] += props.payload_volume
+    widths[0] = props.payload_volume ** (1.0 / 3.0) if props.payload_volume > 0.0 else widths[0]
+    shape = top + np.outer(props.segment_length * (n - np.arange(n + 1)), down)
+    for _ in range(4 if props.has_water else 1):
+        wet = wet_fraction(shape[:, 2], props.water_level, widths)
+        density = props.water_density * wet + props.air_density * (1.0 - wet)
+        below = np.cumsum(masses - density * volumes)[:-1]  # net mass under segment j
+        lengths = props.segment_length * (1.0 + g * np.maximum(below, 0.0)
+                                          / props.axial_stiffness)
+        shape = np.empty((n + 1, 3))
+        shape[n] = top
+        for j in range(n - 1, -1, -1):
+            shape[j] = shape[j + 1] + lengths[j] * down
     return shape
 
 
@@ -232,6 +294,8 @@ class Simulator:
         self._held = False  # the fairlead was held at the reach at the last step
         # tension_bound of props at rest, and its growth per m/s of the ends (it is linear)
         self._bound = (None, math.nan, math.nan)
+        # drag_rate of props at 1 m/s (see _divisions)
+        self._drag = (None, math.nan)
 
     @property
     def rope(self) -> Optional[Line]:
@@ -306,7 +370,10 @@ class Simulator:
 
     def update(self, values: dict) -> None:
         """
-        Apply run-time parameter changes (damping, drag, max_strain, ...) at once.
+        Apply run-time parameter changes (damping, drag, max_strain, current, ...) at once.
+
+        The rope goes on from where it is (no restart): a new current acts from the next
+        step (System.set_current).
 
         :raises ParameterError: as check_update (nothing is changed then).
         """
@@ -314,6 +381,8 @@ class Simulator:
         if self.system is not None:
             self.system.lines[0].line_type = self.props.line_type
             self.system.refresh()
+            if tuple(self.system.environment.current) != self.props.current:
+                self.system.set_current(self.props.current)
 
     # -- inputs -------------------------------------------------------------------------
 
@@ -429,10 +498,12 @@ class Simulator:
         """
         Put the rope back at rest between the ends (at its current time).
 
-        The catenary, brought to rest under the bending springs too (integrators.relax);
-        the catenary itself wherever that fails, and with the fairlead held at the reach.
-        With a payload: hanging straight down from the fairlead (hanging_shape), likewise
-        brought to rest.
+        The catenary in its environment (integrators.start_shape: submerged weight below
+        the surface, laid on the seabed where it reaches it), brought to rest under the
+        bending springs, the fluids and the ground too (integrators.relax); the start shape
+        itself wherever that fails, and with the fairlead held at the reach. With a
+        payload: hanging straight down from the fairlead (hanging_shape), likewise brought
+        to rest.
         """
         t = self.time if t is None else t
         ends, _, distances = self._ends([t])
@@ -441,9 +512,8 @@ class Simulator:
         if self.payload:
             shape = hanging_shape(p, ends[0, 1])
         else:
-            shape = catenary.initial_shape(
-                ends[0, 0], ends[0, 1], p.length, p.segments, p.weight_per_length,
-                p.axial_stiffness, np.asarray(p.gravity))
+            shape = start_shape(p.line_type, p.environment, ends[0, 0], ends[0, 1], p.length,
+                                p.segments)
         self.system = self._build(shape)
         if not self._held and (not relax(p, self.system) or self._unphysical()):
             self.system = self._build(shape)
@@ -457,7 +527,9 @@ class Simulator:
                 f'shape must have shape ({p.segments + 1}, 3), got {shape.shape}')
         system = System(p.environment)
         if self.payload:
-            system.add_point(Point('free', shape[0], mass=p.payload_mass))
+            system.add_point(Point('free', shape[0], mass=p.payload_mass,
+                                   volume=p.payload_volume, drag_area=p.payload_drag_area,
+                                   added_mass=p.payload_added_mass))
         else:
             system.add_point(Point('driven', shape[0]))
         system.add_point(Point('driven', shape[-1]))
@@ -535,17 +607,21 @@ class Simulator:
         """
         Return into how many parts a step must be divided (see _step).
 
-        Also, for improved_euler, until air drag takes no more than the particle's speed in
-        one part: its rate 2 K_A |v| / m is no part of the stability limit (it grows with the
-        speed), and past 2 / step the explicit step blows up (K_A = 1e4 on the default line
-        turned the state non-finite within 0.05 s of a 3 m jerk).
+        Also, for improved_euler, until drag takes no more than the particle's speed in
+        one part: its rate 2 K |u| / m (u: the speed through the fluid) is no part of the
+        stability limit (it grows with the speed), and past 2 / step the explicit step blows
+        up (K_A = 1e4 on the default line turned the state non-finite within 0.05 s of a 3 m
+        jerk). K: the seed's K_A plus the fluid drag's 1/2 rho (Cd + pi CdAx) d in the
+        densest fluid present (integrators.drag_rate).
         """
         p = self.props
         spread, _, speed = motion_spread(self.rope.v, velocities)
         parts = spread * self.time_step / (MAX_STEP_MOTION * p.segment_length)
-        if p.air_drag_coefficient > 0.0 and self.params.integrator == 'improved_euler':
-            parts = max(parts, 2.0 * p.air_drag_coefficient * speed * self.time_step
-                        / p.mass_per_length)
+        if self.params.integrator == 'improved_euler':
+            if self._drag[0] is not p:  # drag_rate is linear in the speed: once per props
+                self._drag = (p, drag_rate(p, 1.0))
+            relative = speed + (math.hypot(*p.current) if p.has_water else 0.0)
+            parts = max(parts, self._drag[1] * relative * self.time_step)
         if not parts > 1.0:  # also NaN: the state check restarts a non-finite rope
             return 1
         return math.ceil(min(parts, MAX_DIVISIONS))

@@ -51,14 +51,18 @@ def static_row(reference_dir, material, segments):
 
 
 def reference_params(material, segments, **overrides):
-    """Make the reference line's parameters: in air, mass w/g, the reference BA, no drag."""
+    """
+    Make the reference line's parameters: in air, mass w/g, the reference BA, no drag.
+
+    w already holds the air's buoyancy (test/data/README.md), so the air itself is off.
+    """
     weight = {'polyester': 25.467341, 'wire': 63.749899}[material]
     damping = {'polyester': 2903.43, 'wire': 6492.27}[material]
     values = dict(
         segments=segments, length=LENGTH, mass_per_length=weight / GRAVITY,
         axial_stiffness=AXIAL_STIFFNESS[material], axial_damping=damping,
         bending_stiffness_ratio=0.0, bending_damping_ratio=0.0, air_drag_coefficient=0.0,
-        gravity=[0.0, 0.0, -GRAVITY], bollard_position=BOLLARD.tolist())
+        air_density=0.0, gravity=[0.0, 0.0, -GRAVITY], bollard_position=BOLLARD.tolist())
     values.update(overrides)
     return from_values(values)
 

@@ -37,7 +37,7 @@ INTEGRATORS = ['improved_euler', 'implicit_euler']
 def hanging(payload, integrator, tip=lambda t: TOP, duration=0.0, **values):
     """Start a payload line under the crane tip `tip(t)` (pushed every 10 ms)."""
     params = from_values(dict(payload_mass=payload, integrator=integrator,
-                              gravity=[0.0, 0.0, -G], **values))
+                              gravity=[0.0, 0.0, -G], air_density=0.0, **values))
     sim = Simulator(params, history=math.inf)
     for t in np.arange(0.0, duration + 0.05, 0.01):
         sim.push_fairlead(float(t), tip(t))
@@ -188,7 +188,7 @@ def _crane(reference_dir, case, integrator, until):
         payload_mass=5000.0, length=50.0, segments=20, mass_per_length=6.5,
         axial_stiffness=1.0e8, axial_damping=2.0 * 0.01 * 50.0 * math.sqrt(1.0e8 * 6.5) / math.pi,
         bending_stiffness_ratio=0.0, bending_damping_ratio=0.0, gravity=[0.0, 0.0, -G],
-        integrator=integrator))
+        air_density=0.0, integrator=integrator))
     sim = Simulator(params, history=math.inf)
     for t in np.arange(0.0, until + 0.01, 0.001):
         sim.push_fairlead(float(t), [0.0, 0.0, tip_z(t)])

@@ -119,8 +119,12 @@ def describe(name: str, spec: params.Spec) -> ParameterDescriptor:
             descriptor.integer_range = [
                 IntegerRange(from_value=int(spec.low), to_value=int(spec.high), step=1)]
         else:
-            descriptor.floating_point_range = [
-                FloatingPointRange(from_value=float(spec.low), to_value=float(spec.high))]
+            # the range must hold the special value too (-1: the material's), or rclpy
+            # refuses it; a level's -inf (none) gets no range: additional_constraints says it
+            low = spec.low if spec.special is None else min(spec.low, spec.special)
+            if math.isfinite(low):
+                descriptor.floating_point_range = [
+                    FloatingPointRange(from_value=float(low), to_value=float(spec.high))]
     return descriptor
 
 
