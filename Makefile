@@ -34,6 +34,7 @@ lint: venv
 
 bench: venv
 	$(BIN)/python benchmarks/physics_vs_moordyn.py
+	$(BIN)/python benchmarks/water_vs_moordyn.py
 
 clean:
 	rm -rf build install log

@@ -81,13 +81,14 @@ def fairlead_motion(t):
 def run_ours(case, segments, integrator, duration):
     """Fairlead force magnitudes at 100 Hz, wall seconds and the step of this model."""
     diameter, mass, ea, ba = _case(case)
-    weight = (mass - AIR * math.pi / 4.0 * diameter ** 2) * GRAVITY  # in air, as MoorDyn
+    # MoorDyn's line in air: its coefficients on one diameter (drag, buoyancy, added mass)
     params = from_values(dict(
-        segments=segments, length=LENGTH, mass_per_length=weight / GRAVITY,
+        segments=segments, length=LENGTH, diameter=diameter, mass_per_length=mass,
         axial_stiffness=ea, axial_damping=ba, bending_stiffness_ratio=0.0,
         bending_damping_ratio=0.0, integrator=integrator, gravity=[0.0, 0.0, -GRAVITY],
-        # MoorDyn's transverse air drag (Cd 1.2 on the diameter), here on all directions
-        air_drag_coefficient=0.5 * AIR * 1.2 * diameter))
+        air_density=AIR, normal_drag_coefficient=1.2, tangential_drag_coefficient=0.008,
+        normal_added_mass_coefficient=1.0, tangential_added_mass_coefficient=0.0,
+        volume_diameter=diameter))
     sim = Simulator(params, output_interval=OUTPUT)
     samples = np.arange(0.0, duration + 2 * SAMPLES, SAMPLES)
     positions = fairlead_motion(samples)
