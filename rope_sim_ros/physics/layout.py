@@ -33,7 +33,8 @@ PARTICLE table (P, PARTICLE_COLUMNS), one row per particle of every line, lines 
 LINE table (L, LINE_COLUMNS), integers: FIRST, LAST (its particle rows), END_A, END_B (the
 points its particles FIRST and LAST sit on), AXIAL (1: axial damping, 0: the seed's
 K_SD (V_A - V_B)), BENDING (1 if it has bending springs), ADJUST (1: apply the strain limit),
-FLUID (1 if water or air acts on it beyond the seed's drag: a diameter or a volume diameter),
+FLUID (1 if water or air acts on it beyond the seed's drag: a diameter or a volume diameter,
+and water or air of a density above 0 around it),
 TANGENTS (1 if its fluid terms need the particles' tangents: drag or unequal added masses).
 
 LINE_REAL table (L, LINE_REAL_COLUMNS): MAX_STRAIN, AXIAL_STIFFNESS (EA [N]), DIAMETER (d, for
