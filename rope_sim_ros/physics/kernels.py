@@ -72,7 +72,7 @@ def has_contact(env):
             or env[ENV_QUAY_NORMAL + 1] != 0.0)
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def line_passes(x, particles, lines, line_real, env, sub, tangent):
     """
     Fill every line's submerged lengths sub (P,) and tangents tangent (P, 3) where needed.
@@ -155,7 +155,7 @@ def _environment_block(x, v, i, particles, line_real, k, tangents, contact, env,
                           particles[i, SINK], env, h, half_h2, block)
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def _point_environment(point_x, point_v, q, points, contact, env, out, out_row):
     """
     Add free point q's own fluid drag and contact force to out[out_row].
@@ -187,7 +187,7 @@ def _point_environment(point_x, point_v, q, points, contact, env, out, out_row):
     return points[q, ADDED_MASS] * displaced, own - displaced
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def _point_environment_block(point_x, point_v, q, points, contact, env, h, half_h2, block):
     """Add h C + h^2/2 S of free point q's own drag and contact to block (3, 3)."""
     area = points[q, DRAG_AREA]

@@ -165,7 +165,7 @@ def _add_surface_block(v, row, nx, ny, nz, delta, area, sink, env, h, half_h2, b
                             + (along - slide) * t[p] * t[q])
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def add_contact(x, v, row, width, length, sink, env, out, out_row):
     """
     Add the seabed and quay contact force on particle `row` to out[out_row].
@@ -189,7 +189,7 @@ def add_contact(x, v, row, width, length, sink, env, out, out_row):
         _add_surface(v, row, nx, ny, nz, delta, area, sink, env, out, out_row)
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def add_contact_block(x, v, row, width, length, sink, env, h, half_h2, block):
     """
     Add h C + h^2/2 S of particle `row`'s contact force to block (3, 3).

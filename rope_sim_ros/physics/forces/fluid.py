@@ -104,7 +104,7 @@ def _unit(x, i, j, tangent, row):
     tangent[row, 2] = d2 * inv
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def line_pass(x, particles, first, last, level, width, wet, tangents, sub, tangent):
     """
     Fill one line's submerged lengths sub[i] and tangents tangent[i] in one pass.
@@ -193,7 +193,7 @@ def add_point_drag(v, row, c, u0, u1, u2, out, out_row):
     out[out_row, 2] += f * w2
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def add_point_drag_block(v, row, c, u0, u1, u2, h, block):
     """Add h c (|u| I + u u^T / |u|) (add_point_drag's minus-Jacobian in v, times h)."""
     w0 = u0 - v[row, 0]
