@@ -17,8 +17,9 @@ Compile the numba kernels once, ahead of the first start, into numba's cache.
 
 numba compiles a kernel on its first call and, with ``cache=True``, keeps the machine code in
 ``__pycache__`` next to the source file, keyed by a hash of that file's content and the CPU.
-Compiling every kernel the node and the offline runner use took 7.7 s on a quiet 2-core
-machine, and a node's first tension came 44 s after its start on a loaded one. setup.py runs
+Compiling every kernel the node and the offline runner use takes 76 s on a 2-core machine
+(7.7 s before the water and ground terms), and a node's first tension came 44 s after its
+start on a loaded one even then. setup.py runs
 this module right after installing (``colcon build``, with or without ``--symlink-install``),
 so the cache lands beside the installed sources and every start, whatever HOME is, only
 loads it (0.4 s).
