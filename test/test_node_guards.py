@@ -367,6 +367,21 @@ def test_a_half_built_objects_destructor_is_quiet_only_after_a_ctrl_c(monkeypatc
     assert reported == [half_built] and interrupted.redelivery is None
 
 
+def test_a_ctrl_c_as_the_handler_is_installed_exits_130(monkeypatch):
+    # The Ctrl-C lands just as signal.signal returns: the new handler runs at once and raises
+    # there (seen in CI at 0.02 s). That must still end as a Ctrl-C, 130 and no traceback.
+    installed = []
+
+    def install_and_fire(signum, handler):
+        installed.append(handler)
+        if callable(handler):
+            handler(signum, None)
+
+    monkeypatch.setattr(executables.signal, 'signal', install_and_fire)
+    monkeypatch.setattr(executables.sys, 'unraisablehook', executables.sys.unraisablehook)
+    assert executables._run('no_module_reached') == executables.EXIT_INTERRUPTED
+    assert installed[-1] == executables.signal.SIG_IGN  # and SIGINT is left ignored
+
 # ------------------------------------------------------------------------ QoS
 
 

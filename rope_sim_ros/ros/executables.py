@@ -89,10 +89,12 @@ class _Interrupted:
 def _run(module: str) -> int:
     """Import rope_sim_ros.<module> and return its main(); 130 after Ctrl-C."""
     interrupted = _Interrupted()
-    # rclpy.init() keeps it: rclpy's own handler calls it after shutting rclpy down.
-    signal.signal(signal.SIGINT, interrupted)
-    sys.unraisablehook = interrupted.unraisable
     try:
+        # inside the try: a Ctrl-C that lands as signal.signal returns raises here already
+        # (seen in CI at 0.02 s). rclpy.init() keeps the handler: rclpy's own calls it after
+        # shutting rclpy down.
+        signal.signal(signal.SIGINT, interrupted)
+        sys.unraisablehook = interrupted.unraisable
         return importlib.import_module(f'rope_sim_ros.{module}').main()
     except KeyboardInterrupt:
         return EXIT_INTERRUPTED
