@@ -34,6 +34,7 @@ from typing import List, Optional
 import numpy as np
 
 from .params import LineParams, ParameterError
+from .physics.forces import fluid
 from .physics.integrators import (automatic_time_step, drag_rate, end_distances,
                                   implicit_bending, motion_spread, relax, stability_limit,
                                   start_shape)
@@ -142,16 +143,12 @@ def wet_fraction(z, water_level: float, width) -> np.ndarray:
     """
     How much of a body of height `width` centred at z is under water, 0..1 (elementwise).
 
-    The smooth submergence of the physics, clip((water_level - z) / width + 0.5, 0, 1) (a
-    width of 0: 1 below the surface, else 0); no water (water_level = -inf) gives 0.
+    The physics' own smooth submergence (forces/fluid.py point_fraction, a width below 1e-6 m
+    taken as 1e-6 m, as the steps take it); no water (water_level = -inf) gives 0.
     """
     z = np.asarray(z, dtype=float)
-    width = np.broadcast_to(np.asarray(width, dtype=float), z.shape)
-    if not math.isfinite(water_level):
-        return np.zeros(z.shape)
-    depth = water_level - z
-    ramp = depth / np.where(width > 0.0, width, 1.0) + 0.5
-    return np.clip(np.where(width > 0.0, ramp, (depth > 0.0).astype(float)), 0.0, 1.0)
+    width = np.maximum(np.broadcast_to(np.asarray(width, dtype=float), z.shape), 1e-6)
+    return np.vectorize(fluid.point_fraction, otypes=[float])(z, float(water_level), width)
 
 
 def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:

@@ -37,6 +37,8 @@ from typing import Optional
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .forces import fluid
+
 # Residual of the closure equations relative to the line's length at which Newton stops.
 _TOLERANCE = 1e-12
 # Where rounding keeps Newton from reaching _TOLERANCE, a residual this small is still exact
@@ -640,23 +642,10 @@ def wetted_fraction(z_a: ArrayLike, z_b: ArrayLike, water_level: float,
 
     :returns: Fractions in [0, 1], shaped like z_a.
     """
-    z_a = np.asarray(z_a, dtype=float)
-    z_b = np.asarray(z_b, dtype=float)
-    if water_level == -math.inf:
-        return np.zeros(np.broadcast(z_a, z_b).shape)
+    # the physics' own ramp (forces/fluid.py), elementwise: the start sees what the steps do
     dv = max(float(volume_diameter), 1e-6)
-    t_a = (water_level - z_a) / dv + 0.5
-    t_b = (water_level - z_b) / dv + 0.5
-
-    def integral(t):
-        clipped = np.clip(t, 0.0, 1.0)
-        return 0.5 * clipped * clipped + np.maximum(t - 1.0, 0.0)
-
-    level = np.abs(z_b - z_a) < 1e-9
-    with np.errstate(divide='ignore', invalid='ignore'):
-        mean = (integral(t_b) - integral(t_a)) / (t_b - t_a)
-    middle = np.clip(0.5 * (t_a + t_b), 0.0, 1.0)
-    return np.clip(np.where(level, middle, mean), 0.0, 1.0)
+    return np.vectorize(fluid.wetted_fraction, otypes=[float])(
+        np.asarray(z_a, dtype=float), np.asarray(z_b, dtype=float), float(water_level), dv)
 
 
 def node_weights(positions: ArrayLike, rest: ArrayLike, weight_per_length: float,
