@@ -382,6 +382,7 @@ def test_a_ctrl_c_as_the_handler_is_installed_exits_130(monkeypatch):
     assert executables._run('no_module_reached') == executables.EXIT_INTERRUPTED
     assert installed[-1] == executables.signal.SIG_IGN  # and SIGINT is left ignored
 
+
 def test_a_ctrl_c_an_import_swallowed_still_ends_the_start(monkeypatch):
     # A bare except in some import takes the KeyboardInterrupt: the Ctrl-C was seen all the
     # same, so main() must not run (before, the node started and ran on, deaf to it).
@@ -403,7 +404,6 @@ def test_a_ctrl_c_an_import_swallowed_still_ends_the_start(monkeypatch):
     monkeypatch.setattr(executables.sys, 'unraisablehook', executables.sys.unraisablehook)
     assert executables._run('ros.mooring_line_node') == executables.EXIT_INTERRUPTED
     assert started == [] and handlers[-1] == executables.signal.SIG_IGN
-
 
 # ------------------------------------------------------------------------ QoS
 
