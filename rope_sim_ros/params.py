@@ -32,6 +32,7 @@ MATERIALS = ('nylon', 'polyester', 'hmpe', 'steel_wire', 'manila')
 INTEGRATORS = ('improved_euler', 'implicit_euler')
 DAMPING_MODELS = ('axial', 'seed')
 RELIABILITIES = ('reliable', 'best_effort')
+WINCH_MODES = ('none', 'speed', 'brake', 'constant_tension')
 
 
 class ParameterError(ValueError):
@@ -165,6 +166,36 @@ SPECS: Mapping[str, Spec] = {
     'payload_added_mass_coefficient': Spec(
         0.5, '', "payload added mass in units of the displaced fluid's mass, MoorDyn's point "
         'Ca (0.5: a sphere)', 0.0, 100.0),
+    # The winch at the fairlead (physics/winch.py) and parting (physics/parting.py)
+    'winch_mode': Spec(
+        'none', '', "the fairlead's winch: none (the line keeps its length), speed (pays out "
+        '(+) or heaves in at the speed commanded on winch/command), brake (holds; renders '
+        'while the tension exceeds winch_brake_load), constant_tension (pays out or heaves in '
+        'to hold winch_tension)', choices=WINCH_MODES, read_only=False),
+    'winch_max_speed': Spec(
+        1.0, 'm/s', 'largest pay-out or heave-in speed of the winch', 0.0, 10.0,
+        low_open=True, read_only=False),
+    'winch_acceleration': Spec(
+        0.5, 'm/s^2', 'largest change of the winch speed per second: starts and stops ramp '
+        'at this rate', 0.0, 100.0, low_open=True, read_only=False),
+    'winch_brake_load': Spec(
+        0.0, 'N', "brake holding load: above it the brake renders (pays out); 0 = 60 % of "
+        "the material's MBL, as OCIMF MEG4 recommends", 0.0, 1.0e10, read_only=False),
+    'winch_tension': Spec(
+        0.0, 'N', 'the tension a constant_tension winch holds at the fairlead; 0 = the '
+        'tension there when the mode takes effect', 0.0, 1.0e10, read_only=False),
+    'winch_min_length': Spec(
+        0.0, 'm', 'shortest unstretched length the winch heaves in to; 0 = a tenth of length',
+        0.0, 1.0e4, read_only=False),
+    'winch_max_length': Spec(
+        0.0, 'm', 'longest unstretched length the winch pays out to; 0 = 4 times length '
+        '(the segments grow with it)', 0.0, 4.0e4, read_only=False),
+    'break_load': Spec(
+        0.0, 'N', "a segment pulling harder parts the line there; 0 = the material's MBL",
+        0.0, 1.0e10, read_only=False),
+    'parting': Spec(
+        True, '', 'the line parts at break_load (false: it holds any tension, for studies '
+        'that want it past the MBL)', read_only=False),
     'max_strain': Spec(
         0.25, '', 'super-elasticity threshold: no structural spring is left stretched beyond '
         'this strain', 0.0, 10.0, low_open=True, read_only=False),
@@ -340,6 +371,15 @@ class LineParams:
     payload_volume: float = SPECS['payload_volume'].default
     payload_drag_area: float = SPECS['payload_drag_area'].default
     payload_added_mass_coefficient: float = SPECS['payload_added_mass_coefficient'].default
+    winch_mode: str = SPECS['winch_mode'].default
+    winch_max_speed: float = SPECS['winch_max_speed'].default
+    winch_acceleration: float = SPECS['winch_acceleration'].default
+    winch_brake_load: float = SPECS['winch_brake_load'].default
+    winch_tension: float = SPECS['winch_tension'].default
+    winch_min_length: float = SPECS['winch_min_length'].default
+    winch_max_length: float = SPECS['winch_max_length'].default
+    break_load: float = SPECS['break_load'].default
+    parting: bool = SPECS['parting'].default
     max_strain: float = SPECS['max_strain'].default
     superelastic_adjustment: bool = SPECS['superelastic_adjustment'].default
     integrator: str = SPECS['integrator'].default

@@ -24,7 +24,7 @@ a free point: a payload of that mass hanging at the line's end.
 Data flows one way: end samples -> trajectories -> fixed substeps -> system state -> outputs.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import math
 import os
 from pathlib import Path
@@ -39,7 +39,7 @@ from .physics.integrators import (automatic_time_step, drag_rate, end_distances,
                                   implicit_bending, motion_spread, relax, stability_limit,
                                   start_shape)
 from .physics.materials import MaterialLibrary, MaterialProperties
-from .physics.objects import Line, Point, System
+from .physics.objects import Line, Point, System, Winch
 from .physics.rope import critical_axial_damping, RopeProperties, tension_bound
 from .physics.superelastic import MAX_ITERATIONS
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
@@ -55,6 +55,11 @@ MAX_STEP_MOTION = 0.5
 # ... into at most this many parts (a faster state is past any physical one: the state check
 # restarts it).
 MAX_DIVISIONS = 1000
+# The winch's defaults (params.py): its brake holds 60 % of the MBL (OCIMF MEG4); it hauls in
+# to a tenth of the line's length and pays out to four times it.
+BRAKE_FRACTION = 0.6
+MIN_LENGTH_FRACTION = 0.1
+MAX_LENGTH_FRACTION = 4.0
 
 
 def default_config_dir() -> Path:
@@ -201,6 +206,13 @@ class Output:
     :ivar payload_position: the payload (particle 0) with payload_mass > 0, (3,) [m]; else
         None. bollard_force is then the force of the line on the payload.
     :ivar payload_velocity: its velocity (3,) [m/s]; else None.
+    :ivar fairlead_peak: the largest fairlead tension since the previous output [N] (every
+        step's, this output's included).
+    :ivar bollard_peak: the same at the bollard (or the payload).
+    :ivar line_length: the unstretched length now [m] (the winch changes it).
+    :ivar winch_speed: the winch's pay-out speed in the last step [m/s] (+ pays out).
+    :ivar parted: the line has parted (its two pieces are the particles either side of the
+        parted segment).
     """
 
     t: float
@@ -210,6 +222,11 @@ class Output:
     max_strain: float
     payload_position: Optional[np.ndarray] = None
     payload_velocity: Optional[np.ndarray] = None
+    fairlead_peak: float = 0.0
+    bollard_peak: float = 0.0
+    line_length: float = math.nan
+    winch_speed: float = 0.0
+    parted: bool = False
 
     @property
     def fairlead_tension(self) -> float:
@@ -242,6 +259,22 @@ class Advance:
     lag: float
     restarted: str = ''
     beyond_reach: float = 0.0
+    parted: Optional['Parting'] = None
+
+
+@dataclass(frozen=True)
+class Parting:
+    """
+    The moment a line parted.
+
+    :ivar t: the end of the step in which it parted [s].
+    :ivar segment: the segment that parted (0 at the bollard).
+    :ivar break_load: the load it exceeded [N].
+    """
+
+    t: float
+    segment: int
+    break_load: float
 
 
 class Simulator:
@@ -293,6 +326,10 @@ class Simulator:
         self._bound = (None, math.nan, math.nan)
         # drag_rate of props at 1 m/s (see _divisions)
         self._drag = (None, math.nan)
+        self.length = params.length  # the unstretched length now: the winch changes it
+        self.parting: Optional[Parting] = None  # set when the line parts, until restore()
+        self._winch_command = 0.0  # the speed last commanded on winch/command [m/s]
+        self._held_tension = math.nan  # constant_tension with winch_tension 0: the one held
 
     @property
     def rope(self) -> Optional[Line]:
@@ -343,8 +380,77 @@ class Simulator:
 
     @property
     def reach(self) -> float:
-        """Farthest the ends can be apart [m], L (1 + max_strain)."""
-        return self.props.reach
+        """Farthest the ends can be apart [m], L (1 + max_strain) at L now; inf once parted."""
+        if self.parting is not None:
+            return math.inf
+        return self.length * (1.0 + self.props.max_strain)
+
+    @property
+    def line_props(self) -> RopeProperties:
+        """Return props at the length the winch has given the line now."""
+        if self.props.length == self.length:
+            return self.props
+        if getattr(self, '_line_props', (None, None))[0] is not self.props or \
+                self._line_props[1].length != self.length:
+            self._line_props = (self.props, replace(self.props, length=self.length))
+        return self._line_props[1]
+
+    # -- the winch and parting ------------------------------------------------------------
+
+    def winch(self) -> Winch:
+        """Return the fairlead's winch as the parameters and the last command set it."""
+        p = self.params
+        command = self._winch_command
+        if p.winch_mode == 'constant_tension':
+            command = p.winch_tension or self._held_tension
+            if not math.isfinite(command):
+                command = 0.0
+        return Winch(mode=p.winch_mode, end=1, command=command, max_speed=p.winch_max_speed,
+                     acceleration=p.winch_acceleration,
+                     brake_load=p.winch_brake_load or BRAKE_FRACTION * self.props.mbl,
+                     min_length=p.winch_min_length or MIN_LENGTH_FRACTION * p.length,
+                     max_length=p.winch_max_length or MAX_LENGTH_FRACTION * p.length)
+
+    @property
+    def break_load(self) -> float:
+        """Return the load a segment parts at [N]: break_load or the MBL; inf if parting is off."""
+        if not self.params.parting:
+            return math.inf
+        return self.params.break_load or self.props.mbl
+
+    def command_winch(self, speed: float) -> None:
+        """
+        Command the winch's speed [m/s] (+ pays out): a speed winch runs at it from the next step.
+
+        Within winch_max_speed; a winch in another mode keeps it for when it is set to speed.
+
+        :raises ParameterError: speed is not a finite number.
+        """
+        if not (isinstance(speed, (int, float)) and math.isfinite(speed)):
+            raise ParameterError(f'winch speed {speed!r} is not allowed: must be a finite '
+                                 'number [m/s] (+ pays out)')
+        self._winch_command = float(speed)
+        if self.system is not None:
+            self.system.set_winch(0, command=self.winch().command)
+
+    def _apply_winch(self) -> None:
+        """Give the line the winch and break load the parameters ask for now."""
+        p = self.params
+        if p.winch_mode == 'constant_tension' and not p.winch_tension and \
+                not math.isfinite(self._held_tension):
+            self._held_tension = float(np.linalg.norm(self.system.loads()[0][0, 1]))
+        line = self.system.lines[0]
+        line.break_load = self.break_load
+        line.winch = self.winch()
+        self.system.refresh()
+
+    def restore(self) -> None:
+        """Give the line back its length and, if it parted, its whole rope; restart it."""
+        self.length = self.params.length
+        self.parting = None
+        self._held_tension = math.nan
+        if self.started:
+            self.restart()
 
     def check_update(self, values: dict) -> None:
         """
@@ -374,10 +480,14 @@ class Simulator:
 
         :raises ParameterError: as check_update (nothing is changed then).
         """
+        before = self.params
         self.params, self.props, self.time_step = self._updated(values)
+        if (self.params.winch_mode, self.params.winch_tension) != (before.winch_mode,
+                                                                    before.winch_tension):
+            self._held_tension = math.nan  # constant_tension takes the tension of now
         if self.system is not None:
             self.system.lines[0].line_type = self.props.line_type
-            self.system.refresh()
+            self._apply_winch()  # also refreshes the tables
             if tuple(self.system.environment.current) != self.props.current:
                 self.system.set_current(self.props.current)
 
@@ -466,14 +576,15 @@ class Simulator:
         :returns: the distance [m] between the ends of each sample before holding.
         """
         distance = end_distances(ends)
-        if distance.max() > self.props.reach:
-            beyond = distance > self.props.reach
+        reach = self.reach
+        if distance.max() > reach:
+            beyond = distance > reach
             chord = ends[:, 1] - ends[:, 0]
-            scale = self.props.reach / distance[beyond]
+            scale = reach / distance[beyond]
             u = chord[beyond] / distance[beyond, None]
             relative = velocities[beyond, 1] - velocities[beyond, 0]
             sideways = relative - np.einsum('ij,ij->i', relative, u)[:, None] * u
-            ends[beyond, 1] = ends[beyond, 0] + self.props.reach * u
+            ends[beyond, 1] = ends[beyond, 0] + reach * u
             velocities[beyond, 1] = velocities[beyond, 0] + scale[:, None] * sideways
         return distance
 
@@ -504,8 +615,8 @@ class Simulator:
         """
         t = self.time if t is None else t
         ends, _, distances = self._ends([t])
-        self._held = bool(distances[0] > self.props.reach)
-        p = self.props
+        self._held = bool(distances[0] > self.reach)
+        p = self.line_props
         if self.payload:
             shape = hanging_shape(p, ends[0, 1])
         else:
@@ -514,11 +625,17 @@ class Simulator:
         self.system = self._build(shape)
         if not self._held and (not relax(p, self.system) or self._unphysical()):
             self.system = self._build(shape)
+        self._apply_winch()
         self.time = t
 
     def _build(self, shape: np.ndarray) -> System:
-        """Make the System of the line at rest at `shape` (N+1, 3), its ends on the points."""
-        p = self.props
+        """
+        Make the System of the line at rest at `shape` (N+1, 3), its ends on the points.
+
+        At the winch's length now, parted where it parted; its winch and break load are
+        _apply_winch's to give (a line being brought to rest has neither).
+        """
+        p = self.line_props
         if shape.shape != (p.segments + 1, 3):
             raise ValueError(
                 f'shape must have shape ({p.segments + 1}, 3), got {shape.shape}')
@@ -530,7 +647,10 @@ class Simulator:
         else:
             system.add_point(Point('driven', shape[0]))
         system.add_point(Point('driven', shape[-1]))
-        system.add_line(Line.uniform(p.line_type, p.length, p.segments, shape, (0, 1)))
+        line = Line.uniform(p.line_type, p.length, p.segments, shape, (0, 1))
+        if self.parting is not None:
+            line.parted = self.parting.segment
+        system.add_line(line)
         system.pack()
         return system
 
@@ -555,8 +675,8 @@ class Simulator:
         times = self.time + dt * np.arange(1, steps + 1)
         ends, velocities, distances = self._ends(times)
         beyond_reach = 0.0
-        if self._held or distances.max() > self.props.reach:
-            beyond = distances > self.props.reach
+        if self._held or distances.max() > self.reach:
+            beyond = distances > self.reach
             beyond_reach = float(distances[beyond].max()) if beyond.any() else 0.0
             back = np.flatnonzero(~beyond & np.append(self._held, beyond[:-1]))
             if back.size:
@@ -568,11 +688,13 @@ class Simulator:
                 return Advance(steps, rest.lag, rest.restarted or 'back within reach',
                                max(beyond_reach, rest.beyond_reach))
             self._held = bool(beyond[-1])
+        parting = self.parting
         self._step(times, ends, velocities)
         restarted = self._unphysical(motion_spread(self.rope.v, velocities)[1])
         if restarted:
             self.restart()
-        return Advance(steps, t - self.time, restarted, beyond_reach)
+        return Advance(steps, t - self.time, restarted, beyond_reach,
+                       self.parting if self.parting is not parting else None)
 
     def _step(self, times: np.ndarray, ends: np.ndarray, velocities: np.ndarray) -> None:
         """
@@ -611,7 +733,7 @@ class Simulator:
         jerk). K: the seed's K_A plus the fluid drag's 1/2 rho (Cd + pi CdAx) d in the
         densest fluid present (integrators.drag_rate).
         """
-        p = self.props
+        p = self.line_props
         spread, _, speed = motion_spread(self.rope.v, velocities)
         parts = spread * self.time_step / (MAX_STEP_MOTION * p.segment_length)
         if self.params.integrator == 'improved_euler':
@@ -627,16 +749,17 @@ class Simulator:
         """
         Say what is wrong with the state ('' when nothing is): the one check of every output.
 
-        A line-parting model (tension past the breaking load) would act before this bound.
+        Parting (a segment past break_load, the MBL by default) acts far below this bound.
 
         :param end_speed: the ends' largest speed over the steps just taken [m/s].
         """
         finite, largest = self.system.largest_load()
         if not finite:
             return 'non-finite state'
-        if self._bound[0] is not self.props:
-            at_rest = tension_bound(self.props)
-            self._bound = (self.props, at_rest, tension_bound(self.props, 1.0) - at_rest)
+        props = self.line_props
+        if self._bound[0] is not props:
+            at_rest = tension_bound(props)
+            self._bound = (props, at_rest, tension_bound(props, 1.0) - at_rest)
         _, at_rest, per_speed = self._bound
         if not largest <= at_rest + per_speed * end_speed:  # also NaN (an overflow)
             return 'unphysical state'
@@ -673,8 +796,12 @@ class Simulator:
 
     def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
         """Take len(ends) substeps of dt: ends, velocities (n, 2, 3) drive points 0 and 1."""
-        self.system.step(self.params.integrator, dt, ends, velocities, MAX_ITERATIONS,
-                         implicit_bending(self.props, dt), self.compiled)
+        parted = self.system.step(self.params.integrator, dt, ends, velocities, MAX_ITERATIONS,
+                                  implicit_bending(self.props, dt), self.compiled)
+        self.length = self.system.unstretched_length(0)
+        for _, step in parted:
+            self.parting = Parting(self.time + (step + 1) * dt, self.rope.parted,
+                                   self.break_load)
 
     def skip_to(self, t: float) -> None:
         """
@@ -688,14 +815,21 @@ class Simulator:
         self.time = t
 
     def output(self) -> Output:
-        """Return the current state: particles, end forces and the largest strain."""
+        """
+        Return the current state: particles, end forces, the largest strain, the winch.
+
+        The peaks are those since the previous output (this call clears them).
+        """
         bollard, fairlead, strain = self._forces()
         position = velocity = None
         if self.payload:
             position = self.system.point_x[0].copy()
             velocity = self.system.point_v[0].copy()
+        peaks = self.system.take_peaks()[0]
         return Output(self.time, self.rope.x.copy(), fairlead, bollard, strain, position,
-                      velocity)
+                      velocity, max(peaks[1], float(np.linalg.norm(fairlead))),
+                      max(peaks[0], float(np.linalg.norm(bollard))), self.length,
+                      self.system.winch_speed(0), self.parting is not None)
 
     def _forces(self) -> tuple:
         """Return the forces on the bollard and the fairlead and the largest strain."""

@@ -43,7 +43,9 @@ from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BENDING, DIAMET
                      NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS, POINT_SINK, REST, SINK, SIZE,
                      TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS, TOTAL_MASS, VOLUME,
                      VOLUME_AREA, VOLUME_DIAMETER)
+from .parting import hold_peaks, part_overloaded
 from .superelastic import adjust, over_limit
+from .winch import pay_out, render
 
 
 # -- forces ----------------------------------------------------------------------------------
@@ -474,6 +476,15 @@ def largest_load(x, v, point_x, point_v, particles, lines, line_real, env, force
     return True, largest
 
 
+@numba.njit(cache=True)
+def _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, step, gravity,
+                scratch):
+    """After step `step` of a run: brakes render, overloaded lines part, peaks are held."""
+    render(x, particles, lines, line_real, points, rest, inv_mass, dt)
+    part_overloaded(x, v, particles, lines, line_real, rest, step)
+    hold_peaks(x, v, particles, lines, line_real, gravity, scratch)
+
+
 # -- improved Euler (the seed's eq. 7: Heun's method) ----------------------------------------
 
 @numba.njit(cache=True)
@@ -507,12 +518,15 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     pa2 = np.zeros((n_points, 3))
     pxp = np.empty((n_points, 3))
     pvp = np.empty((n_points, 3))
+    scratch = np.empty_like(x)
     if not np.any(points[:, KIND] == FREE):  # every line end fixed or driven: no points
         for k in range(drive_x.shape[0]):
             line_forces(x, v, a1, particles, lines)
             line_passes(x, particles, lines, line_real, env, sub, tangent)
             _particle_accelerations(x, v, a1, particles, lines, line_real, env, gravity,
                                     contact, sub, tangent)
+            # the winch's rest lengths of the step's end, for its second stage
+            pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
             for i in range(x.shape[0]):
                 for d in range(3):
                     xp[i, d] = x[i, d] + dt * v[i, d]
@@ -529,10 +543,13 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             _drive(points, point_x, point_v, drive_x, drive_v, k)
             set_ends(x, v, lines, point_x, point_v)
             _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
+            _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k,
+                        gravity, scratch)
         return
     for k in range(drive_x.shape[0]):
         _accelerations(x, v, a1, particles, lines, line_real, points, point_x, point_v, env,
                        gravity, contact, sub, tangent, pa1, iso, aniso, work)
+        pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
         for i in range(x.shape[0]):
             for d in range(3):
                 xp[i, d] = x[i, d] + dt * v[i, d]
@@ -563,6 +580,8 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
         set_ends(x, v, lines, point_x, point_v)
         _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
                        max_iterations)
+        _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
+                    scratch)
 
 
 # -- implicit Euler: the seed's scheme made implicit -----------------------------------------
@@ -914,6 +933,7 @@ def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, part
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
     for k in range(drive_x.shape[0]):
+        pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
         for i in range(x.shape[0]):
             for p in range(3):
                 x[i, p] += dt * v[i, p]
@@ -929,6 +949,8 @@ def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, part
                                      lines[line, TANGENTS] == 1, contact, sub, tangent, block,
                                      rhs, rhs_flat, band, diagonal, lower, inverse, multiplier)
         _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
+        _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
+                    f)  # f: scratch here, the next step computes it afresh
 
 
 @numba.njit(cache=True)
@@ -998,6 +1020,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     end_free = np.zeros(2, dtype=np.bool_)
     free_index = np.zeros(2, dtype=np.int64)
     for k in range(drive_x.shape[0]):
+        pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
         for i in range(x.shape[0]):
             for p in range(3):
                 x[i, p] += dt * v[i, p]
@@ -1158,3 +1181,5 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
         set_ends(x, v, lines, point_x, point_v)
         _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
                        max_iterations)
+        _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
+                    f)  # f: scratch here, the next step computes it afresh

@@ -28,7 +28,11 @@ PARTICLE table (P, PARTICLE_COLUMNS), one row per particle of every line, lines 
     REST, STIFFNESS, DAMPING: the structural spring (i, i + 1) starting at this particle:
         rest length l_i [m], EA / l_i [N/m], BA / l_i [N s/m] (unused on a line's last row);
     BEND_REST, BEND_STIFFNESS, BEND_DAMPING: the bending spring (i, i + 2): rest length
-        l_i + l_{i+1}, r_s EA / l_b, r_d BA / l_b with l_b = (l_i + l_{i+1}) / 2.
+        l_i + l_{i+1}, r_s EA / l_b, r_d BA / l_b with l_b = (l_i + l_{i+1}) / 2;
+    LENGTH: the line's length lumped at the particle (half of each neighbouring segment) [m];
+    SINK: the contact damping's ramp depth [m];
+    REST_RATE: how fast the winch changes l_i [m/s]: the damper acts on the stretch rate,
+        the rate of the length less the rate of the rest length.
 
 LINE table (L, LINE_COLUMNS), integers: FIRST, LAST (its particle rows), END_A, END_B (the
 points its particles FIRST and LAST sit on), AXIAL (1: axial damping, 0: the seed's
@@ -40,7 +44,8 @@ TANGENTS (1 if its fluid terms need the particles' tangents: drag or unequal add
 LINE_REAL table (L, LINE_REAL_COLUMNS): MAX_STRAIN, AXIAL_STIFFNESS (EA [N]), DIAMETER (d, for
 drag and contact [m]), VOLUME_DIAMETER (dv, the surface ramp's width [m]), VOLUME_AREA
 (A_v = pi dv^2 / 4 [m^2]), NORMAL_DRAG (1/2 Cd d [m]), TANGENTIAL_DRAG (1/2 CdAx pi d [m]),
-NORMAL_ADDED_MASS (Ca), TANGENTIAL_ADDED_MASS (CaAx).
+NORMAL_ADDED_MASS (Ca), TANGENTIAL_ADDED_MASS (CaAx); then the winch's, parting's and peak
+hold's columns, listed below, some of which the step writes (winch.py, parting.py).
 
 POINT table (Q, POINT_COLUMNS): KIND (FIXED, DRIVEN or FREE), OWN_MASS [kg], TOTAL_MASS (own
 mass plus the half segments of every line end on it [kg]); a free point's VOLUME [m^3],
@@ -59,7 +64,8 @@ BEND_STIFFNESS = 7
 BEND_DAMPING = 8
 LENGTH = 9
 SINK = 10
-PARTICLE_COLUMNS = 11
+REST_RATE = 11
+PARTICLE_COLUMNS = 12
 
 FIRST = 0
 LAST = 1
@@ -81,7 +87,30 @@ NORMAL_DRAG = 5
 TANGENTIAL_DRAG = 6
 NORMAL_ADDED_MASS = 7
 TANGENTIAL_ADDED_MASS = 8
-LINE_REAL_COLUMNS = 9
+# the winch, parting and peak hold (winch.py, parting.py); the step writes the state columns
+UNSTRETCHED = 9  # state: the line's unstretched length [m] (the winch changes it)
+WINCH_MODE = 10  # NO_WINCH, SPEED, BRAKE or CONSTANT_TENSION
+WINCH_END = 11  # the end the winch sits on: 0 (A) or 1 (B)
+WINCH_COMMAND = 12  # SPEED: commanded pay-out speed [m/s]; CONSTANT_TENSION: set tension [N]
+WINCH_MAX_SPEED = 13  # [m/s]
+WINCH_ACCELERATION = 14  # [m/s^2]
+WINCH_BRAKE_LOAD = 15  # BRAKE: the load above which the brake renders [N]
+WINCH_RESPONSE = 16  # CONSTANT_TENSION: how fast it brings the tension to the set one [s]
+WINCH_MIN_LENGTH = 17  # the winch stops at these unstretched lengths [m]
+WINCH_MAX_LENGTH = 18
+WINCH_SPEED = 19  # state: the pay-out speed of the last step [m/s] (+ pays out)
+BREAK_LOAD = 20  # a segment whose tension exceeds it parts [N]; inf: never
+PARTED = 21  # state: the parted segment's index in the line, -1 while whole
+PARTED_STEP = 22  # state: the step of the run in which it parted (0-based), -1 if none
+PEAK_A = 23  # state: the largest end force on end A's point since it was cleared [N]
+PEAK_B = 24  # likewise end B
+WINCH_RAMP = 25  # state: the winch's acceleration in the last step [m/s^2]
+LINE_REAL_COLUMNS = 26
+
+NO_WINCH = 0
+SPEED = 1
+BRAKE = 2
+CONSTANT_TENSION = 3
 
 KIND = 0
 OWN_MASS = 1

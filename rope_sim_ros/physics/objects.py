@@ -22,8 +22,10 @@ The objects of a mooring system, each owning its state, as MoorDyn has them.
   every substep from outside: a fairlead on a ship, a crane tip) or FREE (a lumped body with a
   mass, a volume, a drag area and an added-mass coefficient: a payload, a shackle joining
   lines).
-- Line: a LineType, N segments with a rest length each (a winch will change them), the N+1
-  particles' positions and velocities, and the two points its ends sit on.
+- Winch: how one end of a line pays out or heaves in (winch.py).
+- Line: a LineType, N segments with a rest length each (its winch changes them), the N+1
+  particles' positions and velocities, the two points its ends sit on, its break load and,
+  once it has parted (parting.py), which segment parted.
 - System: any number of lines and points, stepped together by one integrator (kernels.py).
 
 A line's end particle coincides with its point: the point sets it, and the line returns to
@@ -45,7 +47,7 @@ from typing import List, Sequence
 
 import numpy as np
 
-from . import kernels
+from . import kernels, parting, winch
 from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST,
                      BEND_STIFFNESS, BENDING, DAMPING, DIAMETER, DRAG, DRAG_AREA, DRIVEN,
                      ENV_AIR_DENSITY, ENV_COLUMNS, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_DEPTH,
@@ -56,6 +58,10 @@ from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, B
                      NORMAL_DRAG, OWN_MASS, PARTICLE_COLUMNS, POINT_COLUMNS, POINT_SINK, REST,
                      SINK, SIZE, STIFFNESS, TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS,
                      TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
+from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, UNSTRETCHED,
+                     WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND, WINCH_END,
+                     WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
+                     WINCH_RESPONSE, WINCH_SPEED)
 
 KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE}
 SMALLEST_SINK = 1e-4  # [m]: the contact damping's ramp depth at least (a buoyant line's)
@@ -225,6 +231,50 @@ class Environment:
         return self.water_density if z < self.water_level else self.air_density
 
 
+@dataclass(frozen=True)
+class Winch:
+    """
+    A winch at one end of a line (winch.py says how each mode acts).
+
+    :ivar mode: 'none', 'speed', 'brake' or 'constant_tension'.
+    :ivar end: the end it sits on: 0 (A) or 1 (B).
+    :ivar command: 'speed': the commanded pay-out speed [m/s] (+ pays out);
+        'constant_tension': the set tension [N].
+    :ivar max_speed: [m/s].
+    :ivar acceleration: [m/s^2].
+    :ivar brake_load: 'brake': the load above which the brake renders [N].
+    :ivar response_time: 'constant_tension': how fast it brings the tension to the set one [s].
+    :ivar min_length, max_length: the unstretched lengths the winch stops at [m].
+    """
+
+    mode: str = 'none'
+    end: int = 1
+    command: float = 0.0
+    max_speed: float = 1.0
+    acceleration: float = 0.5
+    brake_load: float = math.inf
+    response_time: float = 1.0
+    min_length: float = 0.0
+    max_length: float = math.inf
+
+    def __post_init__(self):
+        """Check the mode, the end and every number."""
+        if self.mode not in ('none', 'speed', 'brake', 'constant_tension'):
+            raise ValueError(f'winch mode {self.mode!r} is not one of none, speed, brake, '
+                             'constant_tension')
+        if not (isinstance(self.response_time, numbers.Real) and self.response_time > 0.0):
+            raise ValueError(f'winch response_time {self.response_time!r} must be > 0')
+        if self.end not in (0, 1):
+            raise ValueError(f'winch end {self.end!r} must be 0 (A) or 1 (B)')
+        _finite('winch command', self.command)
+        for name in ('max_speed', 'acceleration', 'min_length'):
+            _finite(f'winch {name}', getattr(self, name), 0.0)
+        for name in ('brake_load', 'max_length'):
+            value = getattr(self, name)
+            if not (isinstance(value, numbers.Real) and value >= 0.0):
+                raise ValueError(f'winch {name} {value!r} must be a number >= 0 (inf: none)')
+
+
 class Point:
     """
     A point line ends attach to.
@@ -269,11 +319,19 @@ class Line:
     :ivar x: particle positions (N+1, 3) [m] (a view into the System's state once packed).
     :ivar v: particle velocities (N+1, 3) [m/s], likewise.
     :ivar ends: indices of the points of end A and end B in the System.
+    :ivar winch: its Winch (mode 'none': no winch).
+    :ivar break_load: a segment pulling harder parts [N]; inf: it never parts.
+    :ivar parted: the index of the segment that parted, None while the line is whole.
     """
 
     def __init__(self, line_type: LineType, rest: Sequence[float], positions,
-                 ends: Sequence[int]):
+                 ends: Sequence[int], winch: Winch = Winch(), break_load: float = math.inf):
         """Place the line at rest at `positions` (N+1, 3) with segment rest lengths `rest`."""
+        if not (isinstance(break_load, numbers.Real) and break_load > 0.0):
+            raise ValueError(f'break_load {break_load!r} must be a number > 0 (inf: never)')
+        self.winch = winch
+        self.break_load = float(break_load)
+        self.parted = None
         self.line_type = line_type
         self.rest = np.array(rest, dtype=float).reshape(-1)
         self.x = np.array(positions, dtype=float)
@@ -287,9 +345,9 @@ class Line:
 
     @classmethod
     def uniform(cls, line_type: LineType, length: float, segments: int, positions,
-                ends: Sequence[int]) -> 'Line':
-        """Make a line of `segments` equal segments of length / segments."""
-        return cls(line_type, np.full(segments, length / segments), positions, ends)
+                ends: Sequence[int], **options) -> 'Line':
+        """Make a line of `segments` equal segments of length / segments (options: winch...)."""
+        return cls(line_type, np.full(segments, length / segments), positions, ends, **options)
 
     @property
     def segments(self) -> int:
@@ -310,9 +368,12 @@ class Line:
         return masses
 
     def strains(self) -> np.ndarray:
-        """Strain of every structural spring, shape (N,)."""
+        """Strain of every structural spring, shape (N,) (0 where it parted: it pulls no more)."""
         d = np.diff(self.x, axis=0)
-        return np.sqrt(np.einsum('ij,ij->i', d, d)) / self.rest - 1.0
+        strains = np.sqrt(np.einsum('ij,ij->i', d, d)) / self.rest - 1.0
+        if self.parted is not None:
+            strains[self.parted] = 0.0
+        return strains
 
 
 class System:
@@ -381,8 +442,18 @@ class System:
         kernels.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)
 
     def refresh(self) -> None:
-        """Rebuild the tables from the lines' types and rest lengths and the points' masses."""
+        """
+        Rebuild the tables from the lines and the points (their types, rest lengths, winches).
+
+        What the step keeps in the tables goes on: the winches' speeds and the held peaks.
+        """
+        kept = None
+        if getattr(self, 'line_real', None) is not None and len(self.line_real) == len(
+                self.lines):
+            kept = self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]].copy()
         self._build_tables()
+        if kept is not None:
+            self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]] = kept
         # what every step passes after the state, built once: a step runs at kHz
         self._tables = (self.particles, self.lines_table, self.line_real, self.points_table,
                         self.env)
@@ -460,6 +531,7 @@ class System:
                 and t.normal_added_mass != t.tangential_added_mass))
             for e, row in ((0, first), (1, last)):
                 self.points_table[line.ends[e], TOTAL_MASS] += masses[0 if e == 0 else -1]
+            self._line_changes(k, line)
         for k, line in enumerate(self.lines):
             # inverse masses relative to the line's heaviest particle: only their ratios
             # matter, and a uniform line's inner particles get exactly 1
@@ -474,6 +546,28 @@ class System:
         for q in range(len(self.points)):
             if self.points_table[q, KIND] == FREE and not self.points_table[q, TOTAL_MASS] > 0.0:
                 raise ValueError(f'free point {q} has no mass and no line')
+
+    def _line_changes(self, k: int, line: Line) -> None:
+        """Fill line k's winch and parting columns; part it again if it had parted."""
+        real = self.line_real[k]
+        w = line.winch
+        real[UNSTRETCHED] = line.length
+        real[WINCH_MODE] = winch.mode_code(w.mode)
+        real[WINCH_END] = w.end
+        real[WINCH_COMMAND] = w.command
+        real[WINCH_MAX_SPEED] = w.max_speed
+        real[WINCH_ACCELERATION] = w.acceleration
+        real[WINCH_BRAKE_LOAD] = w.brake_load
+        real[WINCH_RESPONSE] = w.response_time
+        real[WINCH_MIN_LENGTH] = w.min_length
+        real[WINCH_MAX_LENGTH] = w.max_length
+        real[BREAK_LOAD] = line.break_load
+        real[PARTED] = -1.0 if line.parted is None else line.parted
+        real[PARTED_STEP] = -1.0
+        if line.parted is not None:
+            first = int(self.lines_table[k, FIRST])
+            parting.part(self.particles, self.lines_table, self.particles[:, REST].copy(), k,
+                         first + line.parted)
 
     def _ground_density(self) -> float:
         """Return the density of the fluid on the seabed (water unless it is dry)."""
@@ -520,11 +614,12 @@ class System:
 
     def step(self, integrator: str, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
              max_iterations: int, implicit_bending: bool = False,
-             compiled: bool = True) -> None:
+             compiled: bool = True) -> list:
         """
         Take len(drive_x) steps of dt with the driven points at drive_x, drive_v (n, Q, 3).
 
         :param compiled: False runs the same kernels' Python code (``.py_func``), for tests.
+        :returns: (line index, step of the run) of every line that parted in these steps.
         """
         if integrator == 'implicit_euler':
             run, last = kernels.implicit_euler_run, (max_iterations, implicit_bending)
@@ -533,6 +628,50 @@ class System:
         (run if compiled else run.py_func)(self.x, self.v, self.point_x, self.point_v, drive_x,
                                            drive_v, dt, *self._tables, *last)
         self.steps += 1
+        return self._follow_line_changes()
+
+    def _follow_line_changes(self) -> list:
+        """
+        Bring the Lines up to what the step changed: rest lengths (winches), parted segments.
+
+        :returns: (line index, step of the run) of every line that parted in the run.
+        """
+        parted = []
+        for k, line in enumerate(self.lines):
+            real = self.line_real[k]
+            if line.winch.mode != 'none':
+                first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST]
+                rest = self.particles[first:last, REST]
+                if line.parted is None and real[PARTED] < 0.0:
+                    line.rest[:] = rest
+                else:  # the parted segment's own rest length: what the others leave
+                    whole = np.arange(line.segments) != int(real[PARTED])
+                    line.rest[whole] = rest[whole]
+                    line.rest[~whole] = real[UNSTRETCHED] - rest[whole].sum()
+            if line.parted is None and real[PARTED] >= 0.0:
+                line.parted = int(real[PARTED])
+                parted.append((k, int(real[PARTED_STEP])))
+        return parted
+
+    def set_winch(self, k: int, **changes) -> None:
+        """Change line k's winch (mode, command, ...) from the next step, without a rebuild."""
+        line = self.lines[k]
+        line.winch = replace(line.winch, **changes)
+        self._line_changes(k, line)
+
+    def take_peaks(self) -> np.ndarray:
+        """Return each line's largest end forces since the last call, (L, 2) [N], and clear them."""
+        peaks = self.line_real[:, [PEAK_A, PEAK_B]].copy()
+        self.line_real[:, [PEAK_A, PEAK_B]] = 0.0
+        return peaks
+
+    def unstretched_length(self, k: int) -> float:
+        """Return line k's unstretched length now [m] (its winch changes it)."""
+        return float(self.line_real[k, UNSTRETCHED])
+
+    def winch_speed(self, k: int) -> float:
+        """Return the speed line k's winch paid out at in the last step [m/s] (+ pays out)."""
+        return float(self.line_real[k, WINCH_SPEED])
 
     def end_forces(self) -> np.ndarray:
         """Force of each line on the points of its ends, (L, 2, 3) [N] (see kernels)."""

@@ -28,7 +28,8 @@ by the step (k by h^2 / 2, c by h).
 import numba
 import numpy as np
 
-from ..layout import (BEND_DAMPING, BEND_REST, BEND_STIFFNESS, DAMPING, REST, STIFFNESS)
+from ..layout import (BEND_DAMPING, BEND_REST, BEND_STIFFNESS, DAMPING, REST, REST_RATE,
+                      STIFFNESS)
 
 
 @numba.njit(cache=True, inline='always')
@@ -56,16 +57,21 @@ def add_springs(x, v, out, particles, first, last, bending, axial):
         inv = 1.0 / max(length, 1e-12)
         ux, uy, uz = dx * inv, dy * inv, dz * inv
         stretch = length - rest
-        if not bending and stretch < 0.0:  # a segment carries no compression
-            stretch = 0.0
+        # a winch changing the rest length: the damper sees the stretch rate only
+        rest_rate = 0.0
+        if not bending:
+            rest_rate = particles[i, REST_RATE]
+            if stretch < 0.0:  # a segment carries no compression
+                stretch = 0.0
         dvx = v[j, 0] - v[i, 0]
         dvy = v[j, 1] - v[i, 1]
         dvz = v[j, 2] - v[i, 2]
         if axial:
-            tension = stiffness * stretch + damping * (dvx * ux + dvy * uy + dvz * uz)
+            tension = stiffness * stretch + damping * (dvx * ux + dvy * uy + dvz * uz
+                                                       - rest_rate)
             fx, fy, fz = tension * ux, tension * uy, tension * uz
         else:
-            tension = stiffness * stretch
+            tension = stiffness * stretch - damping * rest_rate
             fx = tension * ux + damping * dvx
             fy = tension * uy + damping * dvy
             fz = tension * uz + damping * dvz
