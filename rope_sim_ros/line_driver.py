@@ -67,7 +67,9 @@ MAX_LAG = 1.0
 PIN_TOLERANCE = 1e-6
 # Relative topic of the node's clock-driven decisions (std_msgs/String, one JSON object each).
 EVENTS_TOPIC = 'rope/events'
-EVENT_KINDS = ('silent', 'skip', 'reset', 'clock_back', 'drop', 'restamp', 'set')
+PARTED_TOPIC = 'rope/parted'  # std_msgs/Bool, latched: whether the line has parted
+EVENT_KINDS = ('silent', 'skip', 'reset', 'clock_back', 'drop', 'restamp', 'set', 'winch',
+               'parted')
 # custom_data key of metadata.yaml under which the node, run and resim store their parameters.
 PARAMETERS_KEY = 'rope_sim_ros.parameters'
 
@@ -175,6 +177,10 @@ class LineDriver:
         self._history = history
         self.simulator = self._new_simulator(params)
         self._reset_inputs()
+        # (times [s of simulated time], speeds [m/s]): the winch's commands offline, each
+        # from its time on; applied before every output's steps (None: commands come from
+        # command_winch, the node's winch/command)
+        self.winch_schedule = None
 
     def _new_simulator(self, params: LineParams) -> Simulator:
         # The step divides the output period, so that outputs fall on step times.
@@ -341,6 +347,10 @@ class LineDriver:
             steps = max(1, math.ceil((due - sim.time) / dt - 1e-9))
             if sim.time + (steps - PIN_TOLERANCE) * dt > target:
                 break  # the input does not reach the next output time yet
+            if self.winch_schedule is not None:
+                times, speeds = self.winch_schedule
+                row = max(int(np.searchsorted(times, sim.time + 0.5 * dt, 'right')) - 1, 0)
+                sim.command_winch(float(speeds[row]))
             advance = sim.advance_to(sim.time + (steps + 0.5) * dt, max_steps=steps)
             self._count += 1
             done += 1
@@ -376,9 +386,13 @@ class LineDriver:
         self._fresh = True
 
     def reset(self) -> None:
-        """Restart the rope at rest on the catenary at the state time (~/reset)."""
-        self.simulator.restart()
+        """Restart the rope whole, at its length, at rest on the catenary (~/reset)."""
+        self.simulator.restore()
         self._fresh = True
+
+    def command_winch(self, speed: float) -> None:
+        """Command the winch's speed [m/s] (+ pays out) from the next step (winch/command)."""
+        self.simulator.command_winch(speed)
 
     def clear(self) -> None:
         """Start from scratch (a clock jump back): a new line waiting for a fairlead sample."""

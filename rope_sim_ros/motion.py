@@ -18,10 +18,14 @@ The offline runner's files: MOTION.csv in, OUT.csv out.
 MOTION.csv has a header naming its columns: ``t`` [s] and the world-frame fairlead point
 ``fairlead_x, fairlead_y, fairlead_z`` [m], optionally the bollard point ``bollard_x,
 bollard_y, bollard_z`` (all three or none). Other columns are ignored. Every cell of those
-columns must be a finite number and ``t`` must increase strictly. Errors name the file, the
+columns must be a finite number and ``t`` must increase strictly. An optional ``winch_speed``
+column [m/s] (+ pays out) commands the fairlead's winch (winch_mode speed) from its row's
+time to the next row's. Errors name the file, the
 data row (1-based, header excluded), the file line and the column.
 
-OUT.csv has one row per output time with the forces of the line on both ends (OUT_COLUMNS),
+OUT.csv has one row per output time with the forces of the line on both ends, the largest
+tension at each since the previous row, the unstretched length and whether the line has
+parted (OUT_COLUMNS),
 and the payload's position (PAYLOAD_COLUMNS) when the line ends in a free payload.
 """
 
@@ -37,9 +41,11 @@ import numpy as np
 TIME = 't'
 FAIRLEAD_COLUMNS = ('fairlead_x', 'fairlead_y', 'fairlead_z')
 BOLLARD_COLUMNS = ('bollard_x', 'bollard_y', 'bollard_z')
+WINCH_SPEED = 'winch_speed'
 OUT_COLUMNS = (
     't', 'fairlead_fx', 'fairlead_fy', 'fairlead_fz', 'fairlead_tension',
-    'bollard_fx', 'bollard_fy', 'bollard_fz', 'bollard_tension', 'max_strain')
+    'bollard_fx', 'bollard_fy', 'bollard_fz', 'bollard_tension', 'max_strain',
+    'fairlead_peak_tension', 'bollard_peak_tension', 'line_length', 'parted')
 # Added after OUT_COLUMNS when the line ends in a free payload (payload_mass > 0).
 PAYLOAD_COLUMNS = ('payload_x', 'payload_y', 'payload_z')
 
@@ -59,6 +65,8 @@ class Motion:
     :param bollard: bollard points [m], shape (n, 3), or None when the file has none.
     :param t_ns: the sample times as written, rounded to integer nanoseconds (exact even
         where a float is not, e.g. for epoch times), shape (n,); None = from t.
+    :param winch_speed: the winch speed commanded from each row on [m/s], shape (n,), or
+        None when the file has no winch_speed column.
     """
 
     path: str
@@ -66,6 +74,7 @@ class Motion:
     fairlead: np.ndarray
     bollard: Optional[np.ndarray] = None
     t_ns: Optional[np.ndarray] = None
+    winch_speed: Optional[np.ndarray] = None
 
     def __post_init__(self) -> None:
         """Fill t_ns from t when not given."""
@@ -105,6 +114,8 @@ def _header(path: str, names: list) -> tuple:
             f'{", ".join(missing)}; give all three bollard columns or none')
     required = [names.index(name) for name in wanted]
     bollard = [names.index(name) for name in BOLLARD_COLUMNS] if present else None
+    if WINCH_SPEED in seen:
+        bollard = (bollard or []) + [names.index(WINCH_SPEED)]
     return names, required, bollard
 
 
@@ -177,9 +188,11 @@ def parse_motion(stream: TextIO, path: str) -> Motion:
     if not times:
         raise MotionError(f'{path}: the header has no data rows after it')
     table = np.array(values, dtype=float)
+    has_bollard = BOLLARD_COLUMNS[0] in names
+    winch = WINCH_SPEED in names
     return Motion(path, np.array(times), table[:, 0:3].copy(),
-                  table[:, 3:6].copy() if bollard_index else None,
-                  np.array(stamps, dtype=np.int64))
+                  table[:, 3:6].copy() if has_bollard else None,
+                  np.array(stamps, dtype=np.int64), table[:, -1].copy() if winch else None)
 
 
 def read_motion(path) -> Motion:
@@ -221,23 +234,18 @@ class OutWriter:
         self._writer.writerow(OUT_COLUMNS + (PAYLOAD_COLUMNS if payload else ()))
         self.rows = 0
 
-    def write(self, t: float, fairlead_force, fairlead_tension: float, bollard_force,
-              bollard_tension: float, max_strain: float, payload_position=None) -> None:
+    def write(self, t: float, out) -> None:
         """
         Append one row.
 
         :param t: output time [s].
-        :param fairlead_force: force of the line on the fairlead (3,) [N].
-        :param fairlead_tension: its magnitude [N].
-        :param bollard_force: force of the line on the bollard (3,) [N].
-        :param bollard_tension: its magnitude [N].
-        :param max_strain: largest structural strain.
-        :param payload_position: the payload's position (3,) [m] (written with payload).
+        :param out: the simulator.Output of that time.
         """
-        numbers = [t, *fairlead_force, fairlead_tension, *bollard_force, bollard_tension,
-                   max_strain]
+        numbers = [t, *out.fairlead_force, out.fairlead_tension, *out.bollard_force,
+                   out.bollard_tension, out.max_strain, out.fairlead_peak, out.bollard_peak,
+                   out.line_length, float(out.parted)]
         if self.payload:
-            numbers += list(payload_position)
+            numbers += list(out.payload_position)
         self._writer.writerow([repr(float(v)) for v in numbers])
         self.rows += 1
 

@@ -349,5 +349,8 @@ def _apply_event(driver: LineDriver, text: str, dropped: Dict[str, deque],
             driver.clear()
         elif kind == 'set':
             driver.update(dict(event['values']))
+        elif kind == 'winch':
+            driver.command_winch(float(event['speed']))
+        # 'parted' says what the model did: replayed, the model does it again
     except (ValueError, KeyError, TypeError, ParameterError) as e:
         raise BagError(f'rope/events: cannot replay {text!r}: {e}') from None

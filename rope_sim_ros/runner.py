@@ -259,7 +259,7 @@ class Tally:
 def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamples] = None,
              rate: float = DEFAULT_RATE, sinks: Sequence[Sink] = (),
              progress: Optional[Callable[[int, int, float], None]] = None,
-             materials: Any = None) -> RunSummary:
+             materials: Any = None, winch_speed: Optional[np.ndarray] = None) -> RunSummary:
     """
     Run the line through the end samples and hand every output to the sinks.
 
@@ -276,6 +276,8 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     :param sinks: callables sink(published) called in order for every output.
     :param progress: callable progress(done, total, t), or None.
     :param materials: material library (default: config/materials.yaml).
+    :param winch_speed: the winch speed commanded from each fairlead sample's time on
+        [m/s], or None (LineDriver.winch_schedule).
     :returns: the RunSummary (times in simulated seconds).
     :raises ParameterError: rate is not a positive finite number.
     :raises TrajectoryError: a sample is non-finite or out of order.
@@ -283,6 +285,10 @@ def simulate(params: LineParams, fairlead: EndSamples, bollard: Optional[EndSamp
     wall = time.monotonic()
     # No skip ahead offline: the samples, not a clock, say how far the rope may go.
     driver = LineDriver(params, materials, rate=rate)
+    if winch_speed is not None:
+        first = min([int(fairlead.t_ns[0])] + ([] if bollard is None else [int(bollard.t_ns[0])]))
+        driver.winch_schedule = ((np.asarray(fairlead.t_ns) - first) / 1e9,
+                                 np.asarray(winch_speed, dtype=float))
     ends = [(FAIRLEAD, fairlead)] + ([(BOLLARD, bollard)] if bollard is not None else [])
     order = sorted((int(ns), 0 if end == BOLLARD else 1, end, i)
                    for end, samples in ends for i, ns in enumerate(samples.t_ns.tolist()))
@@ -504,10 +510,9 @@ def run_motion(params: LineParams, motion, out_path=None, rate: float = DEFAULT_
         if out_path is not None:
             writer = OutWriter(out_path, payload=params.has_payload)
             sinks.insert(0, lambda p: writer.write(
-                origin + p.output.t if origin else p.output.t, p.output.fairlead_force,
-                p.output.fairlead_tension, p.output.bollard_force, p.output.bollard_tension,
-                p.output.max_strain, p.output.payload_position))
-        summary = simulate(params, fairlead, bollard, rate, sinks, progress)
+                origin + p.output.t if origin else p.output.t, p.output))
+        summary = simulate(params, fairlead, bollard, rate, sinks, progress,
+                           winch_speed=motion.winch_speed)
     except BaseException:
         # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
         _close_quietly(writer, bag)

@@ -84,6 +84,11 @@ def float64(value: float) -> bytes:
     return CDR_LE + struct.pack('<d', value)
 
 
+def boolean(value: bool) -> bytes:
+    """Return a std_msgs/Bool as CDR bytes (one byte, 0 or 1)."""
+    return CDR_LE + struct.pack('<?', bool(value))
+
+
 class _Cursor:
     """Reads CDR fields in order, aligning each to its size from the end of the header."""
 

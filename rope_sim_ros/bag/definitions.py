@@ -184,6 +184,9 @@ DEFINITIONS = {
         '\n'
         'uint8[] data                 # Compressed image buffer\n',
         'RIHS01_15640771531571185e2efc8a100baf923961a4d15d5569652e6cb6691e8e371a'),
+    'std_msgs/msg/Bool': (
+        'bool data\n',
+        'RIHS01_feb91e995ff9ebd09c0cb3d2aed18b11077585839fb5db80193b62d74528f6c9'),
     'std_msgs/msg/ColorRGBA': (
         'float32 r\n'
         'float32 g\n'

@@ -69,17 +69,19 @@ from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
 from rclpy.exceptions import ParameterException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.qos import HistoryPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
+from rclpy.qos import (DurabilityPolicy, HistoryPolicy, QoSPolicyKind, QoSProfile,
+                       ReliabilityPolicy)
 from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions
-from std_msgs.msg import String
+from std_msgs.msg import Bool, Float64, String
 from std_srvs.srv import Trigger
 
 from . import conversions
-from .recorder import POSE_ARRAY, POSE_STAMPED, Recorder, STRING, WRENCH
+from .recorder import BOOL, FLOAT64, POSE_ARRAY, POSE_STAMPED, Recorder, STRING, WRENCH
 from .spinning import spin_until_shutdown
 from .. import params
 from ..bag import BagError
 from ..line_driver import (BOLLARD, encode_event, ENDS, EVENTS_TOPIC, FAIRLEAD, LineDriver,
+                           PARTED_TOPIC,
                            MAX_LAG, PARAMETERS_KEY, parameters_yaml, Published)
 from ..simulator import Simulator
 from ..trajectory import TrajectoryError
@@ -91,7 +93,9 @@ POSE_RELIABILITY = {'reliable': ReliabilityPolicy.RELIABLE,
                     'best_effort': ReliabilityPolicy.BEST_EFFORT}
 _OUTPUT_TYPES = {'rope/particles': POSE_ARRAY, 'fairlead/tension': WRENCH,
                  'bollard/tension': WRENCH, EVENTS_TOPIC: STRING,
-                 'payload/pose': POSE_STAMPED}
+                 'payload/pose': POSE_STAMPED, 'fairlead/peak_tension': FLOAT64,
+                 'bollard/peak_tension': FLOAT64, 'winch/length': FLOAT64,
+                 PARTED_TOPIC: BOOL}
 # History depth of the pose subscriptions (KEEP_LAST). A full queue drops its oldest pose
 # without a trace (DDS reports no loss for it): at depth 50 a burst of 10,000 poses reached
 # the node as 747 to 887, a 1 kHz stream for 30 s lost 3.5 %. This holds a whole burst, or
@@ -215,8 +219,16 @@ class MooringLineNode(Node):
             'rope/particles': self.create_publisher(PoseArray, 'rope/particles', 10),
             'fairlead/tension': self.create_publisher(Wrench, 'fairlead/tension', 10),
             'bollard/tension': self.create_publisher(Wrench, 'bollard/tension', 10),
+            'fairlead/peak_tension': self.create_publisher(
+                Float64, 'fairlead/peak_tension', 10),
+            'bollard/peak_tension': self.create_publisher(Float64, 'bollard/peak_tension', 10),
+            'winch/length': self.create_publisher(Float64, 'winch/length', 10),
+            # a state, not a stream: latched, so that a monitor started later sees it
+            PARTED_TOPIC: self.create_publisher(Bool, PARTED_TOPIC, QoSProfile(
+                depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)),
             EVENTS_TOPIC: self.create_publisher(String, EVENTS_TOPIC, 100),
         }
+        self._parted = None  # what PARTED_TOPIC said last
         if self.driver.payload:
             self._outputs['payload/pose'] = self.create_publisher(
                 PoseStamped, 'payload/pose', 10)
@@ -236,6 +248,8 @@ class MooringLineNode(Node):
             # not. On the steady clock: under use_sim_time there may be no /clock yet.
             self._qos_timer = self.create_timer(
                 1.0, self._check_pose_publishers, clock=Clock(clock_type=ClockType.STEADY_TIME))
+        self._winch_sub = self.create_subscription(Float64, 'winch/command',
+                                                   self._on_winch_command, 10)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
         self._timer = self.create_timer(_tick_period(line.publish_rate), self._on_tick)
         self._start_recording()
@@ -524,6 +538,15 @@ class MooringLineNode(Node):
         if advance is None:
             return
         sim = self.simulator
+        if advance.parted is not None:
+            parting = advance.parted
+            self._event('parted', t=parting.t, segment=parting.segment,
+                        break_load=parting.break_load)
+            self.get_logger().error(
+                f'the line parted at t = {parting.t:.3f} s, segment {parting.segment} of '
+                f'{sim.props.segments} (0 at the bollard): its tension passed the break load '
+                f'of {parting.break_load / 1e3:.0f} kN. Both pieces go on; ~/reset restores '
+                'the line')
         if advance.beyond_reach:
             self._warn('reach', f'the ends are {advance.beyond_reach:.1f} m apart, beyond '
                        f"the line's reach of {sim.reach:.1f} m (length x (1 + max_strain)):"
@@ -544,6 +567,7 @@ class MooringLineNode(Node):
             return response
         self.driver.reset()
         self._event('reset', t=self.driver.time)
+        self._publish_parted(False)
         response.success = True
         response.message = (
             f'rope restarted on the catenary at t = {self.driver.time:.3f} s')
@@ -570,9 +594,35 @@ class MooringLineNode(Node):
                 float(c) for c in position)
             pose.pose.orientation.w = 1.0
             messages['payload/pose'] = pose
+        messages['fairlead/peak_tension'] = Float64(data=out.fairlead_peak)
+        messages['bollard/peak_tension'] = Float64(data=out.bollard_peak)
+        messages['winch/length'] = Float64(data=out.line_length)
         for topic, msg in messages.items():
             self._outputs[topic].publish(msg)
             self.record(topic, msg)
+        self._publish_parted(out.parted)
+
+    def _publish_parted(self, parted: bool) -> None:
+        """Publish (and record) whether the line has parted, when that changes."""
+        if parted != self._parted:
+            self._parted = parted
+            msg = Bool(data=parted)
+            self._outputs[PARTED_TOPIC].publish(msg)
+            self.record(PARTED_TOPIC, msg)
+
+    def _on_winch_command(self, msg: Float64) -> None:
+        """Take a winch speed from winch/command [m/s] (+ pays out); refuse a non-finite one."""
+        try:
+            self.driver.command_winch(msg.data)
+        except params.ParameterError as e:
+            self._warn('winch', f'winch/command: {e}; ignored')
+            return
+        self._event('winch', t=self.driver.time if self.driver.started else 0.0,
+                    speed=msg.data)
+        if self.simulator.params.winch_mode != 'speed':
+            self._warn('winch_mode', f'winch/command {msg.data:g} m/s kept: it acts while '
+                       "winch_mode is 'speed' (now "
+                       f"'{self.simulator.params.winch_mode}')")
 
     def _event(self, kind: str, **fields: Any) -> None:
         """Publish and record a decision taken on the node clock (see the module docstring)."""

@@ -40,7 +40,7 @@ from typing import Any, Callable, Dict, Optional
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 import numpy as np
-from std_msgs.msg import String
+from std_msgs.msg import Bool, Float64, String
 
 from ..bag import BagError, cdr
 from ..ros2bag import QosSpec
@@ -50,6 +50,8 @@ POSE_STAMPED = 'geometry_msgs/msg/PoseStamped'
 POSE_ARRAY = 'geometry_msgs/msg/PoseArray'
 WRENCH = 'geometry_msgs/msg/Wrench'
 STRING = 'std_msgs/msg/String'
+FLOAT64 = 'std_msgs/msg/Float64'
+BOOL = 'std_msgs/msg/Bool'
 
 
 def pose_stamped_cdr(msg: PoseStamped) -> bytes:
@@ -85,6 +87,8 @@ _TYPES = {
     POSE_ARRAY: (PoseArray, pose_array_cdr, True),
     WRENCH: (Wrench, wrench_cdr, False),
     STRING: (String, string_cdr, False),
+    FLOAT64: (Float64, lambda msg: cdr.float64(msg.data), False),
+    BOOL: (Bool, lambda msg: cdr.boolean(msg.data), False),
 }
 
 
