@@ -185,6 +185,12 @@ DEFINITIONS = {
         'uint8[] data                 # Compressed image buffer\n',
         'RIHS01_15640771531571185e2efc8a100baf923961a4d15d5569652e6cb6691e8e371a'),
     'std_msgs/msg/Bool': (
+        '# This was originally provided as an example message.\n'
+        '# It is deprecated as of Foxy\n'
+        '# It is recommended to create your own semantically meaningful message.\n'
+        '# However if you would like to continue using this please use the equivalent in example'
+        '_msgs.\n'
+        '\n'
         'bool data\n',
         'RIHS01_feb91e995ff9ebd09c0cb3d2aed18b11077585839fb5db80193b62d74528f6c9'),
     'std_msgs/msg/ColorRGBA': (

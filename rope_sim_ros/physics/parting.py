@@ -20,8 +20,8 @@ parts there: that segment, and the bending springs across it, lose their stiffne
 damping, and its rest length becomes PARTED_REST, which no strain limit ever reaches. The
 particles stay where they are, with their masses: the two pieces are the particles on
 either side, still in the one line, each hanging from its end's point, and they recoil
-under the energy the rope had stored. A line parts once (the first segment past its load,
-from end A); it stays parted until it is rebuilt.
+under the energy the rope had stored. A line parts once, at its most loaded segment; it stays
+parted until it is rebuilt.
 
 Also after every step, the force of each line on the points at its ends (the springs and
 dampers at the end particle and the weight of the half segment there; the fluid's share of
@@ -63,12 +63,15 @@ def part_overloaded(x, v, particles, lines, line_real, rest, step):
         if line_real[k, PARTED] >= 0.0 or not limit < np.inf:
             continue
         first = lines[k, FIRST]
+        worst, where = -np.inf, first
         for i in range(first, lines[k, LAST]):
-            if segment_tension(x, v, particles, i) > limit:
-                part(particles, lines, rest, k, i)
-                line_real[k, PARTED] = i - first
-                line_real[k, PARTED_STEP] = step
-                break
+            tension = segment_tension(x, v, particles, i)
+            if tension > worst:
+                worst, where = tension, i
+        if worst > limit:  # the most loaded segment goes
+            part(particles, lines, rest, k, where)
+            line_real[k, PARTED] = where - first
+            line_real[k, PARTED_STEP] = step
 
 
 @numba.njit(cache=True)

@@ -44,6 +44,7 @@ RECORDED_TYPES = (
     'geometry_msgs/msg/PoseStamped',
     'geometry_msgs/msg/Wrench',
     'geometry_msgs/msg/WrenchStamped',
+    'std_msgs/msg/Bool',
     'std_msgs/msg/Float64',
     'std_msgs/msg/String',
     'visualization_msgs/msg/MarkerArray',
