@@ -179,7 +179,7 @@ SPECS: Mapping[str, Spec] = {
         0.5, 'm/s^2', 'largest change of the winch speed per second: starts and stops ramp '
         'at this rate', 0.0, 100.0, low_open=True, read_only=False),
     'winch_brake_load': Spec(
-        0.0, 'N', "brake holding load: above it the brake renders (pays out); 0 = 60 % of "
+        0.0, 'N', 'brake holding load: above it the brake renders (pays out); 0 = 60 % of '
         "the material's MBL, as OCIMF MEG4 recommends", 0.0, 1.0e10, read_only=False),
     'winch_tension': Spec(
         0.0, 'N', 'the tension a constant_tension winch holds at the fairlead; 0 = the '

@@ -482,8 +482,8 @@ class Simulator:
         """
         before = self.params
         self.params, self.props, self.time_step = self._updated(values)
-        if (self.params.winch_mode, self.params.winch_tension) != (before.winch_mode,
-                                                                    before.winch_tension):
+        winch = (self.params.winch_mode, self.params.winch_tension)
+        if winch != (before.winch_mode, before.winch_tension):
             self._held_tension = math.nan  # constant_tension takes the tension of now
         if self.system is not None:
             self.system.lines[0].line_type = self.props.line_type

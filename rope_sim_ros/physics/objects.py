@@ -660,7 +660,7 @@ class System:
         self._line_changes(k, line)
 
     def take_peaks(self) -> np.ndarray:
-        """Return each line's largest end forces since the last call, (L, 2) [N], and clear them."""
+        """Return each line's largest end forces since the last call, (L, 2) [N]; clear them."""
         peaks = self.line_real[:, [PEAK_A, PEAK_B]].copy()
         self.line_real[:, [PEAK_A, PEAK_B]] = 0.0
         return peaks

@@ -165,8 +165,8 @@ def quasi_static_stiffness(x, particles, lines, line_real, k, tension, g):
     sx = x[i + 1, 0] - x[i, 0]
     sy = x[i + 1, 1] - x[i, 1]
     sz = x[i + 1, 2] - x[i, 2]
-    horizontal = tension * np.sqrt(sx * sx + sy * sy) / max(np.sqrt(sx * sx + sy * sy
-                                                                  + sz * sz), 1e-12)
+    span = np.sqrt(sx * sx + sy * sy)
+    horizontal = tension * span / max(np.sqrt(span * span + sz * sz), 1e-12)
     if not horizontal > 0.0:
         return 0.0
     stiffness = particles[i, STIFFNESS] * particles[i, REST]  # EA

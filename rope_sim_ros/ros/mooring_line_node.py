@@ -81,8 +81,7 @@ from .spinning import spin_until_shutdown
 from .. import params
 from ..bag import BagError
 from ..line_driver import (BOLLARD, encode_event, ENDS, EVENTS_TOPIC, FAIRLEAD, LineDriver,
-                           PARTED_TOPIC,
-                           MAX_LAG, PARAMETERS_KEY, parameters_yaml, Published)
+                           MAX_LAG, PARAMETERS_KEY, parameters_yaml, PARTED_TOPIC, Published)
 from ..simulator import Simulator
 from ..trajectory import TrajectoryError
 
