@@ -68,7 +68,8 @@ def simulation(params, motion, rate: float) -> np.ndarray:
         sim.advance_to(t)
         out = sim.output()
         rows.append([t, *out.fairlead_force, out.fairlead_tension, *out.bollard_force,
-                     out.bollard_tension, out.max_strain])
+                     out.bollard_tension, out.max_strain, out.fairlead_peak, out.bollard_peak,
+                     out.line_length, float(out.parted)])
     return np.array(rows)
 
 
@@ -106,6 +107,9 @@ def test_rows_equal_the_simulator(good_run):
     np.testing.assert_allclose(rows[:, 4], np.linalg.norm(rows[:, 1:4], axis=1), rtol=1e-12)
     np.testing.assert_allclose(rows[:, 8], np.linalg.norm(rows[:, 5:8], axis=1), rtol=1e-12)
     assert 500.0 < rows[:, 4].mean() < 5000.0
+    # the peak since the row before is at least the tension now; the line keeps its 40 m
+    assert np.all(rows[:, 10] >= rows[:, 4]) and np.all(rows[:, 11] >= rows[:, 8])
+    assert np.all(rows[:, 12] == 40.0) and not rows[:, 13].any()
 
 
 def test_rate_and_bollard_columns(tmp_path):
@@ -258,7 +262,7 @@ def test_a_payload_adds_its_position_to_out_csv_and_the_bag(tmp_path):
     header, rows = read_out(out)
     assert tuple(header) == OUT_COLUMNS + PAYLOAD_COLUMNS
     assert len(rows) == 101 and np.isfinite(rows).all()
-    payload = rows[:, 10:13]
+    payload = rows[:, len(OUT_COLUMNS):]
     # it hangs about a line's length under the fairlead (the bollard samples are ignored)
     assert payload[0] == pytest.approx([36.0, 0.0, 8.0 - 40.0], abs=0.1)
     assert np.abs(payload[:, 0] - 36.0).max() > 0.01  # the surge swings it

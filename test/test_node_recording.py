@@ -48,7 +48,7 @@ from rope_sim_ros.ros.conversions import pose_array, wrench
 from rope_sim_ros.ros2bag import deserialize
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
-from std_msgs.msg import String
+from std_msgs.msg import Bool, Float64, String
 import yaml
 
 with warnings.catch_warnings():
@@ -64,6 +64,10 @@ TYPES = {
     'fairlead/tension': 'geometry_msgs/msg/Wrench',
     'bollard/tension': 'geometry_msgs/msg/Wrench',
     'rope/events': 'std_msgs/msg/String',
+    'fairlead/peak_tension': 'std_msgs/msg/Float64',
+    'bollard/peak_tension': 'std_msgs/msg/Float64',
+    'winch/length': 'std_msgs/msg/Float64',
+    'rope/parted': 'std_msgs/msg/Bool',
 }
 
 
@@ -422,6 +426,10 @@ def test_sigkill_leaves_a_recoverable_bag(colcon_install, colcon_env, tmp_path):
                 assert all(map(math.isfinite, pose_values(msg)[1]))
             elif isinstance(msg, String):
                 assert json.loads(msg.data)['event']
+            elif isinstance(msg, Float64):  # a peak tension or the winch's length
+                assert math.isfinite(msg.data) and msg.data >= 0.0
+            elif isinstance(msg, Bool):
+                assert msg.data is False  # the line never parts here
             else:
                 assert all(math.isfinite(p.position.z) for p in msg.poses)
     # Chunks are flushed every second: after 3 s more than the first one is there.
