@@ -24,9 +24,8 @@ behind it moves at eps c = 43.853 m/s, and its 100 kJ turn into motion.
 import math
 
 import numpy as np
-import pytest
-
 from physics_cases import reference_params
+import pytest
 from rope_sim_ros.motion import OUT_COLUMNS, read_motion
 from rope_sim_ros.physics.objects import Environment, Line, LineType, Point, System
 from rope_sim_ros.runner import run_motion
@@ -41,6 +40,9 @@ def _bar(segments, break_load):
                     superelastic_adjustment=False)
     x = np.zeros((segments + 1, 3))
     x[:, 0] = np.linspace(0.0, L0 * (1.0 + EPS), segments + 1)
+    # every segment pulls alike, and the line parts at its most loaded one: 1 um more on the
+    # first (+50 N of 500 kN at N 40) makes that the one, as a flaw at A would
+    x[1, 0] += 1e-6
     system = System(Environment(gravity=(0.0, 0.0, 0.0), air_density=0.0))
     system.add_point(Point('fixed', x[0]))
     system.add_point(Point('fixed', x[-1]))
@@ -69,7 +71,7 @@ def test_the_free_end_flies_back_at_strain_times_wave_speed(segments, bound):
     print(f'N {segments}: free end {speed:.3f} m/s, eps c {EPS * WAVE:.3f} m/s')
     assert speed == pytest.approx(EPS * WAVE, rel=bound)  # measured 0.34 % and 0.02 %
     kinetic, _, elastic = system.energy()
-    assert before[2] == pytest.approx(100.0e3, rel=1e-9) and elastic < 1.0  # all released
+    assert before[2] == pytest.approx(100.0e3, rel=1e-8) and elastic < 1.0  # all released
     # less what the dampers took: 84.42 kJ for the converged damped chain (the reference's)
     assert kinetic == pytest.approx(84.42e3, rel=0.02)
     assert np.isfinite(system.x).all() and np.isfinite(system.v).all()
