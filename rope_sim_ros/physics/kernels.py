@@ -36,7 +36,7 @@ from .forces.fluid import (accelerate, add_line_drag, add_line_drag_block, add_m
                            add_point_drag, add_point_drag_block, line_pass, point_fraction)
 from .forces.gravity import add_weight
 from .forces.springs import add_springs, spring_block_at
-from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BENDING, DIAMETER, DRAG,
+from .layout import (ADDED_MASS, ADJUST, AXIAL, BENDING, DIAMETER, DRAG,
                      DRAG_AREA, DRIVEN, END_A, ENV_AIR_DENSITY, ENV_CURRENT, ENV_GRAVITY,
                      ENV_QUAY_NORMAL, ENV_SEABED_LEVEL, ENV_WATER_DENSITY, ENV_WATER_LEVEL,
                      FIRST, FLUID, FREE, INV_MASS, KIND, LAST, LENGTH, MASS, MAX_STRAIN,
@@ -45,20 +45,21 @@ from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BENDING, DIAMET
                      VOLUME_AREA, VOLUME_DIAMETER)
 from .parting import hold_peaks, part_overloaded
 from .superelastic import adjust, over_limit
+from .tension_curve import axial_tension
 from .winch import pay_out, render
 
 
 # -- forces ----------------------------------------------------------------------------------
 
 @numba.njit(cache=True, inline='always')
-def line_forces(x, v, out, particles, lines):
+def line_forces(x, v, out, particles, lines, line_real):
     """Spring and damper forces of every line on its particles into `out` (P, 3)."""
     out[:] = 0.0
     for k in range(lines.shape[0]):
         first, last, axial = lines[k, FIRST], lines[k, LAST], lines[k, AXIAL] == 1
-        add_springs(x, v, out, particles, first, last, False, axial)
+        add_springs(x, v, out, particles, first, last, False, axial, line_real[k])
         if lines[k, BENDING] == 1:
-            add_springs(x, v, out, particles, first, last, True, axial)
+            add_springs(x, v, out, particles, first, last, True, axial, line_real[k])
 
 
 @numba.njit(cache=True, inline='always')
@@ -223,7 +224,7 @@ def end_forces(x, v, particles, lines, line_real, env, out):
     a free point's motion too, but is not part of this reported force.)
     """
     f = np.empty_like(x)
-    line_forces(x, v, f, particles, lines)
+    line_forces(x, v, f, particles, lines, line_real)
     sub = np.zeros(x.shape[0])
     tangent = np.zeros_like(x)
     line_passes(x, particles, lines, line_real, env, sub, tangent)
@@ -292,7 +293,7 @@ def _accelerations(x, v, a, particles, lines, line_real, points, point_x, point_
 
     Rows of line ends are meaningless (their points set them).
     """
-    line_forces(x, v, a, particles, lines)
+    line_forces(x, v, a, particles, lines, line_real)
     line_passes(x, particles, lines, line_real, env, sub, tangent)
     _point_forces(x, v, a, particles, lines, line_real, points, point_x, point_v, env,
                   gravity, contact, sub, tangent, point_a, iso, aniso)
@@ -453,7 +454,8 @@ def largest_load(x, v, point_x, point_v, particles, lines, line_real, env, force
     """
     Return whether the state (particles and points) is finite, and its largest load [N].
 
-    The load is the largest end force or EA times strain; NaN or inf where finite numbers
+    The load is the largest end force or elastic tension at the largest strain (EA times it,
+    or the line's curve at it); NaN or inf where finite numbers
     overflow. Also fills forces (L, 2, 3) with end_forces and strains (L,) with each line's
     largest strain (left as they are when the state is not finite).
     """
@@ -464,7 +466,7 @@ def largest_load(x, v, point_x, point_v, particles, lines, line_real, env, force
     for k in range(lines.shape[0]):
         first, last = lines[k, FIRST], lines[k, LAST]
         strains[k] = max_strain(x[first:last + 1], particles[first:last, REST])
-        load = line_real[k, AXIAL_STIFFNESS] * strains[k]
+        load = axial_tension(line_real[k], strains[k])
         if np.isnan(load):
             return True, np.nan
         largest = max(largest, load)
@@ -521,7 +523,7 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     scratch = np.empty_like(x)
     if not np.any(points[:, KIND] == FREE):  # every line end fixed or driven: no points
         for k in range(drive_x.shape[0]):
-            line_forces(x, v, a1, particles, lines)
+            line_forces(x, v, a1, particles, lines, line_real)
             line_passes(x, particles, lines, line_real, env, sub, tangent)
             _particle_accelerations(x, v, a1, particles, lines, line_real, env, gravity,
                                     contact, sub, tangent)
@@ -532,7 +534,7 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                     xp[i, d] = x[i, d] + dt * v[i, d]
                     vp[i, d] = v[i, d] + dt * a1[i, d]
             _set_ends_at(xp, vp, lines, points, point_x, point_v, drive_x, drive_v, k)
-            line_forces(xp, vp, a2, particles, lines)
+            line_forces(xp, vp, a2, particles, lines, line_real)
             line_passes(xp, particles, lines, line_real, env, sub, tangent)
             _particle_accelerations(xp, vp, a2, particles, lines, line_real, env, gravity,
                                     contact, sub, tangent)
@@ -891,16 +893,16 @@ def _implicit_kinematic_line(x, v, f, particles, line_real, k, first, last, axia
     if implicit_bending:
         band[:3 * m] = 0.0
         for i in range(first, last):
-            spring_block_at(x, particles, i, False, half_h2, dt, axial, block)
+            spring_block_at(x, particles, i, False, half_h2, dt, axial, block, line_real[k])
             _add_band_spring(band, i - first - 1, i - first, m, block)
         for i in range(first, last - 1):
-            spring_block_at(x, particles, i, True, half_h2, dt, axial, block)
+            spring_block_at(x, particles, i, True, half_h2, dt, axial, block, line_real[k])
             _add_band_spring(band, i - first - 1, i - first + 1, m, block)
     else:
         diagonal[:m] = 0.0
         lower[:m] = 0.0
         for i in range(first, last):
-            spring_block_at(x, particles, i, False, half_h2, dt, axial, block)
+            spring_block_at(x, particles, i, False, half_h2, dt, axial, block, line_real[k])
             _add_chain_block(diagonal, lower, i - first, m, block)
     for i in range(first + 1, last):
         local = i - first - 1
@@ -939,7 +941,7 @@ def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, part
                 x[i, p] += dt * v[i, p]
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
-        line_forces(x, v, f, particles, lines)
+        line_forces(x, v, f, particles, lines, line_real)
         line_passes(x, particles, lines, line_real, env, sub, tangent)
         for line in range(lines.shape[0]):
             _implicit_kinematic_line(x, v, f, particles, line_real, line, lines[line, FIRST],
@@ -1030,7 +1032,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                     point_x[q, p] += dt * point_v[q, p]
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
-        line_forces(x, v, f, particles, lines)
+        line_forces(x, v, f, particles, lines, line_real)
         line_passes(x, particles, lines, line_real, env, sub, tangent)
         schur[:] = 0.0
         for q in range(n_points):
@@ -1067,7 +1069,8 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             if coupled:
                 coupling[:m] = 0.0
             for i in range(first, last):
-                spring_block_at(x, particles, i, False, half_h2, dt, axial, block)
+                spring_block_at(x, particles, i, False, half_h2, dt, axial, block,
+                                line_real[line])
                 if coupled:
                     _scatter(block, i, i + 1, first, last, end_col, end_free, free_index,
                              implicit_bending, band, diagonal, lower, coupling, schur)
@@ -1077,7 +1080,8 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                     _add_chain_block(diagonal, lower, i - first, m, block)
             if implicit_bending:
                 for i in range(first, last - 1):
-                    spring_block_at(x, particles, i, True, half_h2, dt, axial, block)
+                    spring_block_at(x, particles, i, True, half_h2, dt, axial, block,
+                                    line_real[line])
                     if coupled:
                         _scatter(block, i, i + 2, first, last, end_col, end_free,
                                  free_index, True, band, diagonal, lower, coupling, schur)

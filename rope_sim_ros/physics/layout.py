@@ -45,7 +45,14 @@ LINE_REAL table (L, LINE_REAL_COLUMNS): MAX_STRAIN, AXIAL_STIFFNESS (EA [N]), DI
 drag and contact [m]), VOLUME_DIAMETER (dv, the surface ramp's width [m]), VOLUME_AREA
 (A_v = pi dv^2 / 4 [m^2]), NORMAL_DRAG (1/2 Cd d [m]), TANGENTIAL_DRAG (1/2 CdAx pi d [m]),
 NORMAL_ADDED_MASS (Ca), TANGENTIAL_ADDED_MASS (CaAx); then the winch's, parting's and peak
-hold's columns, listed below, some of which the step writes (winch.py, parting.py).
+hold's columns, listed below, some of which the step writes (winch.py, parting.py); then the
+line's strain-tension curve (tension_curve.py): CURVE_POINTS, its number of points n (0: a
+linear line, EA), and from CURVE_STRAIN, CURVE_TENSION and CURVE_SLOPE CURVE_CAPACITY columns
+each: the points' strains and tensions [N] (the first (0, 0)) and the slope of the segment
+that starts at each point [N per unit strain] (the last one's continues past the table). A
+fixed number of columns keeps every kernel's arguments as they are; 32 points (MoorDyn reads
+at most 30 from its table files, plus the (0, 0) it leaves implied) cost a line 0.8 kB. The
+curve comes last so that its size can change without moving any other column.
 
 POINT table (Q, POINT_COLUMNS): KIND (FIXED, DRIVEN or FREE), OWN_MASS [kg], TOTAL_MASS (own
 mass plus the half segments of every line end on it [kg]); a free point's VOLUME [m^3],
@@ -105,7 +112,13 @@ PARTED_STEP = 22  # state: the step of the run in which it parted (0-based), -1 
 PEAK_A = 23  # state: the largest end force on end A's point since it was cleared [N]
 PEAK_B = 24  # likewise end B
 WINCH_RAMP = 25  # state: the winch's acceleration in the last step [m/s^2]
-LINE_REAL_COLUMNS = 26
+# the strain-tension curve (tension_curve.py); none of it is state
+CURVE_POINTS = 26
+CURVE_CAPACITY = 32
+CURVE_STRAIN = 27
+CURVE_TENSION = CURVE_STRAIN + CURVE_CAPACITY
+CURVE_SLOPE = CURVE_TENSION + CURVE_CAPACITY
+LINE_REAL_COLUMNS = CURVE_SLOPE + CURVE_CAPACITY
 
 NO_WINCH = 0
 SPEED = 1

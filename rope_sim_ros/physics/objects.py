@@ -15,7 +15,8 @@
 """
 The objects of a mooring system, each owning its state, as MoorDyn has them.
 
-- LineType: what a line is made of (per metre numbers, damping model, strain limit).
+- LineType: what a line is made of (per metre numbers, EA or a strain-tension curve, damping
+  model, strain limit).
 - Environment: gravity, air, water (level, density, a uniform current), a flat seabed and an
   optional quay block (forces/fluid.py and forces/contact.py say how they act).
 - Point: where line ends meet. FIXED (never moves), DRIVEN (its position and velocity are set
@@ -41,6 +42,7 @@ state the kernels step.
 """
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 import math
 import numbers
 from typing import List, Sequence
@@ -62,6 +64,7 @@ from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, UNSTRETCHE
                      WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND, WINCH_END,
                      WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
                      WINCH_RESPONSE, WINCH_SPEED)
+from .tension_curve import check_curve, TensionCurve
 
 KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE}
 SMALLEST_SINK = 1e-4  # [m]: the contact damping's ramp depth at least (a buoyant line's)
@@ -91,7 +94,8 @@ class LineType:
     What a line is made of.
 
     :ivar mass_per_length: [kg/m].
-    :ivar axial_stiffness: EA [N].
+    :ivar axial_stiffness: EA [N]: the structural springs' stiffness where the line has no
+        tension_curve; with one, the nominal EA of its bending springs only.
     :ivar axial_damping: BA [N s]: a segment's damping coefficient is BA / its rest length.
     :ivar diameter: nominal diameter d [m]: drag and contact width.
     :ivar mbl: minimum breaking load [N] (for the parting model to come).
@@ -107,6 +111,9 @@ class LineType:
     :ivar tangential_drag: CdAx, on the circumference pi d (MoorDyn's CdAx).
     :ivar normal_added_mass: Ca (MoorDyn's Ca), on the volume A_v = pi dv^2 / 4 per metre.
     :ivar tangential_added_mass: CaAx (MoorDyn's CaAx).
+    :ivar tension_curve: the load-extension as (strain, tension [N]) pairs, MoorDyn's table
+        (tension_curve.py: linear between the points, 0 at a strain <= 0, the last slope past
+        the table, where MoorDyn clamps); () for a linear line of EA. Kept starting at (0, 0).
     """
 
     mass_per_length: float
@@ -125,12 +132,37 @@ class LineType:
     tangential_drag: float = 0.0
     normal_added_mass: float = 0.0
     tangential_added_mass: float = 0.0
+    tension_curve: tuple = ()
 
     def __post_init__(self):
-        """Check the fluid's numbers (finite, >= 0)."""
+        """Check the fluid's numbers (finite, >= 0) and the curve (tension_curve.py's rules)."""
         for name in ('diameter', 'volume_diameter', 'normal_drag', 'tangential_drag',
                      'normal_added_mass', 'tangential_added_mass'):
             _finite(name, getattr(self, name), 0.0)
+        object.__setattr__(self, 'tension_curve', check_curve(self.tension_curve))
+
+    @cached_property
+    def curve(self):
+        """Return the TensionCurve of the line, None for a linear line."""
+        return TensionCurve.from_pairs(self.tension_curve) if self.tension_curve else None
+
+    def tension(self, strain):
+        """Return the elastic tension [N] at strain(s): the curve's, or EA max(strain, 0)."""
+        if self.curve is not None:
+            return self.curve.tension(strain)
+        return self.axial_stiffness * np.maximum(np.asarray(strain, dtype=float), 0.0)
+
+    def strain_at(self, tension):
+        """Return the strain at elastic tension(s) [N]: the curve's inverse, or T / EA."""
+        if self.curve is not None:
+            return self.curve.strain_at(tension)
+        return np.maximum(np.asarray(tension, dtype=float), 0.0) / self.axial_stiffness
+
+    def stiffest(self, strain: float) -> float:
+        """Return the largest tangent dT/dstrain [N] up to `strain`: EA on a linear line."""
+        if self.curve is not None:
+            return self.curve.stiffest(strain)
+        return self.axial_stiffness
 
     @property
     def displacing_diameter(self) -> float:
@@ -139,8 +171,8 @@ class LineType:
 
     @property
     def wave_speed(self) -> float:
-        """Speed of an axial wave, c = sqrt(EA / m) [m/s]."""
-        return math.sqrt(self.axial_stiffness / self.mass_per_length)
+        """Fastest axial wave up to the strain limit, c = sqrt(dT/dstrain / m) [m/s]."""
+        return math.sqrt(self.stiffest(self.max_strain) / self.mass_per_length)
 
 
 @dataclass(frozen=True)
@@ -511,6 +543,8 @@ class System:
                 t.superelastic_adjustment)
             self.line_real[k, MAX_STRAIN] = t.max_strain
             self.line_real[k, AXIAL_STIFFNESS] = t.axial_stiffness
+            if t.curve is not None:
+                t.curve.fill(self.line_real[k])
             dv = t.displacing_diameter
             real = self.line_real[k]
             real[DIAMETER] = t.diameter
@@ -715,9 +749,10 @@ class System:
 
         Kinetic of every particle (a line end on a free point counted with the point, once),
         potential of every lumped mass in gravity less the air it displaces (0 at the
-        origin), elastic of the structural and bending springs. Not counted: the added
-        masses' kinetic energy, and the buoyancy of water (its potential depends on how each
-        segment crosses the surface).
+        origin), elastic of the structural springs (EA stretch^2 / (2 l), or on a curve the
+        rest length times its integral up to the strain) and the bending springs. Not
+        counted: the added masses' kinetic energy, and the buoyancy of water (its potential
+        depends on how each segment crosses the surface).
         """
         kinetic = potential = elastic = 0.0
         g = self.gravity
@@ -754,8 +789,13 @@ class System:
             rows = self.particles[first:last + 1]
             x = self.x[first:last + 1]
             length = np.linalg.norm(x[1:] - x[:-1], axis=1)
-            stretch = np.maximum(length - rows[:-1, REST], 0.0)
-            elastic += 0.5 * float(np.sum(rows[:-1, STIFFNESS] * stretch ** 2))
+            curve = self.lines[k].line_type.curve
+            if curve is not None:
+                rest = rows[:-1, REST]
+                elastic += float(np.sum(rest * curve.energy(length / rest - 1.0)))
+            else:
+                stretch = np.maximum(length - rows[:-1, REST], 0.0)
+                elastic += 0.5 * float(np.sum(rows[:-1, STIFFNESS] * stretch ** 2))
             if self.lines_table[k, BENDING] and len(x) > 2:
                 bend = np.linalg.norm(x[2:] - x[:-2], axis=1) - rows[:-2, BEND_REST]
                 elastic += 0.5 * float(np.sum(rows[:-2, BEND_STIFFNESS] * bend ** 2))

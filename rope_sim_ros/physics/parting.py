@@ -87,10 +87,12 @@ def hold_peaks(x, v, particles, lines, line_real, gravity, scratch):
             for p in range(3):
                 scratch[row, p] = particles[row, MASS] * gravity[p]
             start = row if e == 0 else row - 1
-            add_springs(x, v, scratch, particles, start, start + 1, False, axial)
+            add_springs(x, v, scratch, particles, start, start + 1, False, axial,
+                        line_real[k])
             if bending:
                 start = row if e == 0 else row - 2
-                add_springs(x, v, scratch, particles, start, start + 2, True, axial)
+                add_springs(x, v, scratch, particles, start, start + 2, True, axial,
+                            line_real[k])
             load = np.sqrt(scratch[row, 0] ** 2 + scratch[row, 1] ** 2 + scratch[row, 2] ** 2)
             column = PEAK_A if e == 0 else PEAK_B
             if load > line_real[k, column]:
