@@ -18,7 +18,12 @@ Static shapes of a mooring line: Irvine's elastic catenary and the lumped-mass c
 Planar convention (test/data/README.md): end A at (0, 0), end B at (span, rise), x
 horizontal from A to B, z up. The line pulls A with (+H, V_A) and B with (-H, -V_B), so
 V_B - V_A = w L. The tension at unstretched arc length s from A is (H, V_A + w s), and a
-segment of unstretched length ds stretches to ds (1 + T / EA).
+segment of unstretched length ds stretches to ds (1 + T / EA), or on a line with a
+strain-tension curve (tension_curve.py) to ds (1 + e(T)), e the curve's inverse. The curve's
+inverse is piecewise linear in T, e = a_k + b_k T, so the continuous solution
+x = int (1 + e(T)) H / T ds, z = int (1 + e(T)) V / T ds has a closed form on every piece
+(V_k = +-sqrt(T_k^2 - H^2) bound them): a_k H asinh(V / H) + b_k H V and a_k T + b_k V^2 / 2
+(over w) on top of the inextensible catenary; the functions take it as tension_curve=.
 
 The 3-D functions take world points and a gravity vector: 'up' is -gravity / |gravity| and the
 horizontal direction is the chord projected onto the plane normal to gravity. There,
@@ -38,6 +43,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .forces import fluid
+from .tension_curve import TensionCurve
 
 # Residual of the closure equations relative to the line's length at which Newton stops.
 _TOLERANCE = 1e-12
@@ -192,6 +198,75 @@ def _catenary_residual(x: np.ndarray, span: float, rise: float, length: float, w
     return f, jac
 
 
+def _asinh_between(p: float, q: float, h: float) -> float:
+    """Return asinh(q / h) - asinh(p / h) for p, q of one sign (or 0), without cancellation."""
+    tp, tq = math.hypot(h, p), math.hypot(h, q)
+    return math.asinh((q - p) * (q + p) / (q * tp + p * tq)) if q != p else 0.0
+
+
+def _curve_integrals(h: float, v_a: float, v: float, w: float,
+                     curve: TensionCurve) -> tuple:
+    """
+    Return the elastic parts of x, z and dx/dH from vertical force v_a to v (> v_a).
+
+    int e(T) H / T dV / w, int e(T) V / T dV / w and int d/dH (e(T) H / T) dV / w, e = a + b T
+    on each piece, over [v_a, v] split at V = 0 and where T crosses a piece's first tension.
+    """
+    starts, a, b = curve.inverse_pieces()
+    cuts = [v_a, v, 0.0]
+    for t_k in starts[1:]:
+        if t_k > h:
+            side = math.sqrt((t_k - h) * (t_k + h))
+            cuts += [side, -side]
+    cuts = sorted(c for c in set(cuts) if v_a <= c <= v)
+    x = z = dh = 0.0
+    for p, q in zip(cuts, cuts[1:]):
+        tp, tq = math.hypot(h, p), math.hypot(h, q)
+        k = int(np.clip(np.searchsorted(starts, math.hypot(h, 0.5 * (p + q))) - 1, 0,
+                        len(starts) - 1))
+        z += a[k] * (q - p) * (q + p) / (tq + tp) + 0.5 * b[k] * (q - p) * (q + p)
+        if h > 0.0:  # a vertical hang (H = 0) has no horizontal extent
+            asinh = _asinh_between(p, q, h)
+            x += a[k] * h * asinh + b[k] * h * (q - p)
+            dh += a[k] * (asinh - (q / tq - p / tp)) + b[k] * (q - p)
+    return x / w, z / w, dh / w
+
+
+def _curve_catenary_residual(x: np.ndarray, span: float, rise: float, length: float, w: float,
+                             curve: TensionCurve) -> tuple[np.ndarray, np.ndarray]:
+    """Closure at B of the catenary of a line with a curve, and its Jacobian; x = (H, V_B)."""
+    h, v_b = float(x[0]), float(x[1])
+    wl = w * length
+    v_a = v_b - wl
+    t_a = math.hypot(h, v_a)
+    t_b = math.hypot(h, v_b)
+    d_asinh = float(_asinh_difference(v_b, v_a, wl, t_b, t_a, h))
+    x_el, z_el, dh_el = _curve_integrals(h, v_a, v_b, w, curve)
+    e_a, e_b = (float(e) for e in curve.strain_at([t_a, t_b]))
+    f = np.array([
+        h / w * d_asinh + x_el - span,
+        length * (v_a + v_b) / (t_a + t_b) + z_el - rise,
+    ])
+    # Symmetric, as the linear one: the compliance matrix of the line's end.
+    off = h / w * ((1.0 + e_b) / t_b - (1.0 + e_a) / t_a)
+    jac = np.array([
+        [(d_asinh - v_b / t_b + v_a / t_a) / w + dh_el, off],
+        [off, ((1.0 + e_b) * v_b / t_b - (1.0 + e_a) * v_a / t_a) / w],
+    ])
+    return f, jac
+
+
+def _equivalent_ea(curve: Optional[TensionCurve], ea: float, span: float, rise: float,
+                   length: float) -> float:
+    """Return a linear EA to start a curve's Newton from: its secant at the chord's strain."""
+    if curve is None:
+        return ea
+    strain = math.hypot(span, rise) / length - 1.0
+    if strain <= 0.0:
+        return float(curve.slopes[0])
+    return float(curve.tension(strain)) / strain
+
+
 def _catenary_guess(span: float, rise: float, length: float, w: float,
                     ea: float) -> np.ndarray:
     """Start (H, V_B) from MoorPy's lambda guess, raised to a taut chord's elastic stretch."""
@@ -277,7 +352,8 @@ def _newton(residual: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
 
 
 def solve_catenary(span: float, rise: float, length: float, weight_per_length: float,
-                   axial_stiffness: float) -> CatenarySolution:
+                   axial_stiffness: float,
+                   tension_curve: Optional[TensionCurve] = None) -> CatenarySolution:
     """
     Solve Irvine's elastic catenary between A = (0, 0) and B = (span, rise).
 
@@ -289,6 +365,7 @@ def solve_catenary(span: float, rise: float, length: float, weight_per_length: f
     :param length: unstretched length L [m], > 0.
     :param weight_per_length: weight w per unstretched metre [N/m], > 0.
     :param axial_stiffness: EA [N], > 0.
+    :param tension_curve: the line's strain-tension curve; EA then only starts Newton.
 
     :returns: The end forces.
 
@@ -303,26 +380,31 @@ def solve_catenary(span: float, rise: float, length: float, weight_per_length: f
     if rise > 0.0:
         # Solve from B, so that the unknown is the lower end's V: it can be tiny (a line
         # hanging almost straight up from A), and V_B - w L would lose it to rounding.
-        h, v_a, v_b = _solve_lower_end(span, -rise, length, w, ea)
+        h, v_a, v_b = _solve_lower_end(span, -rise, length, w, ea, tension_curve)
         v_a, v_b = -v_b, -v_a
     else:
-        h, v_a, v_b = _solve_lower_end(span, rise, length, w, ea)
+        h, v_a, v_b = _solve_lower_end(span, rise, length, w, ea, tension_curve)
     return CatenarySolution(h, v_a, v_b, math.hypot(h, v_a), math.hypot(h, v_b))
 
 
-def _solve_lower_end(span: float, rise: float, length: float, w: float,
-                     ea: float) -> tuple[float, float, float]:
+def _solve_lower_end(span: float, rise: float, length: float, w: float, ea: float,
+                     curve: Optional[TensionCurve] = None) -> tuple[float, float, float]:
     """Return (H, V_A, V_B) of a catenary whose end B is not above A (rise <= 0)."""
+    if curve is None:
+        def residual(x):
+            return _catenary_residual(x, span, rise, length, w, ea)
+    else:
+        def residual(x):
+            return _curve_catenary_residual(x, span, rise, length, w, curve)
     starts = (
-        _catenary_guess(span, rise, length, w, ea),
+        _catenary_guess(span, rise, length, w, _equivalent_ea(curve, ea, span, rise, length)),
         # Nearly vertical lines whose lower end is almost unloaded defeat the first start
         # (V changes sign within H of the solution): begin from the vertical hang there.
         np.array([0.5 * w * span * 1e-6, 0.5 * w * (rise + length)]),
     )
     for start in starts:
         try:
-            h, v_b = _newton(lambda x: _catenary_residual(x, span, rise, length, w, ea),
-                             start, length, 'elastic catenary')
+            h, v_b = _newton(residual, start, length, 'elastic catenary')
         except CatenaryError as error:
             failure = error
             continue
@@ -331,7 +413,9 @@ def _solve_lower_end(span: float, rise: float, length: float, w: float,
 
 
 def catenary_profile(solution: CatenarySolution, length: float, weight_per_length: float,
-                     axial_stiffness: float, s: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+                     axial_stiffness: float, s: ArrayLike,
+                     tension_curve: Optional[TensionCurve] = None
+                     ) -> tuple[np.ndarray, np.ndarray]:
     """
     Return the planar shape of a solved catenary.
 
@@ -340,6 +424,7 @@ def catenary_profile(solution: CatenarySolution, length: float, weight_per_lengt
     :param weight_per_length: w [N/m], > 0.
     :param axial_stiffness: EA [N], > 0.
     :param s: unstretched arc lengths from A [m] (any shape).
+    :param tension_curve: the line's strain-tension curve (EA then unused).
 
     :returns: (x, z): horizontal and vertical positions relative to A [m], shaped like s.
 
@@ -355,7 +440,7 @@ def catenary_profile(solution: CatenarySolution, length: float, weight_per_lengt
     t = np.hypot(h, v)
     t_a = math.hypot(h, v_a)
     if h > 0.0:
-        x = h * s / ea + h / w * _asinh_difference(v, v_a, w * s, t, t_a, h)
+        x = h / w * _asinh_difference(v, v_a, w * s, t, t_a, h)
     else:  # a vertical hang: no horizontal force, no horizontal extent
         x = np.zeros_like(s)
     # z = (V^2 - V_A^2) / (2 w EA) + (T - T_A) / w, written without cancellation; the
@@ -363,7 +448,18 @@ def catenary_profile(solution: CatenarySolution, length: float, weight_per_lengt
     denominator = np.asarray(t + t_a)
     inverse = np.divide(1.0, denominator, out=np.zeros_like(denominator),
                         where=denominator > 0.0)
-    z = s * (v + v_a) * (0.5 / ea + inverse)
+    if tension_curve is None:
+        if h > 0.0:
+            x = h * s / ea + x
+        return x, s * (v + v_a) * (0.5 / ea + inverse)
+    # the inextensible catenary plus the curve's stretch, piece by piece, at every s
+    x, z = x.copy(), s * (v + v_a) * inverse
+    flat_x, flat_z = x.reshape(-1), z.reshape(-1)
+    for i, v_i in enumerate(v.reshape(-1)):
+        if v_i > v_a:
+            dx, dz, _ = _curve_integrals(h, v_a, float(v_i), w, tension_curve)
+            flat_x[i] += dx
+            flat_z[i] += dz
     return x, z
 
 
@@ -412,7 +508,7 @@ def _check_line(end_a, end_b, gravity, length, weight_per_length, axial_stiffnes
 
 def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
                     weight_per_length: float, axial_stiffness: float, gravity: ArrayLike,
-                    s: ArrayLike) -> np.ndarray:
+                    s: ArrayLike, tension_curve: Optional[TensionCurve] = None) -> np.ndarray:
     """
     Return world points of the elastic catenary between two ends.
 
@@ -423,6 +519,7 @@ def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
     :param axial_stiffness: EA [N], > 0.
     :param gravity: (3,) gravity vector [m/s^2], any direction; zero means weightless.
     :param s: (M,) unstretched arc lengths from A [m].
+    :param tension_curve: the line's strain-tension curve, if it has one.
 
     :returns: (M, 3) points; s = 0 gives end A and s = L gives end B.
 
@@ -436,8 +533,8 @@ def catenary_points(end_a: ArrayLike, end_b: ArrayLike, length: float,
         # Straight; stretched evenly if the chord is longer than L, else spread evenly.
         return end_a + np.outer(fraction, end_b - end_a)
     up, horizontal, span, rise = _vertical_frame(end_a, end_b, gravity)
-    solution = solve_catenary(span, rise, length, w, ea)
-    x, z = catenary_profile(solution, length, w, ea, np.append(s, length))
+    solution = solve_catenary(span, rise, length, w, ea, tension_curve)
+    x, z = catenary_profile(solution, length, w, ea, np.append(s, length), tension_curve)
     points = end_a + np.outer(x, horizontal) + np.outer(z, up)
     return _close_on_end(points[:-1], fraction, end_b, points[-1])
 
@@ -471,8 +568,38 @@ def _chain_residual(x: np.ndarray, span: float, rise: float, l0: float,
     return f, jac
 
 
+def _curve_chain_residual(x: np.ndarray, span: float, rise: float, l0: float,
+                          offsets: np.ndarray,
+                          curve: TensionCurve) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Closure of the chain of a line with a curve, and its Jacobian (as _chain_residual).
+
+    A segment of tension t is l0 (1 + e(t)) long, e the curve's inverse, de/dt its
+    compliance c: d/dH of l0 (1 + e) H / t is l0 ((1 + e) V^2 / t^3 + c H^2 / t^2), and so on.
+    """
+    h, v0 = float(x[0]), float(x[1])
+    v = v0 + offsets
+    t = np.hypot(h, v)
+    stretch = 1.0 + curve.strain_at(t)
+    compliance = curve.compliance(t)
+    inv_t = 1.0 / t
+    inv_t2 = inv_t * inv_t
+    inv_t3 = inv_t2 * inv_t
+    f = np.array([
+        l0 * h * np.sum(stretch * inv_t) - span,
+        l0 * np.sum(stretch * v * inv_t) - rise,
+    ])
+    off = l0 * h * np.sum(v * (compliance * inv_t2 - stretch * inv_t3))
+    jac = np.array([
+        [l0 * np.sum(stretch * v * v * inv_t3 + compliance * h * h * inv_t2), off],
+        [off, l0 * np.sum(stretch * h * h * inv_t3 + compliance * v * v * inv_t2)],
+    ])
+    return f, jac
+
+
 def _chain_verticals(span: float, rise: float, length: float, loads: np.ndarray,
-                     ea: float) -> tuple[float, np.ndarray]:
+                     ea: float, curve: Optional[TensionCurve] = None
+                     ) -> tuple[float, np.ndarray]:
     """
     Return H and the vertical components (N,) of the segments' tensions, from A to B.
 
@@ -481,11 +608,11 @@ def _chain_verticals(span: float, rise: float, length: float, loads: np.ndarray,
     """
     if loads.sum() < 0.0:
         # A buoyant chain is a heavy one upside down: flip the vertical.
-        h, v = _chain_verticals(span, -rise, length, -loads, ea)
+        h, v = _chain_verticals(span, -rise, length, -loads, ea, curve)
         return h, -v
     if rise < 0.0:
         # Solve from B so that the unknown is the lower end's V (see solve_catenary).
-        h, v = _chain_verticals(span, -rise, length, loads[::-1], ea)
+        h, v = _chain_verticals(span, -rise, length, loads[::-1], ea, curve)
         return h, -v[::-1]
     segments = len(loads) + 1
     l0 = length / segments
@@ -494,25 +621,40 @@ def _chain_verticals(span: float, rise: float, length: float, loads: np.ndarray,
     # middle of the first segment is the chain's first segment's V.
     w = max(loads.sum(), 1e-3 * np.abs(loads).sum()) / (length - l0) if segments > 1 else 0.0
     if w > 0.0:
-        seed = solve_catenary(span, rise, length, w, ea)
+        seed = solve_catenary(span, rise, length, w, ea, curve)
         start = np.array([seed.horizontal_tension, seed.vertical_a + 0.5 * w * l0])
     else:  # one segment: a straight spring
         chord = math.hypot(span, rise)
-        tension = ea * max(chord / length - 1.0, 1e-9)
+        tension = _tension(max(chord / length - 1.0, 1e-9), ea, curve)
         start = np.array([tension * span / chord, tension * rise / chord])
     span = max(span, _MIN_SPAN_FRACTION * length)
-    h, v0 = _newton(lambda x: _chain_residual(x, span, rise, l0, offsets, ea),
-                    start, length, 'lumped-mass chain')
+    if curve is None:
+        def residual(x):
+            return _chain_residual(x, span, rise, l0, offsets, ea)
+    else:
+        def residual(x):
+            return _curve_chain_residual(x, span, rise, l0, offsets, curve)
+    h, v0 = _newton(residual, start, length, 'lumped-mass chain')
     return float(h), v0 + offsets
 
 
+def _tension(strain: float, ea: float, curve: Optional[TensionCurve]) -> float:
+    """Return the tension at a strain >= 0 [N]: EA strain, or the curve's."""
+    return ea * strain if curve is None else float(curve.tension(strain))
+
+
+def _strain(tension: np.ndarray, ea: float, curve: Optional[TensionCurve]) -> np.ndarray:
+    """Return the strain at tensions >= 0: T / EA, or the curve's inverse."""
+    return tension / ea if curve is None else curve.strain_at(tension)
+
+
 def _weightless_chain(end_a: np.ndarray, end_b: np.ndarray, length: float, segments: int,
-                      ea: float) -> ChainEquilibrium:
+                      ea: float, curve: Optional[TensionCurve] = None) -> ChainEquilibrium:
     chord = end_b - end_a
     chord_length = float(np.linalg.norm(chord))
     # A chain shorter than its chord stretches evenly; a longer one rests unloaded (any
     # shape is an equilibrium; the chord is the obvious one).
-    tension = ea * max(chord_length / length - 1.0, 0.0)
+    tension = _tension(max(chord_length / length - 1.0, 0.0), ea, curve)
     direction = chord / chord_length if chord_length > 0.0 else np.zeros(3)
     return ChainEquilibrium(
         positions=_straight_line(end_a, end_b, segments),
@@ -525,7 +667,8 @@ def _weightless_chain(end_a: np.ndarray, end_b: np.ndarray, length: float, segme
 
 def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: int,
                       weight_per_length: float, axial_stiffness: float,
-                      gravity: ArrayLike) -> ChainEquilibrium:
+                      gravity: ArrayLike,
+                      tension_curve: Optional[TensionCurve] = None) -> ChainEquilibrium:
     """
     Return the exact static equilibrium of the N-segment lumped-mass chain.
 
@@ -541,6 +684,8 @@ def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segment
     :param weight_per_length: weight per unstretched metre at this gravity [N/m], >= 0.
     :param axial_stiffness: EA [N], > 0.
     :param gravity: (3,) gravity vector [m/s^2]; zero means weightless (a straight chain).
+    :param tension_curve: the line's strain-tension curve: a segment of tension T is then
+        l0 (1 + e(T)) long (EA only starts Newton).
 
     :returns: Positions, end forces and segment tensions.
 
@@ -551,15 +696,17 @@ def chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float, segment
         end_a, end_b, gravity, length, weight_per_length, axial_stiffness)
     segments = _check_segments(segments)
     if _is_weightless(w, gravity):
-        return _weightless_chain(end_a, end_b, length, segments, ea)
+        return _weightless_chain(end_a, end_b, length, segments, ea, tension_curve)
     weights = np.full(segments + 1, w * length / segments)
     weights[[0, -1]] *= 0.5
-    return _loaded_chain(end_a, end_b, length, weights, ea, gravity)
+    return _loaded_chain(end_a, end_b, length, weights, ea, gravity, tension_curve)
 
 
 def loaded_chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float,
                              node_weights: ArrayLike, axial_stiffness: float,
-                             gravity: ArrayLike) -> ChainEquilibrium:
+                             gravity: ArrayLike,
+                             tension_curve: Optional[TensionCurve] = None
+                             ) -> ChainEquilibrium:
     """
     Return the static equilibrium of a lumped-mass chain whose nodes weigh node_weights.
 
@@ -574,6 +721,7 @@ def loaded_chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float,
         forces), finite.
     :param axial_stiffness: EA [N], > 0.
     :param gravity: (3,) gravity vector [m/s^2]; it gives the direction 'down'.
+    :param tension_curve: the line's strain-tension curve, if it has one.
 
     :returns: Positions, end forces and segment tensions.
 
@@ -586,7 +734,7 @@ def loaded_chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float,
     if not np.all(np.isfinite(weights)):
         raise CatenaryError('node_weights must be finite')
     if not np.any(gravity) or not np.any(weights[1:-1]):
-        chain = _weightless_chain(end_a, end_b, length, len(weights) - 1, ea)
+        chain = _weightless_chain(end_a, end_b, length, len(weights) - 1, ea, tension_curve)
         if np.any(gravity):
             down = gravity / np.linalg.norm(gravity)
             chain = ChainEquilibrium(chain.positions, chain.force_a + weights[0] * down,
@@ -596,18 +744,19 @@ def loaded_chain_equilibrium(end_a: ArrayLike, end_b: ArrayLike, length: float,
     if weights[1:-1].sum() == 0.0:
         raise CatenaryError('node_weights of the interior sum to 0 with mixed signs: no '
                             'unique equilibrium to seed')
-    return _loaded_chain(end_a, end_b, length, weights, ea, gravity)
+    return _loaded_chain(end_a, end_b, length, weights, ea, gravity, tension_curve)
 
 
 def _loaded_chain(end_a: np.ndarray, end_b: np.ndarray, length: float, weights: np.ndarray,
-                  ea: float, gravity: np.ndarray) -> ChainEquilibrium:
+                  ea: float, gravity: np.ndarray,
+                  curve: Optional[TensionCurve] = None) -> ChainEquilibrium:
     """Solve the chain whose nodes weigh `weights` (N + 1,), checked inputs."""
     segments = len(weights) - 1
     up, horizontal, span, rise = _vertical_frame(end_a, end_b, gravity)
     l0 = length / segments
-    h, v = _chain_verticals(span, rise, length, weights[1:-1], ea)
+    h, v = _chain_verticals(span, rise, length, weights[1:-1], ea, curve)
     t = np.hypot(h, v)
-    stretched = l0 * (1.0 + t / ea)
+    stretched = l0 * (1.0 + _strain(t, ea, curve))
     steps = np.outer(stretched * h / t, horizontal) + np.outer(stretched * v / t, up)
     positions = end_a + np.vstack([np.zeros(3), np.cumsum(steps, axis=0)])
     fraction = np.linspace(0.0, 1.0, segments + 1)
@@ -871,14 +1020,16 @@ _WEIGHT_PASSES = 30
 _WEIGHT_TOLERANCE = 1e-10
 
 
-def _uniform_shape(end_a, end_b, length, segments, w, ea, gravity) -> Optional[np.ndarray]:
+def _uniform_shape(end_a, end_b, length, segments, w, ea, gravity,
+                   curve=None) -> Optional[np.ndarray]:
     """Return the chain's equilibrium, else the catenary, of one weight w (any sign), or None."""
     if w < 0.0:  # a buoyant line hangs upwards
         w, gravity = -w, -gravity
     shapes = (
-        lambda: chain_equilibrium(end_a, end_b, length, segments, w, ea, gravity).positions,
+        lambda: chain_equilibrium(end_a, end_b, length, segments, w, ea, gravity,
+                                  curve).positions,
         lambda: catenary_points(end_a, end_b, length, w, ea, gravity,
-                                np.linspace(0.0, length, segments + 1)),
+                                np.linspace(0.0, length, segments + 1), curve),
     )
     for shape in shapes:
         try:
@@ -891,11 +1042,11 @@ def _uniform_shape(end_a, end_b, length, segments, w, ea, gravity) -> Optional[n
 
 
 def _water_shape(end_a, end_b, length, segments, w_air, w_water, water_level, dv, ea,
-                 gravity) -> Optional[np.ndarray]:
+                 gravity, curve=None) -> Optional[np.ndarray]:
     """Return the chain's equilibrium with each node's weight where it lies, or a guess."""
     mid = 0.5 * (end_a[2] + end_b[2])
     positions = _uniform_shape(end_a, end_b, length, segments,
-                               w_water if mid < water_level else w_air, ea, gravity)
+                               w_water if mid < water_level else w_air, ea, gravity, curve)
     if positions is None:
         return None
     rest = np.full(segments, length / segments)
@@ -905,7 +1056,7 @@ def _water_shape(end_a, end_b, length, segments, w_air, w_water, water_level, dv
     for k in range(_WEIGHT_PASSES):
         try:
             positions = loaded_chain_equilibrium(end_a, end_b, length, weights, ea,
-                                                 gravity).positions
+                                                 gravity, curve).positions
         except CatenaryError:
             break
         if not np.all(np.isfinite(positions)):
@@ -925,7 +1076,8 @@ def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: i
                   weight_per_length: float, axial_stiffness: float,
                   gravity: ArrayLike, *, submerged_weight_per_length: Optional[float] = None,
                   water_level: float = -math.inf, volume_diameter: float = 0.0,
-                  seabed_level: float = -math.inf, seabed_sink: float = 0.0) -> np.ndarray:
+                  seabed_level: float = -math.inf, seabed_sink: float = 0.0,
+                  tension_curve: Optional[TensionCurve] = None) -> np.ndarray:
     """
     Return node positions to start a simulation at rest.
 
@@ -941,7 +1093,9 @@ def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: i
     weight at the seabed, laid at seabed_level - seabed_sink (where a soft seabed holds a
     laid line), else the shape with its nodes lifted out of the seabed. Water and seabed are
     levels of z (REP-103: z up); the seabed catenary needs gravity along -z (else the nodes
-    are only lifted).
+    are only lifted). With a strain-tension curve every segment stretches by the curve,
+    but in a seabed catenary, which stretches by T / EA (a start the caller's relaxation
+    settles).
 
     :param end_a: (3,) end A [m].
     :param end_b: (3,) end B [m].
@@ -957,6 +1111,7 @@ def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: i
     :param volume_diameter: dv [m], the width of the surface's ramp (wetted_fraction).
     :param seabed_level: z of the seabed [m]; -inf: none.
     :param seabed_sink: how far a laid line sinks into the seabed [m], >= 0: w / (k_b d).
+    :param tension_curve: the line's strain-tension curve, if it has one.
 
     :returns: (N + 1, 3) positions, first = end A, last = end B.
 
@@ -974,9 +1129,10 @@ def initial_shape(end_a: ArrayLike, end_b: ArrayLike, length: float, segments: i
                if water else w)
     if water:
         positions = _water_shape(end_a, end_b, length, segments, w, w_water, water_level,
-                                 volume_diameter, ea, gravity)
+                                 volume_diameter, ea, gravity, tension_curve)
     else:
-        positions = _uniform_shape(end_a, end_b, length, segments, w, ea, gravity)
+        positions = _uniform_shape(end_a, end_b, length, segments, w, ea, gravity,
+                                   tension_curve)
     if positions is None:
         positions = _straight_line(end_a, end_b, segments)
     bed = seabed_level - seabed_sink
