@@ -380,10 +380,15 @@ class Simulator:
 
     @property
     def reach(self) -> float:
-        """Farthest the ends can be apart [m], L (1 + max_strain) at L now; inf once parted."""
+        """
+        Farthest the ends can be apart [m], L (1 + strain limit) at L now; inf once parted.
+
+        The strain limit is max_strain, or on a curve line the strain of twice its MBL
+        (RopeProperties.strain_limit): the strain limit the kernels hold the segments to.
+        """
         if self.parting is not None:
             return math.inf
-        return self.length * (1.0 + self.props.max_strain)
+        return self.length * (1.0 + self.props.strain_limit)
 
     @property
     def line_props(self) -> RopeProperties:

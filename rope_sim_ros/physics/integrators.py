@@ -23,7 +23,10 @@ two accelerations for the velocity and the trapezoid of the two velocities for t
 On an undamped oscillator its amplification is |G|^2 = 1 + (w dt)^4 / 4 > 1 for every step,
 so it lives on the line's damping: the automatic step is the largest one for which every
 axial mode of the chain, with its damping, is stable, times a safety factor. Ground contact
-and water drag add modes of their own (contact_rates, drag_rate).
+and water drag add modes of their own (contact_rates, drag_rate). On a line with a
+strain-tension curve the modes stiffen as it stretches: every step rule takes the stiffest
+tangent the curve reaches up to the line's strain limit (RopeProperties.
+stiffest_axial_stiffness), so that no stretch the line can reach outruns the step.
 """
 
 import math
@@ -137,7 +140,7 @@ def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
     Every family counts: some particles touch, some do not.
     """
     m = props.particle_mass
-    k = props.structural_stiffness + props.bending_stiffness
+    k = _stiffest_structural(props) + props.bending_stiffness
     c = props.structural_damping + props.bending_damping
     w2_max = 4.0 * k / m
     if props.payload_mass > 0.0:
@@ -169,6 +172,11 @@ def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
     return np.concatenate(modes)
 
 
+def _stiffest_structural(props: RopeProperties) -> float:
+    """Stiffest a structural spring gets up to the strain limit [N/m]: EA / l0 if linear."""
+    return props.stiffest_axial_stiffness / props.segment_length
+
+
 def stability_limit(props: RopeProperties) -> float:
     """
     Largest stable improved-Euler step [s] for the line's axial and contact modes.
@@ -192,8 +200,9 @@ def stability_limit(props: RopeProperties) -> float:
 
 
 def wave_time_step(props: RopeProperties) -> float:
-    """Time an axial wave takes to cross one segment: (L/N) sqrt(m / EA) [s]."""
-    return props.segment_length * np.sqrt(props.mass_per_length / props.axial_stiffness)
+    """Time the fastest axial wave takes to cross one segment: (L/N) sqrt(m / EA) [s]."""
+    stiffness = props.stiffest_axial_stiffness
+    return props.segment_length * np.sqrt(props.mass_per_length / stiffness)
 
 
 IMPLICIT_STEPS_PER_AXIAL_PERIOD = 4.0
@@ -204,8 +213,9 @@ IMPLICIT_BENDING_THRESHOLD = 0.1
 
 
 def first_axial_period(props: RopeProperties) -> float:
-    """Period of the line's first axial mode with both ends held, 2 L sqrt(m / EA) [s]."""
-    return 2.0 * props.length * np.sqrt(props.mass_per_length / props.axial_stiffness)
+    """Shortest period of the first axial mode with both ends held, 2 L sqrt(m / EA) [s]."""
+    stiffness = props.stiffest_axial_stiffness
+    return 2.0 * props.length * np.sqrt(props.mass_per_length / stiffness)
 
 
 def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler') -> float:
@@ -252,9 +262,10 @@ def start_shape(line_type: LineType, environment: Environment, end_a, end_b, len
     """
     Return the start shape (N+1, 3) of a uniform line between two ends in its environment.
 
-    catenary.initial_shape with the line's weight in air and in water (line_weights), the
-    surface's ramp width dv, and a seabed (or none) at which a laid line sinks by its weight
-    over k_b d, as it does in the physics. relax then brings it to the model's exact rest.
+    catenary.initial_shape with the line's weight in air and in water (line_weights), its
+    EA or strain-tension curve, the surface's ramp width dv, and a seabed (or none) at which
+    a laid line sinks by its weight over k_b d, as it does in the physics. relax then brings
+    it to the model's exact rest.
 
     :raises catenary.CatenaryError: an input is invalid.
     """
@@ -270,7 +281,7 @@ def start_shape(line_type: LineType, environment: Environment, end_a, end_b, len
         np.asarray(environment.gravity, dtype=float),
         submerged_weight_per_length=w_water if water_level > -math.inf else None,
         water_level=water_level, volume_diameter=dv, seabed_level=seabed_level,
-        seabed_sink=sink)
+        seabed_sink=sink, tension_curve=getattr(line_type, 'curve', None))
 
 
 @numba.njit(cache=True)

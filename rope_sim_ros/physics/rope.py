@@ -24,11 +24,14 @@ and seabed and quay contact, in forces/.
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 import math
 
 import numpy as np
 
 from .objects import Environment, LineType
+from .superelastic import curve_strain_limit
+from .tension_curve import check_curve, TensionCurve
 
 
 @dataclass(frozen=True)
@@ -39,14 +42,15 @@ class RopeProperties:
     :ivar segments: number of segments N.
     :ivar length: unstretched length L [m].
     :ivar mass_per_length: [kg/m].
-    :ivar axial_stiffness: EA [N].
+    :ivar axial_stiffness: EA [N]; on a line with a tension_curve its nominal EA: the bending
+        springs' and the default damping's, not the structural springs'.
     :ivar axial_damping: BA [N s]: a segment's damping coefficient is BA / segment length.
     :ivar bending_stiffness_ratio: bending spring stiffness / structural spring stiffness.
     :ivar bending_damping_ratio: bending spring damping / structural spring damping.
     :ivar damping_model: 'axial' (stretch rate only) or 'seed' (K_SD (V_A - V_B)).
     :ivar air_drag_coefficient: K_A per metre [N s^2 / m^3].
     :ivar gravity: gravity vector [m/s^2], shape (3,).
-    :ivar max_strain: super-elasticity threshold (strain).
+    :ivar max_strain: super-elasticity threshold (strain); a curve may raise it (strain_limit).
     :ivar superelastic_adjustment: apply the position/velocity adjustment.
     :ivar payload_mass: mass of a free payload at the bollard end [kg]; 0: the bollard is a
         fixed or driven point.
@@ -66,6 +70,8 @@ class RopeProperties:
     :ivar quay_normal: unit horizontal normal out of the face, (3,); zeros: no quay.
     :ivar quay_depth: how far below the deck the quay reaches [m].
     :ivar payload_volume: [m^3]; payload_drag_area: CdA [m^2]; payload_added_mass: Ca.
+    :ivar tension_curve: the load-extension as (strain, tension [N]) pairs (LineType's);
+        () for a linear line of EA.
     """
 
     segments: int
@@ -102,6 +108,48 @@ class RopeProperties:
     payload_volume: float = 0.0
     payload_drag_area: float = 0.0
     payload_added_mass: float = 0.0
+    tension_curve: tuple = ()
+
+    def __post_init__(self):
+        """Check the curve (tension_curve.py's rules) and keep it starting at (0, 0)."""
+        object.__setattr__(self, 'tension_curve', check_curve(self.tension_curve))
+
+    @cached_property
+    def curve(self):
+        """Return the line's TensionCurve, None for a linear line."""
+        return TensionCurve.from_pairs(self.tension_curve) if self.tension_curve else None
+
+    @cached_property
+    def strain_limit(self) -> float:
+        """Return the strain no segment is left beyond: max_strain, on a curve its 2 MBL's."""
+        return curve_strain_limit(self.max_strain, self.curve, self.mbl)
+
+    @property
+    def stiffest_axial_stiffness(self) -> float:
+        """Largest tangent dT/dstrain [N] the line meets up to its strain limit: EA if linear."""
+        if self.curve is None:
+            return self.axial_stiffness
+        return self.curve.stiffest(self.strain_limit)
+
+    @property
+    def limit_tension(self) -> float:
+        """Elastic tension of a segment at the strain limit [N]."""
+        if self.curve is None:
+            return self.axial_stiffness * self.strain_limit
+        return float(self.curve.tension(self.strain_limit))
+
+    @property
+    def limit_energy(self) -> float:
+        """Elastic energy per metre of rest length at the strain limit [J/m]."""
+        if self.curve is None:
+            return 0.5 * self.axial_stiffness * self.strain_limit ** 2
+        return float(self.curve.energy(self.strain_limit))
+
+    def strain_at(self, tension):
+        """Return the strain at elastic tension(s) [N] (the curve's inverse, or T / EA)."""
+        if self.curve is None:
+            return np.asarray(tension, dtype=float) / self.axial_stiffness
+        return self.curve.strain_at(tension)
 
     @property
     def line_type(self) -> LineType:
@@ -111,11 +159,11 @@ class RopeProperties:
             axial_damping=self.axial_damping, diameter=self.diameter, mbl=self.mbl,
             bending_stiffness_ratio=self.bending_stiffness_ratio,
             bending_damping_ratio=self.bending_damping_ratio, damping_model=self.damping_model,
-            air_drag_coefficient=self.air_drag_coefficient, max_strain=self.max_strain,
+            air_drag_coefficient=self.air_drag_coefficient, max_strain=self.strain_limit,
             superelastic_adjustment=self.superelastic_adjustment,
             volume_diameter=self.volume_diameter, normal_drag=self.normal_drag,
             tangential_drag=self.tangential_drag, normal_added_mass=self.normal_added_mass,
-            tangential_added_mass=self.tangential_added_mass)
+            tangential_added_mass=self.tangential_added_mass, tension_curve=self.tension_curve)
 
     @property
     def environment(self) -> Environment:
@@ -157,7 +205,7 @@ class RopeProperties:
 
     @property
     def structural_stiffness(self) -> float:
-        """Structural spring stiffness k = EA / l0 [N/m]."""
+        """Structural spring stiffness k = EA / l0 [N/m] (nominal EA on a curve)."""
         return self.axial_stiffness / self.segment_length
 
     @property
@@ -192,13 +240,13 @@ class RopeProperties:
 
     @property
     def reach(self) -> float:
-        """Farthest the ends can be apart, every segment at its limit: L (1 + max_strain) [m]."""
-        return self.length * (1.0 + self.max_strain)
+        """Farthest the ends can be apart, every segment at its limit: L (1 + limit) [m]."""
+        return self.length * (1.0 + self.strain_limit)
 
     @property
     def wave_speed(self) -> float:
-        """Speed of an axial wave, c = sqrt(EA / m) [m/s]."""
-        return math.sqrt(self.axial_stiffness / self.mass_per_length)
+        """Fastest axial wave up to the strain limit, c = sqrt(dT/dstrain / m) [m/s]."""
+        return math.sqrt(self.stiffest_axial_stiffness / self.mass_per_length)
 
 
 def _vector(values) -> tuple:
@@ -211,15 +259,18 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
 
     Every term of the end force (kernels.end_forces) is bounded:
 
-    - springs: a structural spring is never longer than l0 (1 + max_strain) (the
-      superelastic adjustment, with the ends held within reach), so it pulls at most
-      EA max_strain; a bending spring (i, i+2) then pulls at most 2 r_s EA max_strain and,
-      folded flat, pushes 2 r_s EA (r_s = bending_stiffness_ratio);
+    - springs: a structural spring is never longer than l0 (1 + e) (the superelastic
+      adjustment at the strain limit e, with the ends held within reach), so it pulls at
+      most T(e) (EA e, or the curve's); a bending spring (i, i+2) then pulls at most
+      2 r_s EA e and, folded flat, pushes 2 r_s EA (r_s = bending_stiffness_ratio, EA the
+      nominal one on a curve, as the bending springs have it);
     - a wave reflected at the end doubles the strain: the spring terms count twice, which
       also covers a line without the adjustment overshooting its limit (1.5 to 2 times);
     - dampers: neighbouring particles part at most at 2 v*, twice the fastest a particle
-      moves against its neighbours: v* = c max_strain (an axial wave at the strain limit,
-      c = sqrt(EA / m)) + sqrt(2 |g| L) (a fall of the whole length) + the ends' speed.
+      moves against its neighbours: v* = c e (an axial wave at the strain limit, c =
+      sqrt(EA / m), on a curve its stiffest tangent's: the release of a strain e moves a
+      particle at int c(e) de <= c_max e) + sqrt(2 |g| L) (a fall of the whole length) + the
+      ends' speed.
       A segment's damper then pulls at most 2 BA v* / l0, its bending damper
       4 r_d BA v* / l0 (r_d = bending_damping_ratio);
     - the weight of the whole line and the buoyancy of it all, (m + rho A_v) |g| L
@@ -241,11 +292,12 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
     - its weight M |g|;
     - its fall: a payload thrown up by a snap can rise to the reach above the fairlead
       and fall to the reach below it, so the fall speed above becomes
-      v_f = sqrt(4 |g| L (1 + max_strain)), and a line stretched to its limit can fling a
-      light payload at up to max_strain sqrt(EA L / M_e) (its elastic energy
-      EA max_strain^2 L / 2 all in M_e = M + half a segment): both join v*;
+      v_f = sqrt(4 |g| L (1 + e)), and a line stretched to its limit can fling a light
+      payload at up to sqrt(2 W L / M_e) (its elastic energy W L all in M_e = M + half a
+      segment; W = EA e^2 / 2 per metre, or the curve's integral): both join v*;
     - its snatch: a payload moving at v_s = v_f + the ends' speed away from the fairlead
-      when the line snaps taut is stopped by the line's stiffness EA / L: the spring-mass
+      when the line snaps taut is stopped by the line's stiffness EA / L (on a curve its
+      stiffest tangent's, as everywhere the wave speed enters): the spring-mass
       peak v_s sqrt(EA M / L), plus the wave front's Z v_s (Z = sqrt(EA m), the line's wave
       impedance) before the line's whole stiffness acts; counted twice, like the springs
       (a reflected wave, or a line without the strain limit). With the strain limit the
@@ -256,7 +308,8 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
 
     :param end_speed: the largest speed of an end [m/s].
     """
-    ea, strain = props.axial_stiffness, props.max_strain
+    ea, strain = props.axial_stiffness, props.strain_limit
+    stiffest = props.stiffest_axial_stiffness
     r_s, r_d = props.bending_stiffness_ratio, props.bending_damping_ratio
     g = math.hypot(*props.gravity)
     fall = math.sqrt(2.0 * g * props.length)
@@ -264,12 +317,12 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
     snatch = 0.0
     if payload > 0.0:
         fall = math.sqrt(4.0 * g * props.reach)
-        fall += strain * math.sqrt(ea * props.length / props.end_mass)
-        impedance = math.sqrt(ea * payload / props.length) + math.sqrt(
-            ea * props.mass_per_length)
+        fall += math.sqrt(2.0 * props.limit_energy * props.length / props.end_mass)
+        impedance = math.sqrt(stiffest * payload / props.length) + math.sqrt(
+            stiffest * props.mass_per_length)
         snatch = 2.0 * (fall + end_speed) * impedance + payload * g
     v_star = props.wave_speed * strain + fall + end_speed
-    springs = 2.0 * ea * strain * (1.0 + 2.0 * r_s) + 2.0 * r_s * ea
+    springs = 2.0 * props.limit_tension + 2.0 * r_s * ea * (2.0 * strain + 1.0)
     dampers = 2.0 * props.axial_damping * v_star / props.segment_length * (1.0 + 2.0 * r_d)
     rho = max(props.air_density, props.water_density if props.has_water else 0.0)
     weight = (props.mass_per_length + rho * props.volume_area) * g * props.length

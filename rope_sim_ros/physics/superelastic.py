@@ -34,7 +34,14 @@ cannot exceed 2 l0 (1 + max_strain) while both structural springs under it obey 
 projecting both kinds makes them fight on a straight line.
 
 Compiled with numba; the integrators apply it line by line (see kernels.py).
+
+On a line with a strain-tension curve the threshold is no lower than the strain at which the
+curve pulls LIMIT_BREAKING_LOADS times the breaking load (curve_strain_limit): a nylon rope
+breaks near 25 % strain, the default threshold, and a limit there would cut its curve off
+where the rope still pulls harder with every centimetre.
 """
+
+import math
 
 import numba
 import numpy as np
@@ -45,6 +52,22 @@ import numpy as np
 MAX_ITERATIONS = 200
 TOLERANCE = 1e-9
 REGULARISATION = 1e-6
+# A curve's strain limit: where it pulls this many breaking loads (its last tabulated
+# tension where the line has no MBL), well past any tension a line that has not parted holds.
+LIMIT_BREAKING_LOADS = 2.0
+
+
+def curve_strain_limit(max_strain: float, curve, mbl: float) -> float:
+    """
+    Return the strain limit of a line: max_strain, raised on a curve to its 2 MBL strain.
+
+    :param curve: the line's TensionCurve, or None (a linear line: max_strain).
+    :param mbl: its minimum breaking load [N]; inf or 0: unknown.
+    """
+    if curve is None:
+        return max_strain
+    load = mbl if math.isfinite(mbl) and mbl > 0.0 else float(curve.tensions[-1])
+    return max(max_strain, float(curve.strain_at(LIMIT_BREAKING_LOADS * load)))
 
 
 @numba.njit(cache=True)
