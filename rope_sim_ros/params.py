@@ -31,6 +31,7 @@ NODE_NAME = 'mooring_line'
 MATERIALS = ('nylon', 'polyester', 'hmpe', 'steel_wire', 'manila')
 INTEGRATORS = ('improved_euler', 'implicit_euler')
 DAMPING_MODELS = ('axial', 'seed')
+LOAD_EXTENSIONS = ('linear', 'curve')
 RELIABILITIES = ('reliable', 'best_effort')
 WINCH_MODES = ('none', 'speed', 'brake', 'constant_tension')
 
@@ -79,6 +80,12 @@ SPECS: Mapping[str, Spec] = {
         0.0, 'kg/m', 'mass per unit length; 0 = from the material', 0.0, 1.0e4),
     'axial_stiffness': Spec(
         0.0, 'N', 'axial stiffness EA; 0 = from the material', 0.0, 1.0e13),
+    'load_extension': Spec(
+        'linear', '', 'linear: the segments pull EA times their strain; curve: they follow the '
+        "material's strain-tension curve (config/materials.yaml; nylon has one), linear "
+        'between its points and with its last slope past them; axial_stiffness then only '
+        'sets the bending springs and the default damping, and max_strain is raised to the '
+        'strain at which the curve pulls twice the breaking load', choices=LOAD_EXTENSIONS),
     'axial_damping': Spec(
         0.0, 'N*s', 'axial damping BA (per unit strain rate, as MoorDyn); '
         '0 = 1 % of critical for the first axial mode', 0.0, 1.0e10, read_only=False),
@@ -344,6 +351,7 @@ class LineParams:
     segments: int = SPECS['segments'].default
     mass_per_length: float = SPECS['mass_per_length'].default
     axial_stiffness: float = SPECS['axial_stiffness'].default
+    load_extension: str = SPECS['load_extension'].default
     axial_damping: float = SPECS['axial_damping'].default
     damping_model: str = SPECS['damping_model'].default
     bending_stiffness_ratio: float = SPECS['bending_stiffness_ratio'].default

@@ -101,8 +101,16 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
     Resolve the parameters into the physical numbers of the line.
 
     A coefficient of -1 and a volume_diameter of 0 take the material's value; quay_normal
-    is made a unit vector (all zeros stay zeros: no quay).
+    is made a unit vector (all zeros stay zeros: no quay). load_extension 'curve' gives the
+    line the material's strain-tension curve.
+
+    :raises ParameterError: load_extension is 'curve' and the material has no curve.
     """
+    if params.load_extension == 'curve' and not material.tension_curve:
+        raise ParameterError(
+            f"parameter 'load_extension' = 'curve' is not allowed with material "
+            f'{material.name!r}: it has no tension_curve in the materials file; set '
+            "load_extension to 'linear' or choose a material with one")
     mass = params.mass_per_length or material.mass_per_length
     ea = params.axial_stiffness or material.axial_stiffness
     ba = params.axial_damping or critical_axial_damping(params.length, mass, ea)
@@ -136,7 +144,8 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
         quay_normal=tuple(normal / size if size > 0.0 else normal),
         quay_depth=params.quay_depth, payload_volume=params.payload_volume,
         payload_drag_area=params.payload_drag_area,
-        payload_added_mass=params.payload_added_mass_coefficient)
+        payload_added_mass=params.payload_added_mass_coefficient,
+        tension_curve=material.tension_curve if params.load_extension == 'curve' else ())
 
 
 def _own(value: float, material_value: float) -> float:
@@ -184,8 +193,7 @@ def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
         wet = wet_fraction(shape[:, 2], props.water_level, widths)
         density = props.water_density * wet + props.air_density * (1.0 - wet)
         below = np.cumsum(masses - density * volumes)[:-1]  # net mass under segment j
-        lengths = props.segment_length * (1.0 + g * np.maximum(below, 0.0)
-                                          / props.axial_stiffness)
+        lengths = props.segment_length * (1.0 + props.strain_at(g * np.maximum(below, 0.0)))
         shape = np.empty((n + 1, 3))
         shape[n] = top
         for j in range(n - 1, -1, -1):

@@ -17,7 +17,10 @@ Rope material presets per nominal diameter: mass per length, EA, MBL and hydrody
 
 The hydrodynamic coefficients have MoorDyn's meanings: Cd on the nominal diameter d, CdAx on
 the circumference pi d, Ca and CaAx of the volume displaced by the volume-equivalent
-diameter dv (config/materials.yaml says where each value comes from).
+diameter dv (config/materials.yaml says where each value comes from). A preset may also
+give a load-extension curve, as strains and tensions in fractions of its MBL: scaled by the
+MBL at the diameter, it is the line's strain-tension curve (tension_curve.py) when the
+parameters ask for it (load_extension: curve).
 """
 
 from dataclasses import dataclass
@@ -25,6 +28,8 @@ import math
 from typing import Any, Mapping
 
 import yaml
+
+from .tension_curve import check_curve
 
 
 class MaterialError(ValueError):
@@ -47,6 +52,8 @@ class MaterialProperties:
     :ivar normal_added_mass_coefficient: MoorDyn's Ca, of the displaced volume.
     :ivar tangential_added_mass_coefficient: MoorDyn's CaAx, of the displaced volume.
     :ivar diameter: the nominal diameter d they were evaluated at [m].
+    :ivar tension_curve: the load-extension as (strain, tension [N]) pairs at this diameter,
+        from (0, 0); () where the preset has none.
     """
 
     name: str
@@ -60,6 +67,7 @@ class MaterialProperties:
     normal_added_mass_coefficient: float = 0.0
     tangential_added_mass_coefficient: float = 0.0
     diameter: float = 0.0
+    tension_curve: tuple = ()
 
     @property
     def volume_diameter(self) -> float:
@@ -147,6 +155,7 @@ class MaterialLibrary:
         other = {key: _finite(name, key, _raw(name, entry, key)) for key in (
             'tangential_drag_coefficient', 'normal_added_mass_coefficient',
             'tangential_added_mass_coefficient')}
+        curve = _tension_curve(name, entry.get('tension_curve'), mbl)
         return MaterialProperties(
             name=name,
             mass_per_length=mass,
@@ -156,6 +165,7 @@ class MaterialLibrary:
             volume_diameter_ratio=ratio,
             normal_drag_coefficient=drag,
             diameter=diameter,
+            tension_curve=curve,
             **other)
 
 
@@ -167,3 +177,22 @@ def _form(name: str, value: Mapping, key: str) -> float:
         raise MaterialError(
             f'material {name!r}: {value!r} is not allowed here; expected {{{key}: number > 0}}')
     return float(number)
+
+
+def _tension_curve(name: str, value: Any, mbl: float) -> tuple:
+    """
+    Return a preset's curve as (strain, tension [N]) pairs at its MBL; () where it has none.
+
+    The file gives {mbl_fraction: [[strain, tension / MBL], ...]}: one curve for every
+    diameter, as the sources give it.
+    """
+    if value is None:
+        return ()
+    pairs = value.get('mbl_fraction') if isinstance(value, dict) and len(value) == 1 else None
+    if not isinstance(pairs, list):
+        raise MaterialError(f'material {name!r}: tension_curve = {value!r} is not allowed; '
+                            'expected {mbl_fraction: [[strain, tension / MBL], ...]}')
+    try:
+        return check_curve([(pair[0], pair[1] * mbl) for pair in pairs])
+    except (TypeError, IndexError, ValueError) as e:
+        raise MaterialError(f'material {name!r}: {e}') from None
