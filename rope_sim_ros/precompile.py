@@ -56,6 +56,9 @@ CONFIGURATIONS = (
     {'integrator': 'improved_euler', 'end_interpolation': 'linear'},
     {'integrator': 'implicit_euler', 'payload_mass': 1000.0},
     {'integrator': 'improved_euler', 'payload_mass': 1000.0},
+    # a line with a strain-tension curve: the kernels take it in the same tables; this
+    # compiles the curve's own evaluation (TensionCurve.tension) the start of one calls
+    {'integrator': 'implicit_euler', 'material': 'nylon', 'load_extension': 'curve'},
 )
 
 START_MESSAGE = ('preparing the physics kernels: numba is compiling them (its cache holds none '
