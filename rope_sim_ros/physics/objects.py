@@ -146,18 +146,6 @@ class LineType:
         """Return the TensionCurve of the line, None for a linear line."""
         return TensionCurve.from_pairs(self.tension_curve) if self.tension_curve else None
 
-    def tension(self, strain):
-        """Return the elastic tension [N] at strain(s): the curve's, or EA max(strain, 0)."""
-        if self.curve is not None:
-            return self.curve.tension(strain)
-        return self.axial_stiffness * np.maximum(np.asarray(strain, dtype=float), 0.0)
-
-    def strain_at(self, tension):
-        """Return the strain at elastic tension(s) [N]: the curve's inverse, or T / EA."""
-        if self.curve is not None:
-            return self.curve.strain_at(tension)
-        return np.maximum(np.asarray(tension, dtype=float), 0.0) / self.axial_stiffness
-
     def stiffest(self, strain: float) -> float:
         """Return the largest tangent dT/dstrain [N] up to `strain`: EA on a linear line."""
         if self.curve is not None:
