@@ -33,7 +33,9 @@ import csv
 import math
 import os
 from pathlib import Path
+import shutil
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -108,9 +110,12 @@ def run_moordyn(reference):
     import moordyn  # a benchmark dependency only
 
     duration = float(reference['t_s'][-1])
+    workdir = tempfile.mkdtemp()  # MoorDyn writes its .out file beside its input
+    for name in ('nonlinear_dynamic.txt', 'nylon_table.txt'):
+        shutil.copy(DATA / 'moordyn_inputs' / name, workdir)
     with quiet():
         start = time.perf_counter()
-        system = moordyn.Create(str(DATA / 'moordyn_inputs' / 'nonlinear_dynamic.txt'))
+        system = moordyn.Create(os.path.join(workdir, 'nonlinear_dynamic.txt'))
         moordyn.Init(system, [reference['xB_m'][0], 0.0, -92.0], [0.0, 0.0, 0.0])
         init = time.perf_counter() - start
     start = time.perf_counter()
@@ -124,6 +129,7 @@ def run_moordyn(reference):
     wall = time.perf_counter() - start
     with quiet():
         moordyn.Close(system)
+    shutil.rmtree(workdir)
     return init, wall, MOORDYN_STEP
 
 

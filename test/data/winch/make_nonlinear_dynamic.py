@@ -243,8 +243,10 @@ def main():
     static = -t_last * last / np.linalg.norm(last) - np.array(
         [0.0, 0.5 * weight_per_length() * l0])
     os.makedirs(INPUTS, exist_ok=True)
-    input_path = write_inputs(INPUTS, strains, tensions, fairlead_x(0.0))
+    write_inputs(INPUTS, strains, tensions, fairlead_x(0.0))
     with tempfile.TemporaryDirectory() as workdir:
+        # MoorDyn writes its .out file beside its input: run a copy, keep the folder clean
+        input_path = write_inputs(workdir, strains, tensions, fairlead_x(0.0))
         state = os.path.join(workdir, 'start.state')
         write_state(state, nodes)
         rows = simulate(input_path, state, DTM, DTM, static)
