@@ -31,10 +31,13 @@ from rope_sim_ros.params import check, from_values, ParameterError
 from rope_sim_ros.physics import catenary, kernels
 from rope_sim_ros.physics.forces.springs import spring_block_at
 from rope_sim_ros.physics.integrators import automatic_time_step, stability_limit
+from rope_sim_ros.physics.layout import INV_MASS, PARTED, REST, UNSTRETCHED
 from rope_sim_ros.physics.materials import MaterialError, MaterialLibrary
-from rope_sim_ros.physics.objects import Environment, LineType, Point, single_line
+from rope_sim_ros.physics.objects import Environment, LineType, Point, single_line, Winch
+from rope_sim_ros.physics.parting import part_overloaded
 from rope_sim_ros.physics.rope import RopeProperties, tension_bound
 from rope_sim_ros.physics.tension_curve import TensionCurve
+from rope_sim_ros.physics.winch import quasi_static_stiffness, render
 from rope_sim_ros.simulator import load_materials, Simulator
 
 DATA = Path(__file__).resolve().parent / 'data' / 'winch'
@@ -385,3 +388,50 @@ def test_presets():
     curved = Simulator(from_values({'material': 'nylon', 'load_extension': 'curve'}))
     assert curved.props.tension_curve == nylon.tension_curve
     assert curved.props.strain_limit == pytest.approx(0.452, abs=1e-3)
+
+
+# -- the winch and parting on a curve line ------------------------------------------------
+
+def _wound_line(strains, **line):
+    """Make _straight_line's line with its winch and break load set (Line's attributes)."""
+    system = _straight_line(strains)
+    for name, value in line.items():
+        setattr(system.lines[0], name, value)
+    system.refresh()
+    return system
+
+
+def test_a_curve_line_parts_where_its_table_passes_the_break_load():
+    """At 24 % the table pulls 0.93 MBL (EA, 5 MBL, would pull 1.2 MBL); at 25.5 % past MBL."""
+    for strain, parted in ((0.24, -1.0), (0.255, 1.0)):
+        system = _wound_line([0.1, strain, 0.1], break_load=MBL)
+        rest = system.particles[:, REST].copy()
+        part_overloaded(system.x, system.v, system.particles, system.lines_table,
+                        system.line_real, rest, 0)
+        assert system.line_real[0, PARTED] == parted
+
+
+def test_a_curve_line_brake_renders_to_the_table_s_holding_strain():
+    """The brake pays out until the winch segment pulls its load by the curve, not by EA."""
+    system = _wound_line([0.05, 0.05, 0.2], winch=Winch(mode='brake', brake_load=0.5 * MBL))
+    rest, inv_mass = system.particles[:, REST].copy(), system.particles[:, INV_MASS].copy()
+    render(system.x, system.particles, system.lines_table, system.line_real,
+           system.points_table, rest, inv_mass, 0.01)
+    length = np.linalg.norm(system.x[3] - system.x[2])
+    strain = length / system.particles[2, REST] - 1.0
+    # the table pulls 0.5 MBL at e = 0.1666 (EA, 5 MBL, would have left e = 0.1)
+    assert _expected_tension(strain) == pytest.approx(0.5 * MBL, rel=1e-9)
+    assert strain == pytest.approx(0.1666, abs=1e-4)
+    assert system.line_real[0, UNSTRETCHED] > 6.0
+
+
+def test_constant_tension_steers_by_the_tangents_of_the_curve():
+    """Without weight the quasi-static stiffness is the segments' tangents in series."""
+    strains = [0.025, 0.105, 0.195]  # between the table's points, where one slope holds
+    system = _wound_line(strains)
+    stiffness = quasi_static_stiffness(system.x, system.particles, system.lines_table,
+                                       system.line_real, 0, 1.0, 0.0)
+    tangents = [float(CURVE.tangent(e)) for e in strains]
+    assert stiffness == pytest.approx(1.0 / sum(2.0 / k for k in tangents), rel=1e-12)
+    # tangents 1.60, 3.52 and 5.68 MBL; EA's L / EA would say 5 MBL / 6 m, 1.81 times this
+    assert 5.0 * MBL / 6.0 / stiffness == pytest.approx(1.8086, abs=1e-4)

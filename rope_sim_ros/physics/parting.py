@@ -15,13 +15,14 @@
 """
 A line parting under load, and the peak hold of its end forces: what is checked after a step.
 
-After every step, a line whose segment pulls harder than its break load (spring and damper)
-parts there: that segment, and the bending springs across it, lose their stiffness and
-damping, and its rest length becomes PARTED_REST, which no strain limit ever reaches. The
-particles stay where they are, with their masses: the two pieces are the particles on
-either side, still in the one line, each hanging from its end's point, and they recoil
-under the energy the rope had stored. A line parts once, at its most loaded segment; it stays
-parted until it is rebuilt.
+After every step, a line whose segment pulls harder than its break load (spring, by EA or
+the line's strain-tension curve, and damper) parts there: that segment, and the bending
+springs across it, lose their stiffness and damping, and its rest length becomes
+PARTED_REST, which no strain limit ever reaches (on a curve its strain is then -1: no
+tension). The particles stay where they are, with their masses: the two pieces are the
+particles on either side, still in the one line, each hanging from its end's point, and
+they recoil under the energy the rope had stored. A line parts once, at its most loaded
+segment; it stays parted until it is rebuilt.
 
 Also after every step, the force of each line on the points at its ends (the springs and
 dampers at the end particle and the weight of the half segment there; the fluid's share of
@@ -65,7 +66,7 @@ def part_overloaded(x, v, particles, lines, line_real, rest, step):
         first = lines[k, FIRST]
         worst, where = -np.inf, first
         for i in range(first, lines[k, LAST]):
-            tension = segment_tension(x, v, particles, i)
+            tension = segment_tension(x, v, particles, line_real[k], i)
             if tension > worst:
                 worst, where = tension, i
         if worst > limit:  # the most loaded segment goes

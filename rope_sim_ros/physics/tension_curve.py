@@ -23,7 +23,8 @@ harder and its tangent stiffness drops to 0, which a line past its table should 
 which would leave the implicit step's matrix without the line's stiffness.
 
 The one rule of the curve is tension_at: compiled, on a line's LINE_REAL row (layout.py),
-it gives the kernels the tension and the tangent dT/dstrain at a strain. TensionCurve gives
+it gives the kernels the tension and the tangent dT/dstrain at a strain (curve_strain, its
+inverse, gives a winch's brake the strain of its holding load). TensionCurve gives
 everything else the same curve: the tension and tangent (through tension_at), the strain at
 a tension (the inverse), the energy stored per metre of rest length (its integral), the
 stiffest tangent up to a strain, and the pieces strain = a + b T of the inverse that the
@@ -59,6 +60,24 @@ def tension_at(real, strain):
         k += 1
     slope = real[CURVE_SLOPE + k]
     return real[CURVE_TENSION + k] + slope * (strain - real[CURVE_STRAIN + k]), slope
+
+
+@numba.njit(cache=True, inline='always')
+def curve_strain(real, tension):
+    """
+    Return the strain at which the curve pulls `tension` [N] (tension_at's inverse).
+
+    :param real: the line's LINE_REAL row, with a curve (CURVE_POINTS >= 2).
+
+    0 at a tension <= 0; past the table, along its last slope, as tension_at goes on.
+    """
+    if tension <= 0.0:
+        return 0.0
+    last = int(real[CURVE_POINTS]) - 1
+    k = 0
+    while k < last and tension > real[CURVE_TENSION + k + 1]:
+        k += 1
+    return real[CURVE_STRAIN + k] + (tension - real[CURVE_TENSION + k]) / real[CURVE_SLOPE + k]
 
 
 @numba.njit(cache=True, inline='always')

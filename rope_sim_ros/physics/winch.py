@@ -40,17 +40,24 @@ Modes (layout.WINCH_MODE):
   (quasi_static_stiffness), within the maximum speed and acceleration.
 
 The winch stops where the line reaches its minimum or maximum length.
+
+On a line with a strain-tension curve (tension_curve.py) every tension here is the curve's:
+the segment's tension, the brake's holding strain (the curve's inverse at the holding load)
+and the elastic compliance in the constant-tension stiffness (each segment's tangent at its
+strain now). The winch's resizing needs nothing more: the curve is in strain, and the rest
+lengths it scales are what the strain is measured against.
 """
 
 import numba
 import numpy as np
 
-from .layout import (BEND_DAMPING, BEND_REST, BEND_STIFFNESS, BRAKE, CONSTANT_TENSION, DAMPING,
-                     DRAG, END_A, FIRST, FREE, INV_MASS, KIND, LAST, LENGTH, MASS, NO_WINCH,
-                     REST, REST_RATE, SPEED, STIFFNESS, TOTAL_MASS, UNSTRETCHED,
-                     WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND, WINCH_END,
-                     WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH,
+from .layout import (BEND_DAMPING, BEND_REST, BEND_STIFFNESS, BRAKE, CONSTANT_TENSION,
+                     CURVE_POINTS, DAMPING, DRAG, END_A, FIRST, FREE, INV_MASS, KIND, LAST,
+                     LENGTH, MASS, NO_WINCH, REST, REST_RATE, SPEED, STIFFNESS, TOTAL_MASS,
+                     UNSTRETCHED, WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND,
+                     WINCH_END, WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH,
                      WINCH_MODE, WINCH_RAMP, WINCH_RESPONSE, WINCH_SPEED)
+from .tension_curve import curve_strain, tension_at
 
 # The winch's acceleration itself changes from 0 to its maximum in this time [s] (a drive's
 # S-curve): a speed step with the acceleration alone limited ends the ramp with a jump of
@@ -60,11 +67,21 @@ JERK_TIME = 1.0
 
 
 @numba.njit(cache=True, inline='always')
-def segment_tension(x, v, particles, i):
+def elastic_tension(particles, real, i, length):
+    """Return the elastic tension [N] of the structural spring at row i at `length` [m]."""
+    stretch = length - particles[i, REST]
+    if real[CURVE_POINTS] > 0.0:  # the curve gives no tension at a strain <= 0
+        return tension_at(real, stretch / particles[i, REST])[0]
+    return particles[i, STIFFNESS] * max(stretch, 0.0)
+
+
+@numba.njit(cache=True, inline='always')
+def segment_tension(x, v, particles, real, i):
     """
     Return the axial tension of the structural spring (i, i + 1) [N]: spring and damper.
 
-    The spring pulls only when stretched; the damper acts on the stretch rate (it can push).
+    The spring (EA, or the line's curve: real is its LINE_REAL row) pulls only when
+    stretched; the damper acts on the stretch rate (it can push).
     """
     dx = x[i + 1, 0] - x[i, 0]
     dy = x[i + 1, 1] - x[i, 1]
@@ -73,8 +90,7 @@ def segment_tension(x, v, particles, i):
     inv = 1.0 / max(length, 1e-12)
     rate = ((v[i + 1, 0] - v[i, 0]) * dx + (v[i + 1, 1] - v[i, 1]) * dy
             + (v[i + 1, 2] - v[i, 2]) * dz) * inv
-    stretch = max(length - particles[i, REST], 0.0)
-    return particles[i, STIFFNESS] * stretch + particles[i, DAMPING] * (
+    return elastic_tension(particles, real, i, length) + particles[i, DAMPING] * (
         rate - particles[i, REST_RATE])
 
 
@@ -88,7 +104,7 @@ def winch_load(x, v, particles, lines, line_real, k, gravity):
     i = winch_segment(lines, line_real, k)
     end = lines[k, FIRST] if line_real[k, WINCH_END] == 0.0 else lines[k, LAST]
     other = i + 1 if end == i else i
-    tension = segment_tension(x, v, particles, i)
+    tension = segment_tension(x, v, particles, line_real[k], i)
     dx = x[other, 0] - x[end, 0]
     dy = x[other, 1] - x[end, 1]
     dz = x[other, 2] - x[end, 2]
@@ -148,8 +164,11 @@ def quasi_static_stiffness(x, particles, lines, line_real, k, tension, g):
 
     The elastic and the geometric compliance of a shallow catenary in series (Irvine):
     L / EA + w^2 c^3 / (12 H^3), with w its weight per metre, c the chord between its ends
-    and H the horizontal part of the tension at the winch. Hanging straight down (H = 0) a
-    line's tension does not follow its length: 0.
+    and H the horizontal part of the tension at the winch. On a line with a curve, L / EA
+    is the sum of l_i / (dT/dstrain) over its segments, each tangent at the segment's strain
+    now: the nylon preset's is 30 % larger at a tenth of its MBL than at half of it, and
+    steering by one fixed EA would over- or undershoot the set tension by as much. Hanging
+    straight down (H = 0) a line's tension does not follow its length: 0.
     """
     first, last = lines[k, FIRST], lines[k, LAST]
     i = winch_segment(lines, line_real, k)
@@ -169,8 +188,17 @@ def quasi_static_stiffness(x, particles, lines, line_real, k, tension, g):
     horizontal = tension * span / max(np.sqrt(span * span + sz * sz), 1e-12)
     if not horizontal > 0.0:
         return 0.0
-    stiffness = particles[i, STIFFNESS] * particles[i, REST]  # EA
-    compliance = length / stiffness + w * w * chord ** 3 / (12.0 * horizontal ** 3)
+    real = line_real[k]
+    if real[CURVE_POINTS] > 0.0:
+        elastic = 0.0
+        for j in range(first, last):
+            rest = particles[j, REST]
+            span_j = np.sqrt((x[j + 1, 0] - x[j, 0]) ** 2 + (x[j + 1, 1] - x[j, 1]) ** 2
+                             + (x[j + 1, 2] - x[j, 2]) ** 2)
+            elastic += rest / tension_at(real, span_j / rest - 1.0)[1]
+    else:
+        elastic = length / (particles[i, STIFFNESS] * particles[i, REST])  # L / EA
+    compliance = elastic + w * w * chord ** 3 / (12.0 * horizontal ** 3)
     return 1.0 / compliance
 
 
@@ -236,14 +264,19 @@ def render(x, particles, lines, line_real, points, rest, inv_mass, dt):
         line_real[k, WINCH_SPEED] = 0.0
         i = winch_segment(lines, line_real, k)
         rest_i = particles[i, REST]
-        stiffness = particles[i, STIFFNESS]
         length = np.sqrt((x[i + 1, 0] - x[i, 0]) ** 2 + (x[i + 1, 1] - x[i, 1]) ** 2
                          + (x[i + 1, 2] - x[i, 2]) ** 2)
         holding = line_real[k, WINCH_BRAKE_LOAD]
-        if not stiffness * (length - rest_i) > holding:
+        real = line_real[k]
+        if not elastic_tension(particles, real, i, length) > holding:
             continue
-        # the rest length at which this segment pulls with the holding load
-        wanted = length / (1.0 + holding / (stiffness * rest_i))
+        # the rest length at which this segment pulls with the holding load: at the strain
+        # the curve (or EA) gives that load
+        if real[CURVE_POINTS] > 0.0:
+            strain = curve_strain(real, holding)
+        else:
+            strain = holding / (particles[i, STIFFNESS] * rest_i)
+        wanted = length / (1.0 + strain)
         before = line_real[k, UNSTRETCHED]
         after = min(before * wanted / rest_i, line_real[k, WINCH_MAX_LENGTH])
         if after > before:
