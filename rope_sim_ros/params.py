@@ -82,10 +82,11 @@ SPECS: Mapping[str, Spec] = {
         0.0, 'N', 'axial stiffness EA; 0 = from the material', 0.0, 1.0e13),
     'load_extension': Spec(
         'linear', '', 'linear: the segments pull EA times their strain; curve: they follow the '
-        "material's strain-tension curve (config/materials.yaml; nylon has one), linear "
-        'between its points and with its last slope past them; axial_stiffness then only '
-        'sets the bending springs and the default damping, and max_strain is raised to the '
-        'strain at which the curve pulls twice the breaking load', choices=LOAD_EXTENSIONS),
+        "material's strain-tension curve (config/materials.yaml; nylon and polyester have "
+        'one), linear between its points and with its last slope past them; '
+        'axial_stiffness then only sets the bending springs and the default damping, and '
+        'max_strain is raised to the strain at which the curve pulls twice the breaking '
+        'load', choices=LOAD_EXTENSIONS),
     'axial_damping': Spec(
         0.0, 'N*s', 'axial damping BA (per unit strain rate, as MoorDyn); '
         '0 = 1 % of critical for the first axial mode', 0.0, 1.0e10, read_only=False),

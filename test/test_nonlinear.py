@@ -24,7 +24,7 @@ import math
 from pathlib import Path
 
 import numpy as np
-from physics_cases import nrmse
+from physics_cases import nrmse, reference_params
 import pytest
 
 from rope_sim_ros.params import check, from_values, ParameterError
@@ -357,9 +357,9 @@ def test_load_extension_parameter_is_checked():
     assert check('load_extension', 'curve') == 'curve'
     with pytest.raises(ParameterError, match="'load_extension' = 'cubic'.*linear, curve"):
         check('load_extension', 'cubic')
-    with pytest.raises(ParameterError, match="'load_extension' = 'curve'.*'polyester'.*"
+    with pytest.raises(ParameterError, match="'load_extension' = 'curve'.*'hmpe'.*"
                                              'no tension_curve'):
-        Simulator(from_values({'material': 'polyester', 'load_extension': 'curve'}))
+        Simulator(from_values({'material': 'hmpe', 'load_extension': 'curve'}))
 
 
 def test_bad_curves_are_refused():
@@ -375,19 +375,113 @@ def test_bad_curves_are_refused():
 
 
 def test_presets():
-    """Nylon's curve reaches its MBL at 25 % strain; polyester has none; linear by default."""
+    """Nylon's curve reaches its MBL at 25 % strain; hmpe has none; linear by default."""
     library = load_materials()
     nylon = library.properties('nylon', DIAMETER)
     curve = TensionCurve.from_pairs(nylon.tension_curve)
     assert float(curve.tension(0.25)) == pytest.approx(nylon.mbl)
     # the two published values it was fitted to: 50 % MBL at 0.5 / 3.54 strain
     assert float(curve.strain_at(0.5 * nylon.mbl)) == pytest.approx(0.5 / 3.54, rel=2e-3)
-    assert library.properties('polyester', DIAMETER).tension_curve == ()
+    assert library.properties('hmpe', DIAMETER).tension_curve == ()
     default = Simulator(from_values({'material': 'nylon'}))
     assert default.props.tension_curve == () and default.props.strain_limit == 0.25
     curved = Simulator(from_values({'material': 'nylon', 'load_extension': 'curve'}))
     assert curved.props.tension_curve == nylon.tension_curve
     assert curved.props.strain_limit == pytest.approx(0.452, abs=1e-3)
+
+
+# -- the polyester preset -------------------------------------------------------------------
+
+# The published original working curve (config/materials.yaml): ESOMOOR D5.1's owc.dat
+# (strain, tension [N]) at its MBL of 2.354e7 N, every point, as the file gives them.
+ESOMOOR_MBL = 2.354e7
+ESOMOOR_OWC = [
+    (2.0690e-3, 4.6581e5), (4.1379e-3, 8.9750e5), (6.2069e-3, 1.2984e6), (8.2759e-3, 1.6719e6),
+    (1.0345e-2, 2.0213e6), (1.2414e-2, 2.3500e6), (1.4483e-2, 2.6613e6), (1.6552e-2, 2.9585e6),
+    (1.8621e-2, 3.2451e6), (2.0690e-2, 3.5244e6), (2.2759e-2, 3.7997e6), (2.4828e-2, 4.0744e6),
+    (2.6897e-2, 4.3518e6), (2.8966e-2, 4.6352e6), (3.1035e-2, 4.9281e6), (3.3103e-2, 5.2337e6),
+    (3.5172e-2, 5.5555e6), (3.7241e-2, 5.8968e6), (3.9310e-2, 6.2608e6), (4.1379e-2, 6.6511e6),
+    (4.3448e-2, 7.0709e6), (4.5517e-2, 7.5235e6), (4.7586e-2, 8.0124e6), (4.9655e-2, 8.5408e6),
+    (5.1724e-2, 9.1121e6), (5.3793e-2, 9.7298e6), (5.5862e-2, 1.0397e7), (5.7931e-2, 1.1117e7),
+    (6.0000e-2, 1.1894e7)]
+
+
+def _owc_tolerance(strain):
+    """Return how far [MBL] the preset's 6-decimal fractions may leave the file's curve."""
+    # 5e-7 at each point; past the table its last slope carries up to 1e-6 / 0.002069
+    return 1e-6 + 5e-4 * max(strain - 0.06, 0.0)
+
+
+def _owc_fraction(strain):
+    """Return the published curve's T / MBL at a strain: interpolated, last slope past it."""
+    strains = np.array([0.0] + [p[0] for p in ESOMOOR_OWC])
+    fractions = np.array([0.0] + [p[1] for p in ESOMOOR_OWC]) / ESOMOOR_MBL
+    if strain <= 0.0:
+        return 0.0
+    if strain >= strains[-1]:
+        slope = (fractions[-1] - fractions[-2]) / (strains[-1] - strains[-2])
+        return fractions[-1] + slope * (strain - strains[-1])
+    return float(np.interp(strain, strains, fractions))
+
+
+def test_polyester_preset_is_the_published_working_curve():
+    """Every published point at the preset's MBL; linear between; its last slope past 6 %."""
+    polyester = load_materials().properties('polyester', DIAMETER)
+    curve = TensionCurve.from_pairs(polyester.tension_curve)
+    assert len(polyester.tension_curve) == 30  # (0, 0) and the file's 29 points
+    for strain, tension in ESOMOOR_OWC:  # the fractions are kept to 6 decimals
+        assert float(curve.tension(strain)) / polyester.mbl == pytest.approx(
+            tension / ESOMOOR_MBL, abs=5e-7)
+    # MoorDyn's Syrope test has the same curve: 4.38601e6 N at 6 %, MBL 885 t
+    assert float(curve.tension(0.06)) / polyester.mbl == pytest.approx(
+        4.38601e6 / (885.0e3 * 9.80665), rel=3e-4)
+    for strain in (0.001, 0.0235, 0.0425, 0.0595, 0.07, 0.09101):
+        assert float(curve.tension(strain)) / polyester.mbl == pytest.approx(
+            _owc_fraction(strain), abs=_owc_tolerance(strain))
+    # the S of a new rope's first pull: 9.6 MBL at the toe, 5.6 MBL while its construction
+    # beds in, 16.0 MBL at 6 %, which goes on past the table: MBL at 9.10 % strain
+    tangents = curve.slopes / polyester.mbl
+    assert tangents[0] == pytest.approx(9.564, abs=1e-3)
+    assert tangents.min() == pytest.approx(5.640, abs=1e-3)
+    assert tangents[-1] == pytest.approx(15.954, abs=1e-3)
+    assert float(curve.strain_at(polyester.mbl)) == pytest.approx(0.09101, abs=1e-5)
+    # with load_extension: curve the line takes it; its 2 MBL strain, 15.4 %, leaves the
+    # 25 % max_strain standing
+    sim = Simulator(from_values({'material': 'polyester', 'load_extension': 'curve'}))
+    assert sim.props.tension_curve == polyester.tension_curve
+    assert float(curve.strain_at(2.0 * polyester.mbl)) == pytest.approx(0.1537, abs=1e-4)
+    assert sim.props.strain_limit == 0.25
+
+
+@pytest.mark.parametrize('integrator', ['implicit_euler', 'improved_euler'])
+def test_polyester_line_settles_on_its_published_curve(integrator):
+    """The preset's 40 m line at rest from its sag to past the table: statics and table."""
+    polyester = load_materials().properties('polyester', DIAMETER)
+    curve = TensionCurve.from_pairs(polyester.tension_curve)
+    weight = 25.467341  # the reference line's w (physics_cases, test/data/README.md)
+    for span, strain_b in ((38.0, 1.1e-4), (40.5, 0.0321), (42.0, 0.0689)):
+        fairlead = [span, 0.0, RISE]
+        params = reference_params('polyester', 20, load_extension='curve',
+                                  integrator=integrator)
+        sim = Simulator(params, history=math.inf)
+        sim.push_fairlead(0.0, fairlead)
+        sim.start(0.0)
+        sim.advance_to(0.5)
+        force = sim.output().fairlead_tension
+        chain = catenary.chain_equilibrium([0.0, 0.0, 0.0], fairlead, LENGTH, 20, weight,
+                                           params.axial_stiffness, [0.0, 0.0, -G], curve)
+        solution = catenary.solve_catenary(span, RISE, LENGTH, weight,
+                                           params.axial_stiffness, curve)
+        # measured: within 1.3e-11 of the exact discrete equilibrium, and 0.090 % (38 m,
+        # nearly slack: the N = 20 lumping) to 4e-9 of the continuous curve
+        assert force == pytest.approx(np.linalg.norm(chain.force_b), rel=1e-9)
+        assert force == pytest.approx(solution.tension_b, rel=1e-3)
+        # the top segment pulls the published table at its strain (past it, at 42 m)
+        x = sim.rope.x
+        strain = np.linalg.norm(x[-1] - x[-2]) / (LENGTH / 20) - 1.0
+        assert strain == pytest.approx(strain_b, abs=1e-4)
+        assert chain.segment_tension[-1] == pytest.approx(
+            _owc_fraction(strain) * polyester.mbl, abs=_owc_tolerance(strain) * polyester.mbl)
 
 
 # -- the winch and parting on a curve line ------------------------------------------------
