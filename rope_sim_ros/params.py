@@ -281,17 +281,18 @@ def _special_text(value: float) -> str:
 MINUS_INFINITY = ('-inf', '-.inf', '-infinity')
 
 
-def check(name: str, value: Any) -> Any:
+def check(name: str, value: Any, specs: Mapping[str, Spec] = SPECS) -> Any:
     """
     Validate one parameter value and return it in its canonical type.
 
+    :param specs: the table the name belongs to (another node's may add its own).
     :raises ParameterError: unknown name, wrong type, non-finite or out of range; the message
         names the parameter and what is allowed.
     """
-    if name not in SPECS:
+    if name not in specs:
         raise ParameterError(
-            f'unknown parameter {name!r}; known: {", ".join(sorted(SPECS))}')
-    spec = SPECS[name]
+            f'unknown parameter {name!r}; known: {", ".join(sorted(specs))}')
+    spec = specs[name]
     bad = ParameterError(
         f'parameter {name!r} = {value!r} is not allowed: must be {allowed(spec)}')
     default = spec.default

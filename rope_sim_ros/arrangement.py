@@ -1,0 +1,325 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+A ship's mooring arrangement: the parameters of many lines, each under its own name.
+
+`lines` names the lines (`lines: [head_1, head_2, ...]`); each line's settings are the
+single-line node's parameters (params.SPECS) under its name, `head_1.material`,
+`head_1.fairlead_offset`, with the same meanings, ranges and messages, plus `pretension`
+(OWN_SPECS). The settings one System must share to step every line in one call (SHARED:
+the water, air, seabed and quay, gravity, the integrator and its step, the frame, the
+rates, the recording) stay at the top level under their single-line names; a line that
+sets one is refused. Every other parameter of params.SPECS is a line's own, so a parameter
+added there appears per line without a change here. A line's own setting given at the top
+level (`segments: 50`) is the default of every line that does not set it.
+
+Each line must say where it is: `fairlead_offset` (in the ship's body frame),
+`bollard_position` (in frame_id; not needed for a payload line) and `length` or
+`pretension` (the length is then chosen at the first ship pose so that the line starts
+with that fairlead tension). Every error is one line naming the parameter and what is
+allowed. No ROS and no files here beyond reading a parameter file.
+"""
+
+from dataclasses import dataclass
+import re
+from typing import Any, Dict, List, Mapping, Tuple
+
+import yaml
+
+from .params import (allowed, check, LineParams, ParameterError, read_params_file, Spec,
+                     SPECS)
+
+NODE_NAME = 'mooring'
+LINES = 'lines'
+# Shared by every line: one Environment, one integrator and step (one kernel call steps them
+# all), one frame and output grid, one ship pose stream and one bag.
+SHARED = ('gravity', 'water_level', 'water_density', 'air_density', 'current', 'seabed_level',
+          'seabed_stiffness', 'seabed_damping', 'seabed_friction', 'quay_edge', 'quay_normal',
+          'quay_depth', 'integrator', 'time_step', 'end_interpolation', 'frame_id',
+          'publish_rate', 'teleport_distance', 'record_path', 'pose_reliability')
+# A line's own parameters beyond the single-line node's.
+OWN_SPECS: Mapping[str, Spec] = {
+    'pretension': Spec(
+        0.0, 'N', 'fairlead tension the line starts with: > 0 chooses its unstretched length '
+        'at the first ship pose (on the elastic catenary in air between its ends; give no '
+        'length then); 0 = the line has its length', 0.0, 1.0e9),
+}
+LINE_SPECS: Mapping[str, Spec] = {
+    **{name: spec for name, spec in SPECS.items() if name not in SHARED}, **OWN_SPECS}
+# The arrangement's own top-level parameters (besides `lines`).
+ARRANGEMENT_SPECS: Mapping[str, Spec] = {
+    'ship_frame_id': Spec(
+        'base_link', '', "the ship's body frame (x forward, y to port, z up): header.frame_id "
+        'of ship/mooring_wrench; ship/pose gives its pose in frame_id'),
+    'marker_rate': Spec(
+        10.0, 'Hz', 'rate of mooring/markers (the lines and their utilisation for RViz and '
+        'Foxglove)', 0.0, 100.0, low_open=True, read_only=False),
+}
+LINES_DESCRIPTION = ('names of the mooring lines; each line has its settings under its name '
+                     '(head_1.material, head_1.fairlead_offset, ...) and its topics in its '
+                     'namespace (head_1/fairlead/tension, ...)')
+LINE_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
+LINE_NAME_RULE = ('a name starts with a letter and holds letters, digits and _ (it becomes a '
+                  'parameter prefix and a topic namespace)')
+MAX_LINES = 64
+# What a line must set itself (or take from a top-level default): where it is.
+REQUIRED = {
+    'fairlead_offset': "m, in the ship's body frame",
+    'bollard_position': 'm, in frame_id',
+}
+
+
+@dataclass(frozen=True)
+class LineSetup:
+    """
+    One line of the arrangement.
+
+    :ivar name: its name (parameter prefix and topic namespace).
+    :ivar params: its parameters: the shared ones and its own.
+    :ivar pretension: > 0: the fairlead tension its length is chosen for [N]; 0: it has
+        params.length.
+    """
+
+    name: str
+    params: LineParams
+    pretension: float = 0.0
+
+
+@dataclass(frozen=True)
+class ArrangementParams:
+    """
+    Validated parameters of an arrangement.
+
+    :ivar lines: the lines, in the order of `lines`.
+    :ivar shared: the SHARED values (the lines' too; its other fields are the defaults).
+    :ivar ship_frame_id: the ship's body frame.
+    :ivar marker_rate: rate of mooring/markers [Hz].
+    """
+
+    lines: Tuple[LineSetup, ...]
+    shared: LineParams
+    ship_frame_id: str = ARRANGEMENT_SPECS['ship_frame_id'].default
+    marker_rate: float = ARRANGEMENT_SPECS['marker_rate'].default
+
+    @property
+    def names(self) -> List[str]:
+        """Return the line names, in order."""
+        return [line.name for line in self.lines]
+
+    def line(self, name: str) -> LineSetup:
+        """Return the line of that name (KeyError if there is none)."""
+        for line in self.lines:
+            if line.name == name:
+                return line
+        raise KeyError(name)
+
+    def values(self) -> Dict[str, Any]:
+        """
+        Return every value as a parameter file holds it.
+
+        `lines`, the top-level values, and each line's own under its name (nested).
+        """
+        values: Dict[str, Any] = {LINES: self.names}
+        values.update({name: getattr(self.shared, name) for name in SHARED})
+        values['ship_frame_id'] = self.ship_frame_id
+        values['marker_rate'] = self.marker_rate
+        for line in self.lines:
+            own = {name: value for name, value in line.params.as_dict().items()
+                   if name not in SHARED}
+            if line.pretension > 0.0:  # the length it is given at the start
+                del own['length']
+                own['pretension'] = line.pretension
+            values[line.name] = own
+        return values
+
+    def with_line(self, name: str, params: LineParams) -> 'ArrangementParams':
+        """Return a copy with one line's parameters replaced."""
+        lines = tuple(LineSetup(line.name, params, line.pretension) if line.name == name
+                      else line for line in self.lines)
+        return ArrangementParams(lines, self.shared, self.ship_frame_id, self.marker_rate)
+
+
+def flatten(values: Mapping[str, Any], prefix: str = '') -> Dict[str, Any]:
+    """Return nested parameter maps as ROS names them: {'a': {'length': 40}} -> a.length."""
+    flat: Dict[str, Any] = {}
+    for key, value in values.items():
+        name = f'{prefix}{key}'
+        if isinstance(value, Mapping):
+            flat.update(flatten(value, name + '.'))
+        else:
+            flat[name] = value
+    return flat
+
+
+def check_line_names(value: Any) -> List[str]:
+    """
+    Validate the `lines` parameter: 1 to MAX_LINES distinct names.
+
+    :raises ParameterError: missing, empty, not a list of names, a bad or repeated name.
+    """
+    if value is None:
+        raise ParameterError(f'parameter {LINES!r} is missing: list the lines by name, e.g. '
+                             f'{LINES}: [head_1, spring_1, stern_1]')
+    if isinstance(value, str) or not isinstance(value, (list, tuple)) or not value:
+        raise ParameterError(f'parameter {LINES!r} = {value!r} is not allowed: must be a list '
+                             f'of 1 to {MAX_LINES} line names')
+    if len(value) > MAX_LINES:
+        raise ParameterError(f'parameter {LINES!r} names {len(value)} lines: at most '
+                             f'{MAX_LINES} are allowed')
+    names = []
+    for name in value:
+        if not isinstance(name, str) or not LINE_NAME.match(name):
+            raise ParameterError(f'line name {name!r} in {LINES!r} is not allowed: '
+                                 f'{LINE_NAME_RULE}')
+        if name in names:
+            raise ParameterError(f'line name {name!r} appears twice in {LINES!r}')
+        if name in LINE_SPECS or name in SPECS or name in ARRANGEMENT_SPECS:
+            raise ParameterError(f'line name {name!r} in {LINES!r} is not allowed: it is the '
+                                 'name of a parameter')
+        names.append(name)
+    return names
+
+
+def check_line_value(line: str, name: str, value: Any) -> Any:
+    """
+    Validate one setting of a line; return it in its canonical type.
+
+    :raises ParameterError: a shared parameter, an unknown one or a bad value, named with
+        the line (`head_1.length`).
+    """
+    if name in SHARED:
+        raise ParameterError(f'parameter {line}.{name!r} is not allowed: {name} is shared by '
+                             'every line (one system steps them together): set it at the top '
+                             'level')
+    if name not in LINE_SPECS:
+        raise ParameterError(f'unknown parameter {line}.{name}; a line takes: '
+                             f'{", ".join(sorted(LINE_SPECS))}')
+    try:
+        return check(name, value, LINE_SPECS)
+    except ParameterError as e:
+        raise ParameterError(str(e).replace(f'parameter {name!r}', f'parameter '
+                                            f'{line + "." + name!r}', 1)) from None
+
+
+def check_top_value(name: str, value: Any) -> Any:
+    """
+    Validate one top-level value: a shared parameter, a line default or the arrangement's own.
+
+    :raises ParameterError: an unknown name or a bad value, named.
+    """
+    if name in ARRANGEMENT_SPECS:
+        return check(name, value, ARRANGEMENT_SPECS)
+    if name in SPECS or name in OWN_SPECS:
+        return check(name, value, {**SPECS, **OWN_SPECS})
+    raise ParameterError(
+        f'unknown parameter {name!r}: not a shared parameter ({", ".join(SHARED)}), a line '
+        f'setting, nor one of {LINES}, {", ".join(ARRANGEMENT_SPECS)}; a line takes its own '
+        'settings under its name, e.g. head_1.length')
+
+
+def from_values(values: Mapping[str, Any]) -> ArrangementParams:
+    """
+    Validate an arrangement's parameter values (flat `head_1.length` names or nested maps).
+
+    :raises ParameterError: the first thing wrong, in one line: `lines` missing or bad, a
+        setting for a line not in `lines`, an unknown or bad value, a line without
+        fairlead_offset, bollard_position, or length or pretension.
+    """
+    flat = flatten(values)
+    names = check_line_names(flat.get(LINES))
+    top: Dict[str, Any] = {}
+    own: Dict[str, Dict[str, Any]] = {name: {} for name in names}
+    for key, value in flat.items():
+        if key == LINES:
+            continue
+        line, dot, name = key.partition('.')
+        if not dot:
+            top[key] = check_top_value(key, value)
+        elif line in own:
+            own[line][name] = check_line_value(line, name, value)
+        else:
+            raise ParameterError(f'parameter {key!r} is for no line: {LINES} are '
+                                 f'{", ".join(names)}')
+    shared_values = {k: v for k, v in top.items() if k in SHARED}
+    shared = LineParams().with_values(shared_values)
+    setups = tuple(_line_setup(name, {k: v for k, v in top.items() if k in LINE_SPECS},
+                               own[name], shared_values) for name in names)
+    return ArrangementParams(
+        setups, shared,
+        top.get('ship_frame_id', ARRANGEMENT_SPECS['ship_frame_id'].default),
+        top.get('marker_rate', ARRANGEMENT_SPECS['marker_rate'].default))
+
+
+def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],
+                shared: Dict[str, Any]) -> LineSetup:
+    """Return one line's setup: shared values, then the defaults, then its own values."""
+    values = {**defaults, **own}
+    missing = [f'{name}.{key} ({unit})' for key, unit in REQUIRED.items()
+               if key not in values
+               and not (key == 'bollard_position' and values.get('payload_mass', 0.0) > 0.0)]
+    if 'length' in own and own.get('pretension', 0.0) > 0.0:
+        raise ParameterError(f'line {name!r} has both length and pretension: give '
+                             f'{name}.length (m) or {name}.pretension (N), not both')
+    # its own length or pretension wins over the top-level defaults
+    pretension = 0.0 if 'length' in own else values.pop('pretension', 0.0)
+    values.pop('pretension', None)
+    if pretension > 0.0 and values.get('payload_mass', 0.0) > 0.0:
+        raise ParameterError(f'line {name!r} has a payload and a pretension: a payload hangs '
+                             f'under its own weight; give {name}.length (m)')
+    if 'length' not in values and pretension <= 0.0:
+        missing.append(f'{name}.length (m) or {name}.pretension (N)')
+    if missing:
+        raise ParameterError(f'line {name!r} is missing settings: set {"; ".join(missing)}')
+    if pretension > 0.0:
+        values.pop('length', None)  # a top-level default length gives way to the pretension
+    return LineSetup(name, LineParams().with_values({**shared, **values}), float(pretension))
+
+
+def read_arrangement_file(path) -> ArrangementParams:
+    """
+    Read and validate the `mooring: ros__parameters:` section of a ROS parameter file.
+
+    :raises ParameterError: unreadable file, no such section, or a bad value (one line).
+    """
+    return from_values(read_params_file(path, NODE_NAME))
+
+
+def parameters_yaml(arrangement: ArrangementParams) -> str:
+    """Return the arrangement as a one-line ROS parameter file (stored in bags)."""
+    values = arrangement.values()
+    values.pop('record_path', None)
+    return yaml.safe_dump({NODE_NAME: {'ros__parameters': values}}, default_flow_style=True,
+                          sort_keys=True, width=2**31).strip()
+
+
+def parameters_from_yaml(text: str) -> ArrangementParams:
+    """
+    Return the arrangement of a parameters_yaml text.
+
+    :raises ParameterError: it is not such a text, or a value is not allowed.
+    """
+    try:
+        values = yaml.safe_load(text)[NODE_NAME]['ros__parameters']
+    except (yaml.YAMLError, KeyError, TypeError):
+        raise ParameterError(f'stored parameters are not an arrangement: {text[:80]!r}') from None
+    if not isinstance(values, dict):
+        raise ParameterError(f'stored parameters are not an arrangement: {text[:80]!r}')
+    return from_values(values)
+
+
+def describe_own(name: str) -> Tuple[Spec, str]:
+    """Return the Spec and the allowed text of a line setting or an arrangement parameter."""
+    spec = LINE_SPECS.get(name) or ARRANGEMENT_SPECS[name]
+    return spec, allowed(spec)

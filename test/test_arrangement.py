@@ -1,0 +1,315 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+A ship's arrangement of lines stepped in one System (mooring.py, mooring_driver.py).
+
+Eight lines stepped together against the same eight lines run alone through LineDriver, the
+total wrench against the per-line forces and against a hand computation, pretension, and
+the one-line refusals of bad arrangements (arrangement.py).
+"""
+
+import math
+
+import numpy as np
+import pytest
+from rope_sim_ros import arrangement
+from rope_sim_ros.frames import pose_point
+from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
+from rope_sim_ros.mooring import length_for_tension, mooring_wrench
+from rope_sim_ros.mooring_driver import MooringDriver, SHIP
+from rope_sim_ros.params import ParameterError
+from rope_sim_ros.physics.catenary import solve_catenary
+
+T0 = 1_000_000_000  # [ns] the first pose's stamp
+RATE = 50.0
+SHIP_Y = -18.0  # the ship's centreline, 18 m off the quay face (world y = 0)
+# Eight lines of a ship lying port side to the quay (body y to port = world y towards the
+# quay), heading +x: offsets in the body frame, bollards on the quay in the world frame;
+# each about 5 % of its MBL at rest (lengths from length_for_tension, to the millimetre).
+BERTH = {
+    'head_1': dict(material='polyester', fairlead_offset=[95.0, 12.0, 12.0],
+                   bollard_position=[140.0, 6.0, 2.5], length=47.364),
+    'head_2': dict(material='nylon', diameter=0.056, fairlead_offset=[93.0, 13.0, 12.0],
+                   bollard_position=[135.0, 8.0, 2.5], length=44.537),
+    'breast_fwd': dict(material='polyester', fairlead_offset=[70.0, 15.0, 11.0],
+                       bollard_position=[72.0, 10.0, 2.5], length=15.605, segments=8),
+    'spring_fwd': dict(material='hmpe', diameter=0.04, fairlead_offset=[40.0, 15.0, 11.0],
+                       bollard_position=[-5.0, 6.0, 2.5], length=46.63),
+    'spring_aft': dict(material='steel_wire', diameter=0.036, fairlead_offset=[-40.0, 15.0, 11.0],
+                       bollard_position=[5.0, 6.0, 2.5], length=46.652),
+    'breast_aft': dict(material='polyester', fairlead_offset=[-70.0, 15.0, 11.0],
+                       bollard_position=[-72.0, 10.0, 2.5], length=15.605, segments=8),
+    'stern_1': dict(material='nylon', fairlead_offset=[-95.0, 12.0, 12.0],
+                    bollard_position=[-140.0, 6.0, 2.5], pretension=80.0e3),
+    'stern_2': dict(material='polyester', fairlead_offset=[-93.0, 13.0, 12.0],
+                    bollard_position=[-135.0, 8.0, 2.5], length=44.821),
+}
+
+
+def berth_values(**top):
+    """Return the eight-line arrangement's parameter values, 12 segments a line by default."""
+    return {'lines': list(BERTH), 'segments': 12, 'publish_rate': RATE, **BERTH, **top}
+
+
+def ship_pose(t):
+    """Surge, sway, yaw and roll of a ship at the berth: (position, quaternion (x, y, z, w))."""
+    surge = 0.3 * math.sin(2.0 * math.pi * t / 7.0)
+    sway = 0.3 * math.sin(2.0 * math.pi * t / 9.0)
+    yaw = 0.004 * math.sin(2.0 * math.pi * t / 11.0)
+    roll = 0.02 * math.sin(2.0 * math.pi * t / 5.0)
+    cy, sy, cr, sr = math.cos(yaw / 2), math.sin(yaw / 2), math.cos(roll / 2), math.sin(roll / 2)
+    return [surge, SHIP_Y + sway, 0.1 * math.sin(t)], [cy * sr, sy * sr, sy * cr, cy * cr]
+
+
+def run_arrangement(values, seconds=3.0, pose=ship_pose, rate=RATE):
+    """Drive a MooringDriver with ship poses at `rate` for `seconds`; return it and its outputs."""
+    driver = MooringDriver(arrangement.from_values(values), rate=rate, history=math.inf)
+    outputs = []
+    for i in range(round(seconds * rate) + 1):
+        t = i / rate
+        position, orientation = pose(t)
+        driver.push_ship(T0 + round(t * 1e9), position, orientation)
+        outputs += driver.advance(math.inf, max_lag=math.inf).outputs
+    driver.silence(SHIP)
+    outputs += driver.advance(seconds, max_lag=math.inf).outputs
+    return driver, outputs
+
+
+def run_single(params, seconds=3.0, pose=ship_pose, rate=RATE):
+    """Drive one line alone through LineDriver with the same poses; return its outputs."""
+    driver = LineDriver(params, rate=rate, history=math.inf)
+    outputs = []
+    for i in range(round(seconds * rate) + 1):
+        t = i / rate
+        position, orientation = pose(t)
+        point = pose_point(position, orientation, params.fairlead_offset)
+        driver.push(FAIRLEAD, T0 + round(t * 1e9), point.point, point.lever)
+        outputs += driver.advance(math.inf, max_lag=math.inf).outputs
+    driver.silence(FAIRLEAD)
+    outputs += driver.advance(seconds, max_lag=math.inf).outputs
+    return outputs
+
+
+def rotation_matrix(q):
+    """Return the rotation matrix of a unit quaternion (x, y, z, w), written out by hand."""
+    x, y, z, w = q
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+@pytest.fixture(scope='module')
+def eight_lines():
+    """The eight-line berth run together for 3 s."""
+    return run_arrangement(berth_values())
+
+
+# ------------------------------------------------------------------ lines together = alone
+
+
+def test_eight_lines_together_step_as_eight_lines_alone(eight_lines):
+    driver, together = eight_lines
+    mooring = driver.mooring
+    assert len(together) == 151  # 3 s at 50 Hz, from the first pose
+    steps = {name: sim.time_step for name, sim in zip(mooring.names, mooring.sims)}
+    assert len(set(steps.values())) == 1  # every line takes the smallest line's step
+    for k, line in enumerate(driver.arrangement.lines):
+        # the same line alone, at the step the arrangement takes
+        alone = run_single(line.params.with_values({'time_step': mooring.time_step}))
+        assert [o.stamp_ns for o in alone] == [o.stamp_ns for o in together], line.name
+        for key in ('fairlead_force', 'bollard_force'):
+            mine = np.array([getattr(o.output, key + 's')[k] for o in together])
+            single = np.array([getattr(o.output, key) for o in alone])
+            scale = np.abs(single).max()
+            assert scale > 1.0e3, line.name  # the lines pull: a real comparison
+            assert np.abs(mine - single).max() <= 1e-9 * scale, (line.name, key)
+        positions = np.array([o.output.positions[k] for o in together])
+        assert np.abs(positions - np.array([o.output.positions for o in alone])).max() < 1e-9
+
+
+def test_lines_pull_and_the_ship_moves_them(eight_lines):
+    _, outputs = eight_lines
+    tensions = np.array([o.output.fairlead_tensions for o in outputs])
+    # every line pulls, and the motion changes its tension by more than 5 % (some go slack)
+    assert tensions.max(axis=0).min() > 10.0e3
+    swing = (tensions.max(axis=0) - tensions.min(axis=0)) / tensions.mean(axis=0)
+    assert swing.min() > 0.05, swing
+
+
+# ------------------------------------------------------------------ the total wrench
+
+
+def test_wrench_is_the_sum_of_the_fairlead_forces_and_their_moments(eight_lines):
+    driver, outputs = eight_lines
+    offsets = np.array([line.params.fairlead_offset for line in driver.arrangement.lines])
+    for published in outputs[::10]:
+        t = published.output.t
+        position, orientation = ship_pose(round(t * RATE) / RATE)  # outputs on pose times
+        rotation = rotation_matrix(orientation)
+        forces = published.output.fairlead_forces  # world frame
+        body = forces @ rotation  # R^T F for each row
+        force = body.sum(axis=0)
+        moment = sum(np.cross(o, f) for o, f in zip(offsets, body))
+        assert np.allclose(published.force, force, rtol=0, atol=1e-9 * np.abs(force).max())
+        assert np.allclose(published.moment, moment, rtol=0,
+                           atol=1e-9 * np.abs(moment).max())
+        # the world copy: the same force and moment about the ship's origin, world axes
+        levers = offsets @ rotation.T
+        world_force, world_moment = published.world_wrench()
+        assert np.allclose(world_force, forces.sum(axis=0), atol=1e-6)
+        assert np.allclose(world_moment, np.cross(levers, forces).sum(axis=0),
+                           atol=1e-9 * np.abs(world_moment).max())
+        assert np.allclose(published.levers, levers, atol=1e-12)
+        assert np.allclose(published.ship_position, position, atol=1e-12)
+
+
+def test_wrench_of_two_lines_by_hand():
+    # A ship at rest at the origin, turned 90 degrees (its x axis along world y), held by
+    # two polyester lines, one ahead and one astern, each from a bollard 10 m below its
+    # fairlead: the ahead line over a 30 m span (32 m long), the astern one over 25 m
+    # (26.5 m long). Each pulls its fairlead with its catenary's end force: H along the
+    # line towards its bollard, V_B down. In the body frame the ahead line pulls +x, the
+    # astern one -x; the fairleads sit at (+-40, 5, 10).
+    yaw = math.pi / 2
+    q = [0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]
+    line = dict(material='polyester', segments=40)
+    values = {
+        'lines': ['ahead', 'astern'],
+        'ahead': dict(line, fairlead_offset=[40.0, 5.0, 10.0], bollard_position=[-5.0, 70.0, 0.0],
+                      length=32.0),
+        'astern': dict(line, fairlead_offset=[-40.0, 5.0, 10.0],
+                       bollard_position=[-5.0, -65.0, 0.0], length=26.5),
+    }
+    driver = MooringDriver(arrangement.from_values(values), rate=RATE, history=math.inf)
+    driver.push_ship(T0, [0.0, 0.0, 0.0], q)
+    published = driver.advance(math.inf, max_lag=math.inf).outputs[0]  # the start, at rest
+    props = driver.mooring.sims[0].props
+    w, ea = props.weight_per_length, props.axial_stiffness
+    ahead = solve_catenary(30.0, 10.0, 32.0, w, ea)
+    astern = solve_catenary(25.0, 10.0, 26.5, w, ea)
+    h1, v1, h2, v2 = (ahead.horizontal_tension, ahead.vertical_b, astern.horizontal_tension,
+                      astern.vertical_b)
+    # F = (H1 - H2, 0, -V1 - V2); M = (40, 5, 10) x (H1, 0, -V1) + (-40, 5, 10) x (-H2, 0, -V2)
+    by_hand_force = [h1 - h2, 0.0, -v1 - v2]
+    by_hand_moment = [-5.0 * v1 - 5.0 * v2,
+                      10.0 * h1 + 40.0 * v1 - 10.0 * h2 - 40.0 * v2,
+                      -5.0 * h1 + 5.0 * h2]
+    assert abs(h1 - h2) > 0.2 * h1 and abs(by_hand_moment[1]) > 0.2 * 40.0 * v1  # no cancel
+    # 40 segments and the bending springs against the catenary: within 0.2 % of each term
+    discrete = 2e-3
+    assert published.force == pytest.approx(by_hand_force, abs=discrete * (h1 + v1 + h2 + v2))
+    assert published.moment == pytest.approx(
+        by_hand_moment, abs=discrete * 50.0 * (h1 + v1 + h2 + v2))
+
+
+def test_mooring_wrench_of_given_forces():
+    # one force, the ship turned 90 degrees about z: body x is world y
+    q = [0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4)]
+    force, moment = mooring_wrench(np.array([[0.0, 1000.0, -200.0]]),
+                                   np.array([[10.0, 0.0, 5.0]]), q)
+    assert force == pytest.approx([1000.0, 0.0, -200.0])
+    # (10, 0, 5) x (1000, 0, -200) = (0 * -200 - 5 * 0, 5 * 1000 - 10 * -200, 0 - 0)
+    assert moment == pytest.approx([0.0, 7000.0, 0.0], abs=1e-9)
+
+
+# ------------------------------------------------------------------ pretension
+
+
+def test_pretension_starts_the_line_at_its_tension(eight_lines):
+    driver, outputs = eight_lines
+    k = driver.mooring.names.index('stern_1')
+    first = outputs[0].output.fairlead_tensions[k]
+    assert first == pytest.approx(80.0e3, rel=2e-3)  # the catenary against 12 segments
+    line = driver.arrangement.line('stern_1')
+    assert line.pretension == 80.0e3
+    assert 40.0 < line.params.length < 52.0  # chosen at the first pose
+
+
+def test_length_for_tension_inverts_the_catenary():
+    driver = MooringDriver(arrangement.from_values(berth_values()), rate=RATE)
+    props = driver.mooring.sims[0].props
+    bollard, fairlead = np.array([0.0, 0.0, 0.0]), np.array([40.0, 5.0, 9.0])
+    for tension in (2.0e3, 50.0e3, 400.0e3):
+        length = length_for_tension(props, bollard, fairlead, tension)
+        span, rise = math.hypot(40.0, 5.0), 9.0
+        got = solve_catenary(span, rise, length, props.weight_per_length,
+                             props.axial_stiffness).tension_b
+        assert got == pytest.approx(tension, rel=1e-9)
+    with pytest.raises(ParameterError, match='least fairlead tension'):
+        length_for_tension(props, bollard, fairlead, 100.0)  # less than its weight holds
+    with pytest.raises(ParameterError, match='reach'):
+        length_for_tension(props, bollard, fairlead, 1e9)
+
+
+# ------------------------------------------------------------------ refusals
+
+
+@pytest.mark.parametrize('change, message', [
+    ({'lines': ['head 1']}, "line name 'head 1' in 'lines' is not allowed: a name starts"),
+    ({'lines': ['head_1', 'head_1']}, "line name 'head_1' appears twice in 'lines'"),
+    ({'lines': []}, "parameter 'lines' = [] is not allowed"),
+    ({'lines': None}, "parameter 'lines' is missing"),
+    ({'haed_1': {'length': 40.0}}, "parameter 'haed_1.length' is for no line: lines are"),
+    ({'head_1': dict(BERTH['head_1'], lenght=40.0)}, 'unknown parameter head_1.lenght; a line '
+     'takes'),
+    ({'head_1': dict(BERTH['head_1'], length=-1.0)}, "parameter 'head_1.length' = -1.0 is not "
+     'allowed: must be > 0'),
+    ({'head_1': dict(BERTH['head_1'], integrator='improved_euler')},
+     "parameter head_1.'integrator' is not allowed: integrator is shared"),
+    ({'head_1': {'length': 40.0}}, "line 'head_1' is missing settings: set "
+     'head_1.fairlead_offset'),
+    ({'head_1': {'fairlead_offset': [1.0, 2.0, 3.0], 'bollard_position': [0.0, 0.0, 0.0]}},
+     "line 'head_1' is missing settings: set head_1.length (m) or head_1.pretension (N)"),
+    ({'head_1': dict(BERTH['head_1'], pretension=1e5)}, "line 'head_1' has both length and "
+     'pretension'),
+    ({'lenght': 40.0}, "unknown parameter 'lenght'"),
+])
+def test_bad_arrangement_is_refused_in_one_line(change, message):
+    values = berth_values()
+    values.update(change)
+    if values['lines'] is None:
+        del values['lines']
+    with pytest.raises(ParameterError) as error:
+        arrangement.from_values(values)
+    text = str(error.value)
+    assert '\n' not in text
+    assert text.startswith(message), text
+
+
+def test_top_level_line_settings_are_every_lines_default():
+    values = berth_values(segments=30, material='nylon')
+    values['head_1'] = dict(BERTH['head_1'], segments=6)
+    setup = arrangement.from_values(values)
+    assert setup.line('head_1').params.segments == 6
+    assert setup.line('head_2').params.segments == 30
+    assert setup.line('spring_aft').params.material == 'steel_wire'  # its own
+    assert setup.line('head_1').params.material == 'polyester'
+    assert setup.line('breast_fwd').params.integrator == setup.shared.integrator
+
+
+def test_nested_and_flat_names_are_the_same_arrangement():
+    nested = arrangement.from_values(berth_values())
+    flat = arrangement.flatten(berth_values())
+    assert 'head_1.fairlead_offset' in flat
+    assert arrangement.from_values(flat) == nested
+    again = arrangement.parameters_from_yaml(arrangement.parameters_yaml(nested))
+    assert again == nested
+
+
+def test_a_line_that_cannot_be_built_is_named():
+    values = berth_values(integrator='improved_euler', time_step=0.01)
+    with pytest.raises(ParameterError, match=r"^line 'head_1': time_step 0.01 s is above"):
+        MooringDriver(arrangement.from_values(values))
