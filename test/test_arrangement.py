@@ -113,7 +113,7 @@ def rotation_matrix(q):
 
 @pytest.fixture(scope='module')
 def eight_lines():
-    """The eight-line berth run together for 3 s."""
+    """Run the eight-line berth together for 3 s."""
     return run_arrangement(berth_values())
 
 
