@@ -30,7 +30,8 @@ build_scripts = Distribution().get_command_class('build_scripts')
 # a console script's preamble (importlib.metadata, 50 ms) runs before any code of the package,
 # so Ctrl-C in it printed a KeyboardInterrupt traceback (80 of 140 tries in the first 75 ms).
 # A launcher takes SIGINT over in its first statements; see bin/mooring_line.
-EXECUTABLES = ('mooring_line', 'ship_motion', 'line_monitor', 'bag_replay', 'rope_sim')
+EXECUTABLES = ('mooring_line', 'mooring', 'ship_motion', 'line_monitor', 'bag_replay',
+               'rope_sim')
 
 # Before those statements the interpreter starts (1 to 10 ms) and turns a Ctrl-C into a
 # KeyboardInterrupt whose traceback it prints (1 of 60 tries in the first 10 ms). GNU env (8.31 and
@@ -130,7 +131,8 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        ('share/' + package_name + '/config', glob('config/*.yaml')),
+        ('share/' + package_name + '/config',
+         glob('config/*.yaml') + glob('config/*.json') + glob('config/*.rviz')),
         ('share/' + package_name + '/launch', glob('launch/*.launch.py')),
     ],
     install_requires=['setuptools'],

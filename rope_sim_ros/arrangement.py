@@ -43,6 +43,9 @@ from .params import (allowed, check, LineParams, ParameterError, read_params_fil
 
 NODE_NAME = 'mooring'
 LINES = 'lines'
+# custom_data key of metadata.yaml under which an arrangement's bag stores its parameters
+# (a single line's use line_driver.PARAMETERS_KEY).
+PARAMETERS_KEY = 'rope_sim_ros.arrangement'
 # Shared by every line: one Environment, one integrator and step (one kernel call steps them
 # all), one frame and output grid, one ship pose stream and one bag.
 SHARED = ('gravity', 'water_level', 'water_density', 'air_density', 'current', 'seabed_level',

@@ -33,10 +33,12 @@ from rope_sim_ros import precompile
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = 'rope_sim_ros'
-EXECUTABLES = ('mooring_line', 'ship_motion', 'line_monitor', 'bag_replay', 'rope_sim')
+EXECUTABLES = ('mooring_line', 'mooring', 'ship_motion', 'line_monitor', 'bag_replay',
+               'rope_sim')
 SHARE_FILES = (
     'package.xml',
     'config/mooring_line.yaml',
+    'config/berth.yaml',
     'config/materials.yaml',
     'launch/mooring_line.launch.py',
 )

@@ -119,6 +119,11 @@ def mooring_line() -> int:
     return _run('ros.mooring_line_node')
 
 
+def mooring() -> int:
+    """Run the mooring node (rope_sim_ros.ros.mooring_node.main)."""
+    return _run('ros.mooring_node')
+
+
 def ship_motion() -> int:
     """Run the ship_motion node (rope_sim_ros.ros.ship_motion_node.main)."""
     return _run('ros.ship_motion_node')

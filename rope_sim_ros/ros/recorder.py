@@ -99,7 +99,8 @@ class _Topic:
                  offered_qos: Optional[Callable[[], QosSpec]]) -> None:
         self.name = name
         self.type_name = type_name
-        self.cls, self.encode, self.stamped = _TYPES[type_name]
+        # another installed type (the mooring node's): RosBagWriter serialises it
+        self.cls, self.encode, self.stamped = _TYPES.get(type_name, (None, None, False))
         self.qos = qos
         # Set for an input: registration waits for its first message (or close()).
         self.offered_qos = offered_qos
@@ -161,32 +162,32 @@ class Recorder:
 
         :param relative: the name the node uses, e.g. 'fairlead/tension'.
         :param name: the resolved name recorded, e.g. '/line_1/fairlead/tension'.
-        :param type_name: POSE_STAMPED, POSE_ARRAY, WRENCH or STRING.
+        :param type_name: POSE_STAMPED, POSE_ARRAY, WRENCH, STRING (encoded here) or any
+            other installed type (serialised by RosBagWriter).
         :param qos: the offered QoS profile(s) stored; None = rclpy's default publisher's.
         :param offered_qos: for an input: a callable returning the QoS its publishers offer
             (None or empty for the default), asked when the first message arrives.
-        :raises BagError: the type is not one of the three, or the name is not absolute.
+        :raises BagError: the type is not installed, or the name is not absolute.
         """
-        if type_name not in _TYPES:
-            raise BagError(f'bag {self.path}: cannot record {type_name} on {name}: the '
-                           f'recorder knows {", ".join(_TYPES)}')
         topic = _Topic(name, type_name, qos, offered_qos)
         if offered_qos is None:
             self.writer.add_topic(name, type_name, qos)
         self._topics[relative] = topic
 
-    def write(self, relative: str, msg: Any, log_time_ns: int) -> None:
+    def write(self, relative: str, msg: Any, log_time_ns: int,
+              publish_time_ns: Optional[int] = None) -> None:
         """
         Queue one message; never raises, never waits for the disk.
 
-        publish_time is the header stamp where the message has a non-zero one, else the
-        log time. The log time is made 1 ns after the previous one if it is not after it.
-        A message that cannot be queued (queue full, recording stopped) is counted in
-        `dropped`; the first error is logged once.
+        publish_time is publish_time_ns if given, else the header stamp where the message
+        has a non-zero one, else the log time. The log time is made 1 ns after the previous
+        one if it is not after it. A message that cannot be queued (queue full, recording
+        stopped) is counted in `dropped`; the first error is logged once.
 
         :param relative: a topic given to add_topic().
-        :param msg: the message as received or published.
+        :param msg: the message as received or published, or its CDR bytes as published.
         :param log_time_ns: receive/record time on the node clock [ns].
+        :param publish_time_ns: its publish time [ns], or None (see above).
         """
         if self._failure is not None or self.writer.closed:
             return
@@ -197,16 +198,19 @@ class Recorder:
             if self._last_log_ns is not None and log_time_ns <= self._last_log_ns:
                 log_time_ns = self._last_log_ns + 1
             self._last_log_ns = log_time_ns
-            publish_time_ns = log_time_ns
-            if topic.stamped:
-                stamp = msg.header.stamp
-                if stamp.sec or stamp.nanosec:
-                    publish_time_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
-            if type(msg) is not topic.cls:
+            raw = isinstance(msg, bytes)
+            if publish_time_ns is None:
+                publish_time_ns = log_time_ns
+                if topic.stamped and not raw:
+                    stamp = msg.header.stamp
+                    if stamp.sec or stamp.nanosec:
+                        publish_time_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
+            if not raw and topic.cls is not None and type(msg) is not topic.cls:
                 raise BagError(f'{topic.name} records {topic.type_name}, got '
                                f'{type(msg).__module__}.{type(msg).__name__}')
             self._offered += 1
-            self.writer.write(topic.name, topic.encode(msg), log_time_ns, publish_time_ns)
+            data = msg if raw or topic.encode is None else topic.encode(msg)
+            self.writer.write(topic.name, data, log_time_ns, publish_time_ns)
             error = self.writer.error
         except Exception as exc:  # noqa: B902 - recording must never stop the simulation
             error = exc

@@ -1,0 +1,160 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+What an instructor sees of a mooring: markers for RViz and Foxglove, and diagnostics.
+
+mooring/markers (visualization_msgs/MarkerArray), in frame_id:
+
+- ns 'lines', id k: line k as a LINE_STRIP through its particles, coloured by its band
+  (line_status: green below the WLL, amber past it, red past 90 % of the MBL); a parted
+  line as a grey, dashed LINE_LIST (every other segment);
+- ns 'labels', id k: its name and utilisation above its middle particle (TEXT_VIEW_FACING);
+- ns 'fairleads', id 0 and ns 'bollards', id 0: the ends as SPHERE_LISTs, white and blue.
+
+/diagnostics (diagnostic_msgs/DiagnosticArray): one status per line, named
+'mooring: <line>', hardware_id the line's name: OK below the WLL, WARN past it, ERROR once
+it has parted or was restarted since the last report; its values the tension, utilisation,
+peak since the last report, strain, WLL and MBL.
+"""
+
+from typing import List, Optional, Sequence
+
+from builtin_interfaces.msg import Duration
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from geometry_msgs.msg import Point
+import numpy as np
+from std_msgs.msg import ColorRGBA
+from visualization_msgs.msg import Marker, MarkerArray
+
+from .conversions import ns_to_stamp
+from ..line_status import COLOURS, PARTED, Rating, WORDS
+
+LINE_WIDTH = 0.25  # [m]: a 64 mm line drawn at its size is lost beside a 200 m hull
+END_SIZE = 1.0  # [m]: fairlead and bollard spheres
+TEXT_SIZE = 2.0  # [m]: label height
+TEXT_LIFT = 3.0  # [m]: labels float this high above the middle of their line
+# A marker lives this long unless published again: a node that stops leaves no stale
+# lines behind, and at marker_rate >= 1 Hz they are replaced well before.
+LIFETIME = Duration(sec=2)
+FAIRLEAD_COLOUR = (1.0, 1.0, 1.0)
+BOLLARD_COLOUR = (0.2, 0.4, 1.0)
+
+
+def _colour(rgb, alpha: float = 1.0) -> ColorRGBA:
+    r, g, b = rgb
+    return ColorRGBA(r=float(r), g=float(g), b=float(b), a=float(alpha))
+
+
+def _points(positions) -> List[Point]:
+    return [Point(x=x, y=y, z=z) for x, y, z in np.asarray(positions, dtype=float).tolist()]
+
+
+def _marker(frame_id: str, stamp_ns: int, ns: str, marker_id: int, kind: int) -> Marker:
+    marker = Marker()
+    marker.header.frame_id = frame_id
+    marker.header.stamp = ns_to_stamp(stamp_ns)
+    marker.ns, marker.id, marker.type, marker.action = ns, marker_id, kind, Marker.ADD
+    marker.pose.orientation.w = 1.0
+    marker.lifetime = LIFETIME
+    return marker
+
+
+def line_markers(frame_id: str, stamp_ns: int, names: Sequence[str],
+                 positions: Sequence[np.ndarray], tensions: Sequence[float],
+                 ratings: Sequence[Rating], parted: Sequence[bool],
+                 fairleads: np.ndarray, bollards: np.ndarray) -> MarkerArray:
+    """
+    Return the markers of every line (see the module docstring).
+
+    :param positions: each line's particles (N_k + 1, 3) [m], bollard first.
+    :param tensions: each line's tension [N] (the larger end's).
+    :param ratings: each line's MBL and WLL.
+    :param parted: whether each line has parted.
+    :param fairleads: the fairlead points (L, 3) [m]; bollards likewise.
+    """
+    markers = []
+    for k, name in enumerate(names):
+        rating, points = ratings[k], np.asarray(positions[k], dtype=float)
+        band = rating.band(tensions[k], parted[k])
+        if band == PARTED:
+            line = _marker(frame_id, stamp_ns, 'lines', k, Marker.LINE_LIST)
+            # pairs (0, 1), (2, 3), ...: every other segment, dashes
+            line.points = _points(points[:2 * (len(points) // 2)])
+            line.color = _colour(COLOURS[PARTED], 0.6)
+        else:
+            line = _marker(frame_id, stamp_ns, 'lines', k, Marker.LINE_STRIP)
+            line.points = _points(points)
+            line.color = _colour(COLOURS[band])
+        line.scale.x = LINE_WIDTH
+        label = _marker(frame_id, stamp_ns, 'labels', k, Marker.TEXT_VIEW_FACING)
+        middle = points[len(points) // 2]
+        label.pose.position = Point(x=float(middle[0]), y=float(middle[1]),
+                                    z=float(middle[2]) + TEXT_LIFT)
+        label.scale.z = TEXT_SIZE
+        label.color = _colour(COLOURS[band])
+        label.text = (f'{name} parted' if band == PARTED
+                      else f'{name} {100.0 * rating.utilisation(tensions[k]):.0f} %')
+        markers += [line, label]
+    for ns, ends, rgb in (('fairleads', fairleads, FAIRLEAD_COLOUR),
+                          ('bollards', bollards, BOLLARD_COLOUR)):
+        spheres = _marker(frame_id, stamp_ns, ns, 0, Marker.SPHERE_LIST)
+        spheres.points = _points(ends)
+        spheres.scale.x = spheres.scale.y = spheres.scale.z = END_SIZE
+        spheres.color = _colour(rgb)
+        markers.append(spheres)
+    return MarkerArray(markers=markers)
+
+
+def line_diagnostics(stamp_ns: int, names: Sequence[str], tensions: Sequence[float],
+                     peaks: Sequence[float], strains: Sequence[float],
+                     ratings: Sequence[Rating], parted: Sequence[bool],
+                     restarted: Sequence[Optional[str]]) -> DiagnosticArray:
+    """
+    Return one DiagnosticStatus per line (see the module docstring).
+
+    :param tensions: each line's tension now [N]; peaks: the largest since the last report.
+    :param strains: each line's largest strain now.
+    :param restarted: why each line was restarted since the last report, or None.
+    """
+    statuses = []
+    for k, name in enumerate(names):
+        rating = ratings[k]
+        band = rating.band(peaks[k], parted[k])
+        utilisation = 100.0 * rating.utilisation(tensions[k])
+        status = DiagnosticStatus(name=f'mooring: {name}', hardware_id=name)
+        if parted[k]:
+            status.level, status.message = DiagnosticStatus.ERROR, 'parted'
+        elif restarted[k]:
+            status.level = DiagnosticStatus.ERROR
+            status.message = f'restarted at rest: {restarted[k]}'
+        elif peaks[k] >= rating.wll:
+            status.level = DiagnosticStatus.WARN
+            status.message = (f'{WORDS[band]}: peak {100.0 * rating.utilisation(peaks[k]):.1f} '
+                              '% of MBL')
+        else:
+            status.level = DiagnosticStatus.OK
+            status.message = f'{utilisation:.1f} % of MBL'
+        status.values = [KeyValue(key=key, value=value) for key, value in (
+            ('tension [N]', f'{tensions[k]:.1f}'),
+            ('utilisation [%]', f'{utilisation:.2f}'),
+            ('peak since last report [N]', f'{peaks[k]:.1f}'),
+            ('strain [%]', f'{100.0 * strains[k]:.4f}'),
+            ('WLL [N]', f'{rating.wll:.0f}'),
+            ('MBL [N]', f'{rating.mbl:.0f}'),
+        )]
+        statuses.append(status)
+    array = DiagnosticArray(status=statuses)
+    array.header.stamp = ns_to_stamp(stamp_ns)
+    return array
