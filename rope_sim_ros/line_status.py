@@ -46,7 +46,7 @@ COLOURS = {
 WORDS = {
     OK: 'below the WLL',
     ABOVE_WLL: 'past the WLL',
-    NEAR_BREAK: f'past {NEAR_BREAK_FRACTION:.0%} of the MBL',
+    NEAR_BREAK: f'past {100 * NEAR_BREAK_FRACTION:g} % of the MBL',
     PARTED: 'parted',
 }
 

@@ -1,0 +1,392 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The mooring node over real DDS, from the colcon install, as a subscriber sees it.
+
+One node (three lines, sim time driven by the test) serves the parameter, marker,
+diagnostic, wrench and reset tests, in that order; the refusals start short-lived ones.
+The lines lead aft from a ship that surges 0.5 m ahead and yaws a little: their lengths are
+chosen so that, the ship held there, they pull 30 %, 65 % and 95 % of their MBL: below the
+WLL (50 %), past it, and past 90 %.
+"""
+
+import math
+import subprocess
+import time
+
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
+import numpy as np
+import pytest
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.parameter import Parameter
+from rclpy.parameter_client import AsyncParameterClient
+from rclpy.signals import SignalHandlerOptions
+from rope_sim_ros import arrangement, params
+from rope_sim_ros.frames import pose_point
+from rope_sim_ros.line_status import COLOURS
+from rope_sim_ros.mooring import length_for_tension
+from rope_sim_ros.ros.mooring_display import line_diagnostics, line_markers
+from rope_sim_ros.ros.mooring_line_node import describe
+from rope_sim_ros.simulator import Simulator
+from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Trigger
+from visualization_msgs.msg import Marker, MarkerArray
+import yaml
+
+SIM_START = 2000 * 1_000_000_000  # [ns]
+RATE = 50.0  # poses and /clock per second of sim time
+SURGE = 0.5  # [m] the ship moves this far ahead ...
+YAW = 0.01  # [rad] ... turning this much
+RAMP = (2.5, 4.5)  # [s] from and to
+NAMES = ['easy', 'working', 'hard']
+TARGETS = [0.30, 0.65, 0.95]  # of the MBL, the ship held at SURGE
+OFFSETS = [[-10.0, 0.0, 6.0], [-10.0, 5.0, 6.0], [-10.0, -5.0, 6.0]]
+BOLLARDS = [[-50.0, 0.0, 0.0], [-50.0, 8.0, 0.0], [-50.0, -8.0, 0.0]]
+LINE = dict(material='polyester', diameter=0.064, segments=10)
+
+
+def smooth_step(t: float, start: float, end: float) -> float:
+    """0 before start, 1 after end, a half cosine in between."""
+    s = min(max((t - start) / (end - start), 0.0), 1.0)
+    return 0.5 * (1.0 - math.cos(math.pi * s))
+
+
+def ship_pose(t: float):
+    """Return the ship's (position, quaternion (x, y, z, w)) at sim time t [s]."""
+    s = smooth_step(t, *RAMP)
+    yaw = YAW * s
+    return [SURGE * s, 0.0, 0.0], [0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)]
+
+
+def line_values() -> dict:
+    """Return the arrangement's parameters: each length chosen for its target tension."""
+    end_position, end_orientation = ship_pose(RAMP[1])
+    values = {'lines': NAMES, 'marker_rate': 10.0, 'publish_rate': RATE}
+    props = Simulator(params.from_values(LINE)).props
+    for name, target, offset, bollard in zip(NAMES, TARGETS, OFFSETS, BOLLARDS):
+        fairlead = pose_point(end_position, end_orientation, offset).point
+        mbl = Simulator(params.from_values(LINE)).material.mbl
+        length = length_for_tension(props, bollard, fairlead, target * mbl)
+        values[name] = dict(LINE, fairlead_offset=offset, bollard_position=bollard,
+                            length=round(length, 6))
+    return values
+
+
+def rotation_matrix(q):
+    """Return the rotation matrix of a unit quaternion (x, y, z, w)."""
+    x, y, z, w = q
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+class MooringProcess:
+    """The installed mooring executable with a parameter file, its log in a file."""
+
+    def __init__(self, install, env, log, params_file, *ros_args):
+        self.log = log
+        command = [str(install / 'lib' / 'rope_sim_ros' / 'mooring'), '--ros-args',
+                   '--params-file', str(params_file), *ros_args]
+        with open(log, 'w') as f:
+            self.process = subprocess.Popen(command, env=env, stdin=subprocess.DEVNULL,
+                                            stdout=f, stderr=subprocess.STDOUT)
+
+    def text(self) -> str:
+        return self.log.read_text(errors='replace')
+
+    def interrupt(self, timeout: float = 20.0) -> int:
+        if self.process.poll() is None:
+            self.process.send_signal(2)
+        try:
+            return self.process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+            raise AssertionError(f'mooring ignored Ctrl-C:\n{self.text()}')
+
+
+class Client:
+    """A test node: /clock and ship poses in, every output of the mooring node kept."""
+
+    def __init__(self):
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context, signal_handler_options=SignalHandlerOptions.NO)
+        self.node = rclpy.create_node('mooring_test', context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.ship_pub = self.node.create_publisher(PoseStamped, 'ship/pose', 1000)
+        self.clock_pub = self.node.create_publisher(Clock, '/clock', 10)
+        self.markers, self.diagnostics, self.wrenches = [], [], []
+        self.tensions = {name: [] for name in NAMES}  # by publication sequence number
+        subs = [
+            self.node.create_subscription(MarkerArray, 'mooring/markers',
+                                          self.markers.append, 100),
+            self.node.create_subscription(DiagnosticArray, '/diagnostics',
+                                          self.diagnostics.append, 100),
+            self.node.create_subscription(WrenchStamped, 'ship/mooring_wrench',
+                                          self._keep(self.wrenches), 2000),
+        ]
+        for name in NAMES:
+            subs.append(self.node.create_subscription(
+                Wrench, f'{name}/fairlead/tension', self._keep(self.tensions[name]), 2000))
+        self.subscriptions = subs
+        self.parameters = AsyncParameterClient(self.node, 'mooring')
+        self.reset = self.node.create_client(Trigger, 'mooring/reset')
+
+    @staticmethod
+    def _keep(store: list):
+        def keep(msg, info):
+            store.append((info['publication_sequence_number'], msg))
+        return keep
+
+    def close(self) -> None:
+        self.executor.shutdown()
+        self.node.destroy_node()
+        rclpy.try_shutdown(context=self.context)
+
+    def wait_for(self, condition, timeout: float, what: str) -> None:
+        end = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > end:
+                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+            self.executor.spin_once(timeout_sec=0.01)
+
+    def wait_for_node(self, node: MooringProcess, timeout: float = 90.0) -> None:
+        def ready():
+            if node.process.poll() is not None:
+                raise AssertionError(f'mooring exited with {node.process.returncode}:\n'
+                                     f'{node.text()}')
+            return (self.parameters.services_are_ready() and self.reset.service_is_ready()
+                    and self.ship_pub.get_subscription_count() > 0
+                    and self.clock_pub.get_subscription_count() > 0
+                    and all(s.get_publisher_count() > 0 for s in self.subscriptions))
+        self.wait_for(ready, timeout, 'the mooring node')
+
+    def drive(self, start: float, seconds: float) -> None:
+        """Publish /clock and the ship pose of sim time [start, start + seconds] at RATE."""
+        wall = time.monotonic()
+        for k in range(round(seconds * RATE)):
+            t = start + k / RATE
+            while time.monotonic() - wall < k / RATE:
+                self.executor.spin_once(timeout_sec=0.002)
+            ns = SIM_START + round(t * 1e9)
+            sec, nanosec = divmod(ns, 1_000_000_000)
+            clock = Clock()
+            clock.clock.sec, clock.clock.nanosec = sec, nanosec
+            self.clock_pub.publish(clock)
+            position, orientation = ship_pose(t)
+            msg = PoseStamped()
+            msg.header.frame_id = 'world'
+            msg.header.stamp.sec, msg.header.stamp.nanosec = sec, nanosec
+            msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = position
+            (msg.pose.orientation.x, msg.pose.orientation.y, msg.pose.orientation.z,
+             msg.pose.orientation.w) = orientation
+            self.ship_pub.publish(msg)
+        end = time.monotonic() + 0.5
+        while time.monotonic() < end:  # the last outputs on their way
+            self.executor.spin_once(timeout_sec=0.01)
+
+
+def statuses(array: DiagnosticArray) -> dict:
+    """Return {line: (level, message, {key: value})} of a DiagnosticArray."""
+    return {s.hardware_id: (s.level, s.message, {v.key: v.value for v in s.values})
+            for s in array.status}
+
+
+def colour(marker: Marker) -> tuple:
+    return tuple(round(c, 3) for c in (marker.color.r, marker.color.g, marker.color.b))
+
+
+# ------------------------------------------------------------------------------ fixtures
+
+
+@pytest.fixture(scope='module')
+def mooring(colcon_install, colcon_env, tmp_path_factory):
+    folder = tmp_path_factory.mktemp('mooring')
+    params_file = folder / 'three_lines.yaml'
+    params_file.write_text(yaml.safe_dump({'mooring': {'ros__parameters': line_values()}}))
+    node = MooringProcess(colcon_install, colcon_env, folder / 'mooring.log', params_file,
+                          '-p', 'use_sim_time:=true')
+    client = Client()
+    try:
+        client.wait_for_node(node)
+        yield node, client
+    finally:
+        client.close()
+        node.interrupt()
+
+
+# --------------------------------------------------------------------------------- tests
+
+
+def test_each_line_has_the_single_line_nodes_parameters(mooring):
+    _, client = mooring
+    names = ['easy.axial_damping', 'hard.fairlead_offset', 'easy.pretension', 'integrator',
+             'lines', 'ship_frame_id']
+    future = client.parameters.describe_parameters(names)
+    client.wait_for(future.done, 10.0, 'describe_parameters')
+    described = {d.name: d for d in future.result().descriptors}
+    for name in ('easy.axial_damping', 'hard.fairlead_offset', 'integrator'):
+        base = name.split('.')[-1]
+        mine, single = described[name], describe(base, params.SPECS[base])
+        assert mine.description == single.description
+        assert mine.additional_constraints == single.additional_constraints
+        assert mine.read_only == single.read_only
+        assert list(mine.floating_point_range) == list(single.floating_point_range)
+    assert described['easy.pretension'].read_only
+    assert described['lines'].read_only
+    future = client.parameters.get_parameters(['lines', 'working.length', 'hard.segments'])
+    client.wait_for(future.done, 10.0, 'get_parameters')
+    values = [v for v in future.result().values]
+    assert list(values[0].string_array_value) == NAMES
+    assert values[1].double_value == pytest.approx(line_values()['working']['length'])
+    assert values[2].integer_value == 10
+    # run-time changes: validated as the single-line node validates them
+    for name, value, reason in (('easy.max_strain', -1.0, 'out of range'),  # rclpy's
+                                ('easy.max_strain', 0.0, "'easy.max_strain' = 0.0 is not "
+                                 'allowed: must be > 0'),  # ours
+                                ('hard.length', 30.0, 'read-only'),
+                                ('easy.axial_damping', 4000.0, '')):
+        future = client.parameters.set_parameters([Parameter(name, value=value)])
+        client.wait_for(future.done, 10.0, f'setting {name}')
+        result = future.result().results[0]
+        assert result.successful == (not reason), (name, result.reason)
+        assert reason in result.reason
+
+
+def test_markers_and_diagnostics_follow_the_utilisation(mooring):
+    _, client = mooring
+    client.drive(0.0, 2.4)  # the ship at rest: every line below its pull at SURGE
+    before = statuses(client.diagnostics[-1])
+    assert before['easy'][0] == DiagnosticStatus.OK
+    assert before['working'][0] == DiagnosticStatus.OK  # 48 % of MBL: below the WLL
+    assert before['hard'][0] == DiagnosticStatus.WARN
+    client.drive(2.4, 4.6)  # surge 0.5 m ahead, then held for 2.5 s
+    mbl = Simulator(params.from_values(LINE)).material.mbl
+    report = statuses(client.diagnostics[-1])
+    assert [report[name][0] for name in NAMES] == [
+        DiagnosticStatus.OK, DiagnosticStatus.WARN, DiagnosticStatus.WARN]
+    for name, target in zip(NAMES, TARGETS):
+        level, message, values = report[name]
+        tension = float(values['tension [N]'])
+        assert tension == pytest.approx(target * mbl, rel=0.02), name
+        assert float(values['utilisation [%]']) == pytest.approx(100 * tension / mbl, abs=0.01)
+        assert float(values['peak since last report [N]']) >= tension
+        assert float(values['strain [%]']) > 0.5 * 100 * target / 14  # EA = 14 MBL
+        assert float(values['MBL [N]']) == pytest.approx(mbl, abs=1)
+    assert report['working'][1].startswith('past the WLL')
+    assert report['hard'][1].startswith('past 90 % of the MBL')
+
+    markers = {(m.ns, m.id): m for m in client.markers[-1].markers}
+    lines = [markers[('lines', k)] for k in range(3)]
+    assert [colour(m) for m in lines] == [
+        tuple(round(c, 3) for c in COLOURS[band]) for band in ('ok', 'above_wll', 'near_break')]
+    assert all(m.type == Marker.LINE_STRIP and len(m.points) == 11 for m in lines)
+    assert all(m.header.frame_id == 'world' for m in lines)
+    assert markers[('labels', 2)].text.startswith('hard 9')
+    position, orientation = ship_pose(RAMP[1])
+    fairleads = [[p.x, p.y, p.z] for p in markers[('fairleads', 0)].points]
+    assert np.allclose(fairleads, [pose_point(position, orientation, o).point
+                                   for o in OFFSETS], atol=1e-6)
+    assert np.allclose([[p.x, p.y, p.z] for p in markers[('bollards', 0)].points], BOLLARDS)
+    assert np.allclose([lines[1].points[-1].x, lines[1].points[-1].y, lines[1].points[-1].z],
+                       fairleads[1], atol=1e-6)
+
+
+def test_wrench_as_received_is_the_sum_of_the_lines(mooring):
+    _, client = mooring
+    rotation = rotation_matrix(ship_pose(RAMP[1])[1])
+    by_sequence = [dict(store) for store in client.tensions.values()]
+    wrenches = dict(client.wrenches)
+    common = sorted(set(wrenches).intersection(*by_sequence))[-50:]  # the ship held still
+    assert len(common) == 50
+    for n in common:
+        forces = np.array([[w.force.x, w.force.y, w.force.z]
+                           for w in (store[n] for store in by_sequence)])
+        body = forces @ rotation  # R^T F, row by row
+        wrench = wrenches[n]
+        assert wrench.header.frame_id == 'base_link'
+        got_force = [wrench.wrench.force.x, wrench.wrench.force.y, wrench.wrench.force.z]
+        got_moment = [wrench.wrench.torque.x, wrench.wrench.torque.y, wrench.wrench.torque.z]
+        assert np.allclose(got_force, body.sum(axis=0), rtol=1e-9, atol=1e-6)
+        moment = np.cross(OFFSETS, body).sum(axis=0)
+        assert np.allclose(got_moment, moment, rtol=1e-9, atol=1e-5)
+    assert got_force[0] < -1.0e6  # three lines leading aft hold the ship back
+
+
+def test_reset_shows_as_error_then_clears(mooring):
+    _, client = mooring
+    future = client.reset.call_async(Trigger.Request())
+    client.wait_for(future.done, 10.0, 'reset')
+    assert future.result().success
+    count = len(client.diagnostics)
+    client.drive(7.1, 1.2)
+    after = [statuses(a) for a in client.diagnostics[count:]]
+    assert after and all(s[name][0] == DiagnosticStatus.ERROR for s in after[:1]
+                         for name in NAMES)
+    assert after[0]['easy'][1] == 'restarted at rest: reset'
+    client.drive(8.3, 1.2)
+    final = statuses(client.diagnostics[-1])
+    assert [final[name][0] for name in NAMES] == [
+        DiagnosticStatus.OK, DiagnosticStatus.WARN, DiagnosticStatus.WARN]
+
+
+def test_parted_line_looks_parted_to_a_subscriber():
+    # A parted line (the flag the Mooring's outputs carry) as the display builds it, through
+    # serialisation: grey dashes, an ERROR status.
+    from rclpy.serialization import deserialize_message, serialize_message
+    from rope_sim_ros.line_status import Rating
+    rating = Rating(mbl=1.0e6, wll=5.0e5)
+    positions = [np.column_stack([np.linspace(0, 10, 11), np.zeros(11), np.zeros(11)])] * 2
+    markers = line_markers('world', 5, ['a', 'b'], positions, [1.0e5, 0.0], [rating] * 2,
+                           [False, True], np.zeros((2, 3)), np.ones((2, 3)))
+    markers = deserialize_message(serialize_message(markers), MarkerArray)
+    parted = {(m.ns, m.id): m for m in markers.markers}[('lines', 1)]
+    assert parted.type == Marker.LINE_LIST and len(parted.points) == 10  # 5 of 10 segments
+    assert colour(parted) == tuple(round(c, 3) for c in COLOURS['parted'])
+    assert {(m.ns, m.id): m for m in markers.markers}[('labels', 1)].text == 'b parted'
+    array = line_diagnostics(5, ['a', 'b'], [1.0e5, 0.0], [1.2e5, 9.9e5], [0.001, 0.0],
+                             [rating] * 2, [False, True], [None, None])
+    array = deserialize_message(serialize_message(array), DiagnosticArray)
+    report = statuses(array)
+    assert report['a'][0] == DiagnosticStatus.OK and report['a'][1] == '10.0 % of MBL'
+    assert report['b'][0] == DiagnosticStatus.ERROR and report['b'][1] == 'parted'
+
+
+@pytest.mark.parametrize('change, message', [
+    ({'lines': ['head 1']}, "line name 'head 1' in 'lines' is not allowed"),
+    ({'easy': {'length': 40.0}}, "line 'easy' is missing settings: set easy.fairlead_offset"),
+])
+def test_bad_arrangement_exits_with_one_error_line(colcon_install, colcon_env, tmp_path,
+                                                   change, message):
+    values = line_values()
+    values.update(change)
+    params_file = tmp_path / 'bad.yaml'
+    params_file.write_text(yaml.safe_dump({'mooring': {'ros__parameters': values}}))
+    node = MooringProcess(colcon_install, colcon_env, tmp_path / 'bad.log', params_file)
+    assert node.process.wait(60) == 2
+    errors = [line for line in node.text().splitlines() if '[ERROR]' in line]
+    assert len(errors) == 1, node.text()
+    assert message in errors[0]
+    assert 'Traceback' not in node.text()
+
+
+def test_berth_file_is_an_arrangement(repo_root):
+    setup = arrangement.read_arrangement_file(repo_root / 'config' / 'berth.yaml')
+    assert len(setup.lines) == 8
+    assert all(line.pretension > 0 for line in setup.lines)
