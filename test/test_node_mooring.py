@@ -390,3 +390,29 @@ def test_berth_file_is_an_arrangement(repo_root):
     setup = arrangement.read_arrangement_file(repo_root / 'config' / 'berth.yaml')
     assert len(setup.lines) == 8
     assert all(line.pretension > 0 for line in setup.lines)
+
+
+def test_foxglove_layout_and_rviz_config_open_the_nodes_topics(repo_root):
+    from rope_sim_ros.ros.mooring_node import (DIAGNOSTICS_TOPIC, MARKERS_TOPIC,
+                                               WRENCH_TOPIC)
+    import json
+    frame_id = arrangement.read_arrangement_file(
+        repo_root / 'config' / 'berth.yaml').shared.frame_id
+    layout = json.loads((repo_root / 'config' / 'mooring.foxglove.json').read_text())
+    panels = layout['configById']
+    three_d = next(c for k, c in panels.items() if k.startswith('3D!'))
+    assert three_d['topics'] == {'/' + MARKERS_TOPIC: {'visible': True}}
+    assert three_d['followTf'] == frame_id
+    diagnostics = [c for k, c in panels.items() if k.startswith('Diagnostic')]
+    assert len(diagnostics) == 2
+    assert all(c['topicToRender'] == DIAGNOSTICS_TOPIC for c in diagnostics)
+    plot = next(c for k, c in panels.items() if k.startswith('Plot!'))
+    assert all(p['value'].startswith(f'/{WRENCH_TOPIC}.wrench.') for p in plot['paths'])
+    placed = json.dumps(layout['layout'])
+    assert all(f'"{key}"' in placed for key in panels)  # every panel is on the screen
+    rviz = yaml.safe_load((repo_root / 'config' / 'mooring.rviz').read_text())
+    manager = rviz['Visualization Manager']
+    assert manager['Global Options']['Fixed Frame'] == frame_id
+    markers = [d for d in manager['Displays']
+               if d['Class'] == 'rviz_default_plugins/MarkerArray']
+    assert [d['Topic']['Value'] for d in markers] == ['/' + MARKERS_TOPIC]

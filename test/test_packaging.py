@@ -39,6 +39,8 @@ SHARE_FILES = (
     'package.xml',
     'config/mooring_line.yaml',
     'config/berth.yaml',
+    'config/mooring.foxglove.json',
+    'config/mooring.rviz',
     'config/materials.yaml',
     'launch/mooring_line.launch.py',
 )
