@@ -106,6 +106,44 @@ def pose_point(position: Sequence[float], orientation: Sequence[float], offset) 
     return PosePoint(np.add(position, lever), lever, norm)
 
 
+def pose_points(position: Sequence[float], orientation: Sequence[float],
+                offsets) -> np.ndarray:
+    """
+    Return the points pose ⊕ offset of many offsets (n, 3) at once.
+
+    pose_point's arithmetic, the same operations in the same order on numpy columns, so
+    each point is the very float pose_point gives (a ship's fairleads, one pose each).
+
+    :raises PoseError: as pose_point.
+    """
+    x0, y0, z0 = pose_point(position, orientation, (0.0, 0.0, 0.0)).point  # the checks
+    q = tuple(float(c) for c in orientation)
+    norm = math.sqrt(sum(c * c for c in q))
+    ux, uy, uz, w = (c / norm for c in q)
+    v = np.asarray(offsets, dtype=float).reshape(-1, 3)
+    vx, vy, vz = v[:, 0], v[:, 1], v[:, 2]
+    cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    return np.column_stack([x0 + (vx + 2.0 * (w * cx + uy * cz - uz * cy)),
+                            y0 + (vy + 2.0 * (w * cy + uz * cx - ux * cz)),
+                            z0 + (vz + 2.0 * (w * cz + ux * cy - uy * cx))])
+
+
+def rotation_matrix(q: Sequence[float]) -> np.ndarray:
+    """Return the 3x3 rotation matrix of a unit quaternion (x, y, z, w)."""
+    x, y, z, w = (float(c) for c in q)
+    return np.array([
+        [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)],
+        [2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)],
+        [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)]])
+
+
+def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Return the cross products of the rows of a and b (n, 3) (np.cross costs 10 us)."""
+    return np.column_stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1],
+                            a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
+                            a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]])
+
+
 def stamp_ns(sec: int, nanosec: int) -> int:
     """Return a time stamp's seconds and nanoseconds as integer nanoseconds."""
     return int(sec) * NANOSECONDS + int(nanosec)

@@ -49,7 +49,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .arrangement import ArrangementParams, LineSetup
-from .frames import pose_point, rotate, unit_quaternion
+from .frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
 from .params import ParameterError
 from .physics.catenary import CatenaryError, solve_catenary
 from .physics.integrators import implicit_bending
@@ -131,18 +131,17 @@ def mooring_wrench(fairlead_forces: np.ndarray, offsets: np.ndarray,
     :param offsets: each fairlead in the ship's body frame (L, 3) [m].
     :param orientation: the ship's orientation (x, y, z, w), a unit quaternion.
     """
-    q = np.asarray(orientation, dtype=float)
-    inverse = np.array([-q[0], -q[1], -q[2], q[3]])
-    body = rotate(inverse, np.asarray(fairlead_forces, dtype=float).reshape(-1, 3))
-    moments = np.cross(np.asarray(offsets, dtype=float).reshape(-1, 3), body)
+    body = np.asarray(fairlead_forces, dtype=float).reshape(-1, 3) @ rotation_matrix(
+        orientation)  # R^T F, row by row
+    moments = cross_rows(np.asarray(offsets, dtype=float).reshape(-1, 3), body)
     return body.sum(axis=0), moments.sum(axis=0)
 
 
 def to_world(orientation: Sequence[float], force: np.ndarray,
              moment: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """Return a body-frame force and moment in frame_id axes (moment about the same origin)."""
-    q = np.asarray(orientation, dtype=float)
-    return rotate(q, force), rotate(q, moment)
+    rotation = rotation_matrix(orientation)
+    return rotation @ np.asarray(force, dtype=float), rotation @ np.asarray(moment, dtype=float)
 
 
 @dataclass(frozen=True)
@@ -201,12 +200,35 @@ class MooringAdvance:
     beyond_reach: Dict[int, float] = field(default_factory=dict)
 
 
+class _Group:
+    """
+    Lines that step together: one System, one step, one kernel call per output.
+
+    :ivar members: the lines' indices in the arrangement; line members[j] is the System's
+        line j, between its points 2 j (bollard) and 2 j + 1 (fairlead).
+    :ivar step: their step [s]; bending: whether the implicit step solves the bending
+        springs too (integrators.implicit_bending, the same for every member).
+    :ivar system: their System (None before start); time: its state time [s].
+    """
+
+    def __init__(self, members: List[int], step: float, bending: bool):
+        self.members = members
+        self.step = step
+        self.bending = bending
+        self.system: Optional[System] = None
+        self.starts = np.zeros(1, dtype=np.int64)
+        self.time = math.nan
+
+
 class Mooring:
     """
     Every line of an arrangement, stepped together (see the module docstring).
 
+    Lines whose own steps (and bending treatment) are equal share a System: each line steps
+    exactly as its Simulator would alone, and an arrangement of one kind of line takes one
+    kernel call per output (a stiffer line, e.g. HMPE, with its shorter step, a second).
+
     :ivar sims: one Simulator per line, in the arrangement's order: each line's rules.
-    :ivar system: the shared System (None before start).
     :ivar time: the state time [s] (NaN before start).
     """
 
@@ -217,7 +239,7 @@ class Mooring:
 
         :param arrangement: validated parameters.
         :param materials: material presets (default: config/materials.yaml).
-        :param output_interval: if > 0, the step divides it (outputs fall on step times).
+        :param output_interval: if > 0, every step divides it (outputs fall on step times).
         :param history: seconds of samples each line keeps behind the newest.
         :raises ParameterError / MaterialError / ValueError: a line cannot be built; the
             message names it.
@@ -227,15 +249,12 @@ class Mooring:
         self._output_interval = output_interval
         self._history = history
         self.sims = [self._simulator(line, line.params) for line in arrangement.lines]
-        # each line's own step, before _choose_time_step gives them all the smallest
-        self._own_steps = [sim.time_step for sim in self.sims]
-        self.system: Optional[System] = None
         self.time = math.nan
         # ship samples (t, position, unit quaternion): the newest at or before an output
         # gives its orientation (as LineDriver.lever does for the levers)
         self._ship: deque = deque()
         self._bounds: List[tuple] = [(None, math.nan, math.nan)] * len(self.sims)
-        self._choose_time_step()
+        self._group()
 
     # -- lines ----------------------------------------------------------------------------
 
@@ -247,7 +266,17 @@ class Mooring:
     @property
     def started(self) -> bool:
         """Tell whether the ropes have been placed (by the first ship pose)."""
-        return self.system is not None
+        return self.groups[0].system is not None
+
+    @property
+    def time_step(self) -> float:
+        """Return the smallest of the lines' steps [s]."""
+        return min(group.step for group in self.groups)
+
+    @property
+    def kernel_calls(self) -> int:
+        """Return how many kernel calls step every line once: one per step group."""
+        return len(self.groups)
 
     def _simulator(self, line: LineSetup, params) -> Simulator:
         try:
@@ -256,18 +285,32 @@ class Mooring:
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise type(e)(f'line {line.name!r}: {e}') from None
 
-    def _choose_time_step(self) -> None:
-        """Take the smallest of the lines' steps (each divides the output interval) for all."""
-        self.time_step = min(self._own_steps)
-        for sim in self.sims:  # its step division then judges the step it takes
-            sim.time_step = self.time_step
-        self._implicit_bending = any(implicit_bending(sim.props, self.time_step)
-                                     for sim in self.sims)
+    def _group(self) -> None:
+        """Put the lines with equal steps and bending treatment in one group each."""
+        keys: Dict[tuple, List[int]] = {}
+        for k, sim in enumerate(self.sims):
+            key = (sim.time_step, implicit_bending(sim.props, sim.time_step))
+            keys.setdefault(key, []).append(k)
+        self.groups = [_Group(members, step, bending)
+                       for (step, bending), members in sorted(keys.items())]
+        self._where = {k: (group, j) for group in self.groups
+                       for j, k in enumerate(group.members)}
+
+    def _regroup(self) -> None:
+        """Group the lines again after a step changed; rebuild the Systems if started."""
+        started = self.started
+        self._group()
+        if started:
+            self._build()
 
     @property
     def offsets(self) -> np.ndarray:
         """Return every fairlead in the ship's body frame (L, 3) [m]."""
-        return np.array([sim.params.fairlead_offset for sim in self.sims], dtype=float)
+        params = [id(sim.params) for sim in self.sims]  # new parameters: new objects
+        if getattr(self, '_offsets', (None,))[0] != params:
+            self._offsets = (params, np.array([sim.params.fairlead_offset for sim in self.sims],
+                                              dtype=float))
+        return self._offsets[1]
 
     # -- inputs ---------------------------------------------------------------------------
 
@@ -281,8 +324,7 @@ class Mooring:
         :raises TrajectoryError: not after the newest ship pose (nothing changed).
         """
         q, _ = unit_quaternion(orientation)
-        points = [pose_point(position, q, sim.params.fairlead_offset).point
-                  for sim in self.sims]
+        points = pose_points(position, orientation, self.offsets)
         if self._ship and t <= self._ship[-1][0]:
             raise TrajectoryError(f'ship pose at t={t:.6f} s is not after the newest one '
                                   f'({self._ship[-1][0]:.6f} s)')
@@ -338,7 +380,7 @@ class Mooring:
         for sim in self.sims:
             sim.start(t)
         self._build()
-        self.time = t
+        self._set_time(t)
         return lengths
 
     def _resolve_pretensions(self, t: float) -> Dict[int, float]:
@@ -357,11 +399,10 @@ class Mooring:
             new = self._simulator(line, params)
             new.fairlead, new.bollard = sim.fairlead, sim.bollard  # the samples so far
             self.sims[k] = new
-            self._own_steps[k] = new.time_step
             self.arrangement = self.arrangement.with_line(line.name, params)
             lengths[k] = length
         if lengths:
-            self._choose_time_step()
+            self._group()  # a new length can give a line another step
         return lengths
 
     @staticmethod
@@ -374,31 +415,35 @@ class Mooring:
         return np.asarray(sim.params.bollard_position, dtype=float), fairlead
 
     def _build(self) -> None:
-        """Make the shared System from every Simulator's rope, then view each rope in it."""
-        system = System(self.sims[0].props.environment)
-        for k, sim in enumerate(self.sims):
-            for point in sim.system.points:
-                system.add_point(Point(point.kind, point.position.copy(), point.mass,
-                                       point.velocity.copy(), point.volume, point.drag_area,
-                                       point.added_mass))
-            rope = sim.rope
-            system.add_line(Line(rope.line_type, rope.rest.copy(), rope.x.copy(),
-                                 (2 * k, 2 * k + 1)))
-            system.lines[k].v[:] = rope.v
-        system.pack()
-        self.system = system
-        self._starts = np.array([0] + [len(line.x) for line in system.lines]).cumsum()
-        for k, sim in enumerate(self.sims):
-            sim.rope.x, sim.rope.v = system.lines[k].x, system.lines[k].v
+        """Make each group's System from its Simulators' ropes, then view each rope in it."""
+        for group in self.groups:
+            system = System(self.sims[group.members[0]].props.environment)
+            for j, k in enumerate(group.members):
+                sim = self.sims[k]
+                for point in sim.system.points:
+                    system.add_point(Point(point.kind, point.position.copy(), point.mass,
+                                           point.velocity.copy(), point.volume,
+                                           point.drag_area, point.added_mass))
+                rope = sim.rope
+                system.add_line(Line(rope.line_type, rope.rest.copy(), rope.x.copy(),
+                                     (2 * j, 2 * j + 1)))
+                system.lines[j].v[:] = rope.v
+            system.pack()
+            group.system = system
+            group.starts = np.array([0] + [len(line.x) for line in system.lines]).cumsum()
+            for j, k in enumerate(group.members):
+                self.sims[k].rope.x = system.lines[j].x
+                self.sims[k].rope.v = system.lines[j].v
 
     def _load_line(self, k: int) -> None:
-        """Copy line k's Simulator's new rope (a restart) into the shared System; view it."""
-        sim, system = self.sims[k], self.system
-        line = system.lines[k]
+        """Copy line k's Simulator's new rope (a restart) into its System; view it there."""
+        group, j = self._where[k]
+        sim, system = self.sims[k], group.system
+        line = system.lines[j]
         line.x[:] = sim.rope.x
         line.v[:] = sim.rope.v
-        system.point_x[2 * k:2 * k + 2] = sim.system.point_x
-        system.point_v[2 * k:2 * k + 2] = sim.system.point_v
+        system.point_x[2 * j:2 * j + 2] = sim.system.point_x
+        system.point_v[2 * j:2 * j + 2] = sim.system.point_v
         line.line_type = sim.rope.line_type
         system.refresh()  # the state changed other than by a step
         sim.rope.x, sim.rope.v = line.x, line.v
@@ -408,7 +453,7 @@ class Mooring:
         t = self.time if t is None else t
         for k in range(len(self.sims)):
             self._restart_line(k, t)
-        self.time = t
+        self._set_time(t)
 
     def _restart_line(self, k: int, t: float) -> None:
         self.sims[k].restart(t)
@@ -416,133 +461,144 @@ class Mooring:
 
     # -- time -----------------------------------------------------------------------------
 
-    def advance_to(self, t: float, max_steps: Optional[int] = None) -> MooringAdvance:
+    def advance_to(self, t: float) -> MooringAdvance:
         """
-        Advance every rope in fixed substeps up to t (at most max_steps of them).
+        Advance every rope in its own fixed steps up to t.
 
         Each line follows Simulator.advance_to's rules: held at its reach while its ends are
         farther apart, restarted at rest once they are back within it, and restarted when
-        its state turns non-finite or past its tension_bound.
+        its state turns non-finite or past its tension_bound. Every group ends within a step
+        of t; the state time is the earliest group's.
         """
-        dt = self.time_step
-        steps = max(0, int(math.floor((t - self.time) / dt + 1e-9)))
-        if max_steps is not None:
-            steps = min(steps, max_steps)
-        if steps == 0:
-            return MooringAdvance(0, t - self.time)
-        times = self.time + dt * np.arange(1, steps + 1)
-        drive_x, drive_v, distances = self._drive(times)
-        reach = np.array([sim.reach for sim in self.sims])
-        beyond = distances > reach
-        beyond_reach = {k: float(distances[beyond[:, k], k].max())
-                        for k in np.flatnonzero(beyond.any(axis=0))}
-        held = np.array([sim._held for sim in self.sims])
+        start = self.time
+        restarted: Dict[int, str] = {}
+        beyond_reach: Dict[int, float] = {}
+        steps = 0
+        for group in self.groups:
+            count = max(0, int(math.floor((t - group.time) / group.step + 1e-9)))
+            if count:
+                steps = max(steps, count)
+                self._advance_group(group, group.time + group.step * np.arange(1, count + 1),
+                                    restarted, beyond_reach)
+        self.time = min(group.time for group in self.groups)
+        return MooringAdvance(steps, t - self.time, restarted, beyond_reach) if steps else \
+            MooringAdvance(0, t - start)
+
+    def _advance_group(self, group: _Group, times: np.ndarray, restarted: Dict[int, str],
+                       beyond_reach: Dict[int, float]) -> None:
+        """Take the steps of one group to `times` (Simulator.advance_to's rules)."""
+        drive_x, drive_v, distances = self._drive(group, times)
+        sims = [self.sims[k] for k in group.members]
+        beyond = distances > np.array([sim.reach for sim in sims])
+        for j in np.flatnonzero(beyond.any(axis=0)):
+            k = group.members[j]
+            beyond_reach[k] = max(beyond_reach.get(k, 0.0),
+                                  float(distances[beyond[:, j], j].max()))
+        held = np.array([sim._held for sim in sims])
         back = ~beyond & np.vstack([held, beyond[:-1]])
         if back.any():
             # a line back within reach restarts at rest at that step (its state there is the
-            # restart's, whatever the step did): step every line to it, then go on
-            j = int(np.flatnonzero(back.any(axis=1))[0])
-            restarted = self._step(times[:j + 1], drive_x[:j + 1], drive_v[:j + 1])
-            for k in np.flatnonzero(back[j]):
-                self._restart_line(int(k), float(times[j]))
-                restarted[int(k)] = 'back within reach'
-            for k in np.flatnonzero(~back[j]):
-                self.sims[k]._held = bool(beyond[j, k])
-            rest = self.advance_to(t, None if max_steps is None else max_steps - j - 1)
-            for k, distance in rest.beyond_reach.items():
-                beyond_reach[k] = max(beyond_reach.get(k, 0.0), distance)
-            return MooringAdvance(steps, rest.lag, {**restarted, **rest.restarted},
-                                  beyond_reach)
-        for k, sim in enumerate(self.sims):
-            sim._held = bool(beyond[-1, k])
-        restarted = self._step(times, drive_x, drive_v)
-        return MooringAdvance(steps, t - self.time, restarted, beyond_reach)
+            # restart's, whatever the step did): step the group to it, then go on
+            i = int(np.flatnonzero(back.any(axis=1))[0])
+            self._step(group, times[:i + 1], drive_x[:i + 1], drive_v[:i + 1], restarted)
+            for j in np.flatnonzero(back[i]):
+                self._restart_line(group.members[j], float(times[i]))
+                restarted[group.members[j]] = 'back within reach'
+            for j in np.flatnonzero(~back[i]):
+                sims[j]._held = bool(beyond[i, j])
+            if i + 1 < len(times):
+                self._advance_group(group, times[i + 1:], restarted, beyond_reach)
+            return
+        for j, sim in enumerate(sims):
+            sim._held = bool(beyond[-1, j])
+        self._step(group, times, drive_x, drive_v, restarted)
 
-    def _drive(self, times: np.ndarray) -> tuple:
-        """Return the driven points at `times` (n, Q, 3) twice and the end distances (n, L)."""
-        n, count = len(times), len(self.sims)
+    def _drive(self, group: _Group, times: np.ndarray) -> tuple:
+        """Return a group's driven points at `times` (n, Q, 3) twice and end distances (n, L)."""
+        n, count = len(times), len(group.members)
         drive_x = np.empty((n, 2 * count, 3))
         drive_v = np.empty((n, 2 * count, 3))
         distances = np.empty((n, count))
-        for k, sim in enumerate(self.sims):
-            ends, velocities, distances[:, k] = sim._ends(times)
-            drive_x[:, 2 * k:2 * k + 2] = ends
-            drive_v[:, 2 * k:2 * k + 2] = velocities
+        for j, k in enumerate(group.members):
+            ends, velocities, distances[:, j] = self.sims[k]._ends(times)
+            drive_x[:, 2 * j:2 * j + 2] = ends
+            drive_v[:, 2 * j:2 * j + 2] = velocities
         return drive_x, drive_v, distances
 
-    def _step(self, times: np.ndarray, drive_x: np.ndarray,
-              drive_v: np.ndarray) -> Dict[int, str]:
-        """
-        Take the steps to `times` (as Simulator._step), then check every line's state.
-
-        :returns: {line index: why} of the lines restarted by the check.
-        """
-        for k, sim in enumerate(self.sims):  # ends brought back onto their tracks (views)
-            sim._blend_ends(times, drive_x[:, 2 * k:2 * k + 2], drive_v[:, 2 * k:2 * k + 2])
-        parts = max(sim._divisions(drive_v[:, 2 * k:2 * k + 2])
-                    for k, sim in enumerate(self.sims))
+    def _step(self, group: _Group, times: np.ndarray, drive_x: np.ndarray,
+              drive_v: np.ndarray, restarted: Dict[int, str]) -> None:
+        """Take a group's steps to `times` (as Simulator._step), then check its lines."""
+        sims = [self.sims[k] for k in group.members]
+        for j, sim in enumerate(sims):  # ends brought back onto their tracks (views)
+            sim._blend_ends(times, drive_x[:, 2 * j:2 * j + 2], drive_v[:, 2 * j:2 * j + 2])
+        parts = max(sim._divisions(drive_v[:, 2 * j:2 * j + 2]) for j, sim in enumerate(sims))
         if parts == 1:
-            self._run(self.time_step, drive_x, drive_v)
-            self._set_time(float(times[-1]))
+            self._run(group, group.step, drive_x, drive_v)
+            self._set_group_time(group, float(times[-1]))
         else:
             for t in times:  # a violent stretch somewhere: look again before every step
-                start = self.time
-                parts = max(sim._divisions(drive_v[:, 2 * k:2 * k + 2])
-                            for k, sim in enumerate(self.sims))
+                start = group.time
+                parts = max(sim._divisions(drive_v[:, 2 * j:2 * j + 2])
+                            for j, sim in enumerate(sims))
                 fine = start + (t - start) * np.arange(1, parts + 1) / parts
-                fine_x, fine_v, _ = self._drive(fine)
-                for k, sim in enumerate(self.sims):
-                    sim._blend_ends(fine, fine_x[:, 2 * k:2 * k + 2], fine_v[:, 2 * k:2 * k + 2])
-                self._run((t - start) / len(fine), fine_x, fine_v)
-                self._set_time(float(t))
+                fine_x, fine_v, _ = self._drive(group, fine)
+                for j, sim in enumerate(sims):
+                    sim._blend_ends(fine, fine_x[:, 2 * j:2 * j + 2], fine_v[:, 2 * j:2 * j + 2])
+                self._run(group, (t - start) / len(fine), fine_x, fine_v)
+                self._set_group_time(group, float(t))
         speeds = ROOT3 * np.abs(drive_v).max(axis=(0, 2)).reshape(-1, 2).max(axis=1)
-        return self._check(speeds)
+        self._check(group, speeds, restarted)
 
-    def _run(self, dt: float, drive_x: np.ndarray, drive_v: np.ndarray) -> None:
-        """Take len(drive_x) substeps of dt of every line: one kernel call."""
-        self.system.step(self.sims[0].params.integrator, dt, drive_x, drive_v,
-                         MAX_ITERATIONS, self._implicit_bending)
+    def _run(self, group: _Group, dt: float, drive_x: np.ndarray, drive_v: np.ndarray) -> None:
+        """Take len(drive_x) substeps of dt of a group's lines: one kernel call."""
+        group.system.step(self.sims[group.members[0]].params.integrator, dt, drive_x, drive_v,
+                          MAX_ITERATIONS, group.bending)
+
+    def _set_group_time(self, group: _Group, t: float) -> None:
+        group.time = t
+        for k in group.members:
+            self.sims[k].time = t
 
     def _set_time(self, t: float) -> None:
         self.time = t
-        for sim in self.sims:
-            sim.time = t
+        for group in self.groups:
+            self._set_group_time(group, t)
 
-    def _check(self, end_speeds: np.ndarray) -> Dict[int, str]:
+    def _check(self, group: _Group, end_speeds: np.ndarray, restarted: Dict[int, str]) -> None:
         """
-        Restart every line whose state is not finite or past its tension_bound.
+        Restart every line of a group whose state is not finite or past its tension_bound.
 
-        Simulator._unphysical's rule, for all lines from one computation of the loads.
+        Simulator._unphysical's rule, for all its lines from one computation of the loads.
 
         :param end_speeds: each line's largest end speed over the steps just taken [m/s].
-        :returns: {line index: why} of the lines restarted.
         """
-        system = self.system
-        rows = np.isfinite(system.x).all(axis=1) & np.isfinite(system.v).all(axis=1)
-        finite = np.logical_and.reduceat(rows, self._starts[:-1])
-        finite &= (np.isfinite(system.point_x).all(axis=1)
-                   & np.isfinite(system.point_v).all(axis=1)).reshape(-1, 2).all(axis=1)
-        faults = {int(k): 'non-finite state' for k in np.flatnonzero(~finite)}
-        for k in faults:  # first, so that the loads of the others can be computed
-            self._restart_line(k, self.time)
-        forces, strains = system.loads()
-        ea = np.array([sim.props.axial_stiffness for sim in self.sims])
+        system = group.system
+        if not system.largest_load()[0]:  # which lines? (the kernel stops at the first)
+            rows = np.isfinite(system.x).all(axis=1) & np.isfinite(system.v).all(axis=1)
+            finite = np.logical_and.reduceat(rows, group.starts[:-1])
+            finite &= (np.isfinite(system.point_x).all(axis=1)
+                       & np.isfinite(system.point_v).all(axis=1)).reshape(-1, 2).all(axis=1)
+            for j in np.flatnonzero(~finite):  # first, so that the others' loads count
+                restarted[group.members[j]] = 'non-finite state'
+                self._restart_line(group.members[j], group.time)
+        forces, strains = system.loads()  # computed by largest_load, once per state
+        ea = np.array([self.sims[k].props.axial_stiffness for k in group.members])
         largest = np.maximum(np.linalg.norm(forces, axis=2).max(axis=1), ea * strains)
-        for k in np.flatnonzero(~(largest <= self._bound(end_speeds))):  # also NaN
-            faults[int(k)] = 'unphysical state'
-            self._restart_line(int(k), self.time)
-        return faults
+        for j in np.flatnonzero(~(largest <= self._bound(group, end_speeds))):  # also NaN
+            restarted[group.members[j]] = 'unphysical state'
+            self._restart_line(group.members[j], group.time)
 
-    def _bound(self, end_speeds: np.ndarray) -> np.ndarray:
+    def _bound(self, group: _Group, end_speeds: np.ndarray) -> np.ndarray:
         """Return each line's tension_bound at its end speed (it is linear in the speed)."""
-        bounds = np.empty(len(self.sims))
-        for k, sim in enumerate(self.sims):
+        bounds = np.empty(len(group.members))
+        for j, k in enumerate(group.members):
+            sim = self.sims[k]
             props, at_rest, per_speed = self._bounds[k]
             if props is not sim.props:
                 at_rest = tension_bound(sim.props)
                 per_speed = tension_bound(sim.props, 1.0) - at_rest
                 self._bounds[k] = (sim.props, at_rest, per_speed)
-            bounds[k] = at_rest + per_speed * end_speeds[k]
+            bounds[j] = at_rest + per_speed * end_speeds[j]
         return bounds
 
     def skip_to(self, t: float) -> None:
@@ -550,6 +606,8 @@ class Mooring:
         for sim in self.sims:
             sim.skip_to(t)
         self.time = t
+        for group in self.groups:
+            group.time = t
 
     # -- parameters -----------------------------------------------------------------------
 
@@ -568,32 +626,40 @@ class Mooring:
         """
         self.check_update(k, values)
         sim = self.sims[k]
+        step = sim.time_step
         sim.update(values)
-        self._own_steps[k] = sim.time_step
         self.arrangement = self.arrangement.with_line(self.names[k], sim.params)
         if self.started:
-            self.system.lines[k].line_type = sim.props.line_type
-            self.system.refresh()
-            if tuple(self.system.environment.current) != sim.props.current:
-                self.system.set_current(sim.props.current)
-        self._choose_time_step()
+            group, j = self._where[k]
+            group.system.lines[j].line_type = sim.props.line_type
+            group.system.refresh()
+            if tuple(group.system.environment.current) != sim.props.current:
+                group.system.set_current(sim.props.current)
+        if sim.time_step != step:
+            self._regroup()
 
     def set_output_interval(self, interval: float) -> None:
-        """Choose the step again so that it divides a new output interval [s]."""
+        """Choose the steps again so that each divides a new output interval [s]."""
         self._output_interval = interval
-        for k, sim in enumerate(self.sims):
+        for sim in self.sims:
             sim.set_output_interval(interval)
-            self._own_steps[k] = sim.time_step
-        self._choose_time_step()
+        self._regroup()
 
     # -- outputs --------------------------------------------------------------------------
 
     def output(self) -> MooringOutput:
         """Return the current state of every line: particles, end forces, strains."""
-        forces, strains = self.system.loads()
-        payloads = tuple(self.system.point_x[2 * k].copy() if sim.payload else None
-                         for k, sim in enumerate(self.sims))
+        count = len(self.sims)
+        forces, strains = np.empty((count, 2, 3)), np.empty(count)
+        positions: List[Optional[np.ndarray]] = [None] * count
+        payloads: List[Optional[np.ndarray]] = [None] * count
+        for group in self.groups:
+            group_forces, group_strains = group.system.loads()
+            forces[group.members], strains[group.members] = group_forces, group_strains
+            for j, k in enumerate(group.members):
+                positions[k] = group.system.lines[j].x.copy()
+                if self.sims[k].payload:
+                    payloads[k] = group.system.point_x[2 * j].copy()
         return MooringOutput(
-            self.time, tuple(line.x.copy() for line in self.system.lines), forces[:, 1],
-            forces[:, 0], strains, payloads, np.zeros(len(self.sims), dtype=bool),
-            np.linalg.norm(forces[:, 1], axis=1))
+            self.time, tuple(positions), forces[:, 1], forces[:, 0], strains, tuple(payloads),
+            np.zeros(count, dtype=bool), np.linalg.norm(forces[:, 1], axis=1))

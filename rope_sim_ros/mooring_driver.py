@@ -40,7 +40,7 @@ from typing import Any, Dict, List, NamedTuple, Optional
 import numpy as np
 
 from .arrangement import ArrangementParams
-from .frames import rotate
+from .frames import rotation_matrix
 from .line_driver import MAX_LAG, PIN_TOLERANCE
 from .mooring import Mooring, mooring_wrench, MooringAdvance, MooringOutput, to_world
 from .params import ParameterError
@@ -266,7 +266,7 @@ class MooringDriver:
             steps = max(1, math.ceil((due - mooring.time) / dt - 1e-9))
             if mooring.time + (steps - PIN_TOLERANCE) * dt > target:
                 break  # the input does not reach the next output time yet
-            advance = mooring.advance_to(mooring.time + (steps + 0.5) * dt, max_steps=steps)
+            advance = mooring.advance_to(due)
             self._count += 1
             done += 1
             if advance.restarted:
@@ -283,8 +283,10 @@ class MooringDriver:
         mooring.forget_ship()
         offsets = mooring.offsets
         force, moment = mooring_wrench(out.fairlead_forces, offsets, orientation)
-        numbers = (*out.positions, out.fairlead_forces, out.bollard_forces, force, moment)
-        if not all(np.isfinite(a).all() for a in numbers):
+        # one sum is finite only if every number is (an overflow to inf is refused too)
+        total = (sum(float(p.sum()) for p in out.positions) + float(out.fairlead_forces.sum())
+                 + float(out.bollard_forces.sum()) + float(force.sum()) + float(moment.sum()))
+        if not math.isfinite(total):
             mooring.restart()
             self._fresh = True
             report.faults.append(out.t)
@@ -293,8 +295,8 @@ class MooringDriver:
             self._fresh = False
             self._origin, self._count = out.t, 0
         report.outputs.append(MooringPublished(
-            self.stamp_ns(out.t), out, position, orientation, rotate(orientation, offsets),
-            force, moment, advance))
+            self.stamp_ns(out.t), out, position, orientation,
+            offsets @ rotation_matrix(orientation).T, force, moment, advance))
 
     def skip(self, t: float) -> None:
         """Skip the state to t and restart every rope there at rest (a skip ahead)."""

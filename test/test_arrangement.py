@@ -124,11 +124,11 @@ def test_eight_lines_together_step_as_eight_lines_alone(eight_lines):
     driver, together = eight_lines
     mooring = driver.mooring
     assert len(together) == 151  # 3 s at 50 Hz, from the first pose
-    steps = {name: sim.time_step for name, sim in zip(mooring.names, mooring.sims)}
-    assert len(set(steps.values())) == 1  # every line takes the smallest line's step
+    # lines of equal steps share a System: one kernel call per step a line takes
+    steps = {sim.time_step for sim in mooring.sims}
+    assert 1 < mooring.kernel_calls == len(steps) < len(mooring.sims)
     for k, line in enumerate(driver.arrangement.lines):
-        # the same line alone, at the step the arrangement takes
-        alone = run_single(line.params.with_values({'time_step': mooring.time_step}))
+        alone = run_single(line.params)  # at its own step, as in the arrangement
         assert [o.stamp_ns for o in alone] == [o.stamp_ns for o in together], line.name
         for key in ('fairlead_force', 'bollard_force'):
             mine = np.array([getattr(o.output, key + 's')[k] for o in together])
@@ -313,3 +313,40 @@ def test_a_line_that_cannot_be_built_is_named():
     values = berth_values(integrator='improved_euler', time_step=0.01)
     with pytest.raises(ParameterError, match=r"^line 'head_1': time_step 0.01 s is above"):
         MooringDriver(arrangement.from_values(values))
+
+
+def test_a_line_beyond_its_reach_is_held_and_restarted_as_alone():
+    # The ship surges 4 m ahead and back: the short line's ends part farther than its reach
+    # (14 m x 1.25), so its fairlead is held at the reach and the line restarts at rest
+    # once they are back within it; the two long lines only pull. Each line as alone.
+    def surge(t):
+        return [4.0 * math.sin(math.pi * min(t, 2.0) / 2.0) ** 2, 0.0, 0.0], [0, 0, 0, 1.0]
+
+    values = {
+        'lines': ['short', 'long', 'wire'], 'segments': 10,
+        'short': dict(material='polyester', fairlead_offset=[0.0, 0.0, 5.0],
+                      bollard_position=[-14.0, 0.0, 0.0], length=14.0),
+        'long': dict(material='polyester', fairlead_offset=[0.0, 5.0, 5.0],
+                     bollard_position=[-40.0, 5.0, 0.0], length=42.0),
+        'wire': dict(material='steel_wire', diameter=0.03, fairlead_offset=[0.0, -5.0, 5.0],
+                     bollard_position=[40.0, -5.0, 0.0], length=40.5),
+    }
+    driver, together = run_arrangement(values, seconds=3.0, pose=surge)
+    restarted = [(o.output.t, o.advance.restarted) for o in together
+                 if o.advance is not None and o.advance.restarted]
+    assert restarted and all(set(r) == {0} for _, r in restarted)
+    assert {why for _, r in restarted for why in r.values()} == {'back within reach'}
+    held = [o.advance.beyond_reach for o in together
+            if o.advance is not None and o.advance.beyond_reach]
+    assert held and all(set(h) == {0} for h in held)
+    assert max(h[0] for h in held) > 17.5 + 1.0
+    tensions = np.array([o.output.fairlead_tensions for o in together])
+    assert np.isfinite(tensions).all()
+    props = driver.mooring.sims[0].props
+    assert tensions[:, 0].max() <= 1.01 * props.axial_stiffness * props.max_strain
+    for k, line in enumerate(driver.arrangement.lines):
+        alone = run_single(line.params, seconds=3.0, pose=surge)
+        mine = np.array([o.output.fairlead_forces[k] for o in together])
+        single = np.array([o.output.fairlead_force for o in alone])
+        assert mine.shape == single.shape
+        assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
