@@ -164,10 +164,26 @@ def tangent_quaternions(positions: np.ndarray) -> np.ndarray:
     the rope is fixed, not physical). A zero tangent gives the identity.
     """
     x = np.asarray(positions, dtype=float)
+    return _along(x, np.array([0, len(x)]))
+
+
+def lines_tangent_quaternions(positions: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """
+    tangent_quaternions of several lines at once: the same numbers, one numpy pass.
+
+    :param positions: every line's particles stacked, (P, 3).
+    :param starts: line k's rows are starts[k] .. starts[k + 1] - 1 (each line >= 2 rows).
+    """
+    return _along(np.asarray(positions, dtype=float), np.asarray(starts))
+
+
+def _along(x: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """Return the orientations of tangent_quaternions for the lines stacked in x."""
     tangent = np.empty_like(x)
     tangent[1:-1] = x[2:] - x[:-2]
-    tangent[0] = x[1] - x[0]
-    tangent[-1] = x[-1] - x[-2]
+    first, last = starts[:-1], starts[1:] - 1
+    tangent[first] = x[first + 1] - x[first]
+    tangent[last] = x[last] - x[last - 1]
     length = np.linalg.norm(tangent, axis=1)
     degenerate = length < 1e-12
     t = tangent / np.where(degenerate, 1.0, length)[:, None]

@@ -159,6 +159,7 @@ class MooringOutput:
     :ivar parted: whether each line has parted (L,) (extension point: none parts yet).
     :ivar fairlead_peaks: each line's largest fairlead tension since the previous output
         (L,) [N] (extension point: the tension at the output until a per-step peak hold).
+    :ivar fairlead_tensions: |fairlead force| of each line (L,) [N]; bollard_tensions too.
     """
 
     t: float
@@ -169,16 +170,8 @@ class MooringOutput:
     payload_positions: Tuple[Optional[np.ndarray], ...]
     parted: np.ndarray
     fairlead_peaks: np.ndarray
-
-    @property
-    def fairlead_tensions(self) -> np.ndarray:
-        """Return |fairlead force| of each line (L,) [N]."""
-        return np.linalg.norm(self.fairlead_forces, axis=1)
-
-    @property
-    def bollard_tensions(self) -> np.ndarray:
-        """Return |bollard force| of each line (L,) [N]."""
-        return np.linalg.norm(self.bollard_forces, axis=1)
+    fairlead_tensions: np.ndarray
+    bollard_tensions: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -660,6 +653,7 @@ class Mooring:
                 positions[k] = group.system.lines[j].x.copy()
                 if self.sims[k].payload:
                     payloads[k] = group.system.point_x[2 * j].copy()
+        tensions = np.linalg.norm(forces, axis=2)
         return MooringOutput(
             self.time, tuple(positions), forces[:, 1], forces[:, 0], strains, tuple(payloads),
-            np.zeros(count, dtype=bool), np.linalg.norm(forces[:, 1], axis=1))
+            np.zeros(count, dtype=bool), tensions[:, 1], tensions[:, 1], tensions[:, 0])

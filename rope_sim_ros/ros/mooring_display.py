@@ -61,14 +61,39 @@ def _points(positions) -> List[Point]:
     return [Point(x=x, y=y, z=z) for x, y, z in np.asarray(positions, dtype=float).tolist()]
 
 
-def _marker(frame_id: str, stamp_ns: int, ns: str, marker_id: int, kind: int) -> Marker:
-    marker = Marker()
-    marker.header.frame_id = frame_id
-    marker.header.stamp = ns_to_stamp(stamp_ns)
-    marker.ns, marker.id, marker.type, marker.action = ns, marker_id, kind, Marker.ADD
-    marker.pose.orientation.w = 1.0
-    marker.lifetime = LIFETIME
-    return marker
+class LineMarkers:
+    """
+    Builds the markers of every line (see the module docstring), again and again.
+
+    Its Marker messages are made once and updated in place: a Marker (with its texture,
+    mesh and header sub-messages) takes 60 us to construct, 34 of them 2 ms, 10 times a
+    second.
+    """
+
+    def __init__(self):
+        """Start with no markers made."""
+        self._markers = {}
+
+    def _marker(self, frame_id: str, stamp_ns: int, ns: str, marker_id: int,
+                kind: int) -> Marker:
+        marker = self._markers.get((ns, marker_id))
+        if marker is None:
+            marker = self._markers[(ns, marker_id)] = Marker()
+            marker.ns, marker.id, marker.action = ns, marker_id, Marker.ADD
+            marker.pose.orientation.w = 1.0
+            marker.lifetime = LIFETIME
+        marker.header.frame_id = frame_id
+        marker.header.stamp = ns_to_stamp(stamp_ns)
+        marker.type = kind
+        return marker
+
+    def __call__(self, frame_id: str, stamp_ns: int, names: Sequence[str],
+                 positions: Sequence[np.ndarray], tensions: Sequence[float],
+                 ratings: Sequence[Rating], parted: Sequence[bool],
+                 fairleads: np.ndarray, bollards: np.ndarray) -> MarkerArray:
+        """Return the markers now (see line_markers)."""
+        return _line_markers(self._marker, frame_id, stamp_ns, names, positions, tensions,
+                             ratings, parted, fairleads, bollards)
 
 
 def line_markers(frame_id: str, stamp_ns: int, names: Sequence[str],
@@ -84,6 +109,12 @@ def line_markers(frame_id: str, stamp_ns: int, names: Sequence[str],
     :param parted: whether each line has parted.
     :param fairleads: the fairlead points (L, 3) [m]; bollards likewise.
     """
+    return LineMarkers()(frame_id, stamp_ns, names, positions, tensions, ratings, parted,
+                         fairleads, bollards)
+
+
+def _line_markers(_marker, frame_id, stamp_ns, names, positions, tensions, ratings, parted,
+                  fairleads, bollards) -> MarkerArray:
     markers = []
     for k, name in enumerate(names):
         rating, points = ratings[k], np.asarray(positions[k], dtype=float)

@@ -1,0 +1,333 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+What a whole arrangement costs: sixteen lines of 50 segments at 100 Hz output.
+
+A VLCC-sized ship (fairleads along 320 m of its port side, 15 m above the water) on sixteen
+lines to a quay: four head lines, two forward breasts, two forward springs, two aft springs,
+two aft breasts, four stern lines, each at 10 % of its MBL. The ship surges 0.5 m (30 s
+period), sways 0.3 m (45 s) and yaws 0.002 rad (60 s); its pose comes at 100 Hz, the outputs
+(every line's particles and end forces, the total wrench) at 100 Hz.
+
+Two sets of lines: sixteen 64 mm polyester lines, and a mix (64 mm polyester head and stern
+lines, 64 mm nylon breasts, 44 mm HMPE springs, whose stiffness asks for a shorter step).
+For each, CPU seconds per simulated second (one core = 100 %) of:
+
+- the mooring's simulation as its node runs it (mooring_driver.MooringDriver: every line
+  in one process, one kernel call per step group);
+- the same sixteen lines as sixteen single-line drivers (line_driver.LineDriver) in one
+  process: what sixteen mooring_line nodes simulate, without their ROS overhead;
+- MoorDyn 2.7.2 with the same sixteen lines in one system (its RK2 at a quarter of the
+  stiffest line's segment wave time, coupled every 10 ms), over a shorter run.
+
+Then the node itself (`--node`, needs `make build`): the installed mooring executable fed
+the ship pose at 100 Hz for --node-seconds of wall time, its process CPU read from
+/proc, and the outputs it delivered.
+
+    python benchmarks/arrangement_speed.py [--duration 60] [--moordyn-duration 5] [--node]
+"""
+
+import argparse
+import contextlib
+import math
+import os
+from pathlib import Path
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+from rope_sim_ros import arrangement
+from rope_sim_ros.frames import pose_point
+from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
+from rope_sim_ros.mooring_driver import MooringDriver
+
+REPO = Path(__file__).resolve().parent.parent
+RATE = 100.0  # ship poses and outputs per second
+SEGMENTS = 50
+SHIP_Y = -28.5  # centreline off the quay face (beam 55 m, fenders 1 m)
+T0 = 1_000_000_000
+# (group, fairlead x [m] of the first, bollard x offset from it [m], count)
+GROUPS = (('head', 150.0, 60.0, 4), ('breast_fwd', 120.0, 5.0, 2),
+          ('spring_fwd', 80.0, -45.0, 2), ('spring_aft', -80.0, 45.0, 2),
+          ('breast_aft', -120.0, -5.0, 2), ('stern', -150.0, -60.0, 4))
+MATERIALS = {
+    'polyester': lambda group: ('polyester', 0.064),
+    'mixed': lambda group: (('nylon', 0.064) if 'breast' in group else
+                            ('hmpe', 0.044) if 'spring' in group else ('polyester', 0.064)),
+}
+MBL_FRACTION = 0.10
+
+
+def berth(kind: str) -> dict:
+    """Return the sixteen lines' parameter values (see the module docstring)."""
+    from rope_sim_ros.simulator import load_materials
+    library = load_materials()
+    lines = {}
+    for group, x, dx, count in GROUPS:
+        for i in range(count):
+            material, diameter = MATERIALS[kind](group)
+            mbl = library.properties(material, diameter).mbl
+            shift = (i - (count - 1) / 2.0)
+            lines[f'{group}_{i + 1}'] = dict(
+                material=material, diameter=diameter, segments=SEGMENTS,
+                fairlead_offset=[x + 3.0 * shift, 27.0, 15.0],
+                bollard_position=[x + dx + 6.0 * shift, 18.0 if 'breast' in group else 4.0,
+                                  3.5],
+                pretension=round(MBL_FRACTION * mbl, 0))
+    return {'lines': list(lines), **lines}
+
+
+def ship_pose(t: float):
+    """Return the ship's (position, quaternion (x, y, z, w)) at t [s]."""
+    yaw = 0.002 * math.sin(2.0 * math.pi * t / 60.0)
+    return ([0.5 * math.sin(2.0 * math.pi * t / 30.0),
+             SHIP_Y + 0.3 * math.sin(2.0 * math.pi * t / 45.0), 0.0],
+            [0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)])
+
+
+def run_mooring(values: dict, duration: float) -> tuple:
+    """Return CPU seconds of the arrangement over `duration`, its driver and outputs."""
+    driver = MooringDriver(arrangement.from_values(values), rate=RATE)
+    outputs = 0
+    cpu = 0.0
+    for i in range(int(round(duration * RATE)) + 1):
+        t = i / RATE
+        position, orientation = ship_pose(t)
+        if i == 1:  # after the start (the pretensions' lengths, the ropes at rest)
+            cpu = time.process_time()
+        driver.push_ship(T0 + round(t * 1e9), position, orientation)
+        outputs += len(driver.advance(math.inf, max_lag=math.inf).outputs)
+    return time.process_time() - cpu, driver, outputs
+
+
+def run_separate(setup, duration: float) -> float:
+    """Return CPU seconds of the same lines as single-line drivers, each fed its fairlead."""
+    drivers = [LineDriver(line.params, rate=RATE) for line in setup.lines]
+    cpu = 0.0
+    for i in range(int(round(duration * RATE)) + 1):
+        t = i / RATE
+        position, orientation = ship_pose(t)
+        if i == 1:
+            cpu = time.process_time()
+        for driver in drivers:
+            point = pose_point(position, orientation, driver.params.fairlead_offset)
+            driver.push(FAIRLEAD, T0 + round(t * 1e9), point.point, point.lever)
+            driver.advance(math.inf, max_lag=math.inf)
+    return time.process_time() - cpu
+
+
+MOORDYN_HEAD = """--------------------- MoorDyn Input File ------------------------------------
+sixteen lines of a berth (rope_sim_ros benchmarks/arrangement_speed.py)
+----------------------- LINE TYPES ------------------------------------------
+TypeName   Diam     Mass/m     EA         BA/-zeta    EI         Cd     Ca     CdAx    CaAx
+(name)     (m)      (kg/m)     (N)        (N-s/-)     (N-m^2)    (-)    (-)    (-)     (-)
+"""
+
+
+@contextlib.contextmanager
+def _quiet():
+    """Silence MoorDyn's console output (it prints from C++, below sys.stdout)."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with open(os.devnull, 'w') as null:
+        os.dup2(null.fileno(), 1)
+        try:
+            yield
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
+
+
+def run_moordyn(driver: MooringDriver, duration: float) -> tuple:
+    """Return MoorDyn's wall seconds over `duration`, its init seconds and its step."""
+    import moordyn  # a benchmark dependency only
+    sims = driver.mooring.sims
+    depth = np.array([0.0, 0.0, -100.0])  # MoorDyn's water surface is z = 0: lift the air
+    types, points, lines = [], [], []
+    position, orientation = ship_pose(0.0)
+    for k, sim in enumerate(sims):
+        p = sim.props
+        types.append(f'type{k} {p.diameter} {p.mass_per_length} {p.axial_stiffness} '
+                     f'{p.axial_damping} 0.0 {p.normal_drag} {p.normal_added_mass} '
+                     f'{p.tangential_drag} {p.tangential_added_mass}')
+        bollard = np.asarray(sim.params.bollard_position) + depth
+        fairlead = pose_point(position, orientation, sim.params.fairlead_offset).point + depth
+        points.append(f'{2 * k + 1} Fixed {bollard[0]} {bollard[1]} {bollard[2]} 0 0 0 0')
+        points.append(f'{2 * k + 2} Coupled {fairlead[0]} {fairlead[1]} {fairlead[2]} 0 0 0 0')
+        lines.append(f'{k + 1} type{k} {2 * k + 1} {2 * k + 2} {p.length} {p.segments} -')
+    step = min(0.25 * sim.props.segment_length
+               * math.sqrt(sim.props.mass_per_length / sim.props.axial_stiffness)
+               for sim in sims)
+    step = float(f'{step:.1e}')
+    text = (MOORDYN_HEAD + '\n'.join(types) + '\n'
+            '---------------------- POINT PROPERTIES --------------------------------\n'
+            'ID    Type      X       Y       Z       Mass    Volume      CdA    Ca\n'
+            '(#)   (-)       (m)     (m)     (m)     (kg)    (m^3)       (m^2)  (-)\n'
+            + '\n'.join(points) + '\n'
+            '---------------------- LINES ----------------------------------------\n'
+            'ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs\n'
+            '(#)  (name)     (#)      (#)      (m)       (-)      (-)\n'
+            + '\n'.join(lines) + '\n'
+            '---------------------- OPTIONS -----------------------------------------\n'
+            f'0 writeLog\n{step} dtM\n9.81 g\n1.225 WtrDnsty\n1000 WtrDpth\nRK2 tScheme\n'
+            '0 ICgenDynamic\n1 disableOutput\n1 disableOutTime\n'
+            '------------------------- need this line --------------------------------------\n')
+    with tempfile.TemporaryDirectory() as folder, _quiet():
+        path = Path(folder) / 'berth.txt'
+        path.write_text(text)
+        system = moordyn.Create(str(path))
+
+        def fairleads(t):
+            position, orientation = ship_pose(t)
+            return [c for sim in sims for c in
+                    pose_point(position, orientation, sim.params.fairlead_offset).point + depth]
+
+        start = time.perf_counter()
+        moordyn.Init(system, fairleads(0.0), [0.0] * (3 * len(sims)))
+        init = time.perf_counter() - start
+        coupling = 1.0 / RATE
+        start = time.perf_counter()
+        for k in range(int(round(duration * RATE))):
+            here = np.array(fairleads(k * coupling))
+            there = np.array(fairleads((k + 1) * coupling))
+            moordyn.Step(system, list(here), list((there - here) / coupling), k * coupling,
+                         coupling)
+        wall = time.perf_counter() - start
+        moordyn.Close(system)
+    return wall, init, step
+
+
+def node_run(values: dict, seconds: float) -> dict:
+    """
+    Run the installed mooring node on the lines, fed 100 Hz ship poses for `seconds`.
+
+    :returns: its CPU share while fed, the outputs received and the poses sent.
+    """
+    import rclpy
+    from geometry_msgs.msg import PoseStamped, WrenchStamped
+    import yaml
+    install = REPO / 'install' / 'rope_sim_ros'
+    executable = install / 'lib' / 'rope_sim_ros' / 'mooring'
+    if not executable.is_file():
+        raise SystemExit(f'{executable} not found: run `make build` first')
+    env = dict(os.environ)
+    env.setdefault('ROS_DOMAIN_ID', str(os.getpid() % 101 + 1))
+    env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+    env['AMENT_PREFIX_PATH'] = os.pathsep.join([str(install), sys.prefix])
+    site = install / 'lib' / f'python{sys.version_info[0]}.{sys.version_info[1]}' / \
+        'site-packages'
+    env['PYTHONPATH'] = str(site)
+    os.environ.update({k: env[k] for k in ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE')})
+    with tempfile.TemporaryDirectory() as folder:
+        params = Path(folder) / 'berth16.yaml'
+        params.write_text(yaml.safe_dump(
+            {'mooring': {'ros__parameters': {**values, 'publish_rate': RATE}}}))
+        node = subprocess.Popen([str(executable), '--ros-args', '--params-file', str(params)],
+                                env=env, stdin=subprocess.DEVNULL,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        rclpy.init()
+        client = rclpy.create_node('arrangement_speed')
+        received = []
+        client.create_subscription(WrenchStamped, 'ship/mooring_wrench',
+                                   lambda msg: received.append(time.monotonic()), 1000)
+        publisher = client.create_publisher(PoseStamped, 'ship/pose', 1000)
+        try:
+            deadline = time.monotonic() + 120.0
+            while publisher.get_subscription_count() == 0 or not client.count_publishers(
+                    'ship/mooring_wrench'):
+                if time.monotonic() > deadline or node.poll() is not None:
+                    raise SystemExit('the mooring node did not come up')
+                rclpy.spin_once(client, timeout_sec=0.1)
+            sent, cpu_start, start = 0, None, time.monotonic()
+            while time.monotonic() - start < seconds + 1.0:
+                t = sent / RATE
+                if time.monotonic() - start >= t:
+                    if sent == RATE:  # one second in: the start is behind us
+                        cpu_start, window = _cpu_seconds(node.pid), time.monotonic()
+                        first = len(received)
+                    position, orientation = ship_pose(t)
+                    msg = PoseStamped()
+                    msg.header.frame_id = 'world'
+                    msg.header.stamp = client.get_clock().now().to_msg()
+                    msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = position
+                    (msg.pose.orientation.x, msg.pose.orientation.y, msg.pose.orientation.z,
+                     msg.pose.orientation.w) = orientation
+                    publisher.publish(msg)
+                    sent += 1
+                rclpy.spin_once(client, timeout_sec=0.001)
+            cpu = _cpu_seconds(node.pid) - cpu_start
+            window = time.monotonic() - window
+            in_window = len(received) - first
+        finally:
+            client.destroy_node()
+            rclpy.try_shutdown()
+            node.send_signal(2)
+            node.wait(30)
+    return {'cpu': cpu / window, 'outputs': in_window / window, 'sent': sent}
+
+
+def _cpu_seconds(pid: int) -> float:
+    """Return a process's user + system CPU seconds (/proc/<pid>/stat)."""
+    fields = Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--duration', type=float, default=60.0)
+    parser.add_argument('--moordyn-duration', type=float, default=5.0)
+    parser.add_argument('--skip-moordyn', action='store_true')
+    parser.add_argument('--node', action='store_true', help='also time the mooring node')
+    parser.add_argument('--node-seconds', type=float, default=30.0)
+    args = parser.parse_args()
+    os.environ.setdefault('NUMBA_NUM_THREADS', '1')
+    run_mooring(berth('mixed'), 0.1)  # every kernel loaded (or compiled) before timing
+    print(f'## Sixteen lines of {SEGMENTS} segments, {RATE:g} Hz ship poses and outputs, '
+          f'{args.duration:g} s simulated, one process')
+    print()
+    print('| lines | model | steps [ms] | kernel calls per output | CPU s / sim s | '
+          '% of one core |')
+    print('|---|---|---|---|---|---|')
+    for kind in MATERIALS:
+        cpu, driver, outputs = run_mooring(berth(kind), args.duration)
+        mooring = driver.mooring
+        steps = ', '.join(f'{1e3 * group.step:.2f}' for group in mooring.groups)
+        # the start's and one per period, the last pose's held back (one pose behind)
+        assert outputs == int(round(args.duration * RATE)), outputs
+        print(f'| {kind} | mooring (one driver) | {steps} | {mooring.kernel_calls} | '
+              f'{cpu / args.duration:.4f} | {100 * cpu / args.duration:.1f} |', flush=True)
+        cpu = run_separate(driver.arrangement, args.duration)
+        print(f'| {kind} | 16 single-line drivers | {steps} | 16 | {cpu / args.duration:.4f} | '
+              f'{100 * cpu / args.duration:.1f} |', flush=True)
+        if not args.skip_moordyn:
+            wall, init, step = run_moordyn(driver, args.moordyn_duration)
+            print(f'| {kind} | MoorDyn 2.7.2 RK2, {args.moordyn_duration:g} s (init '
+                  f'{init:.1f} s) | {1e3 * step:.3f} | 100 | {wall / args.moordyn_duration:.4f} | '
+                  f'{100 * wall / args.moordyn_duration:.1f} |', flush=True)
+    print()
+    if args.node:
+        for kind in MATERIALS:
+            result = node_run(berth(kind), args.node_seconds)
+            print(f'mooring node, {kind}: {100 * result["cpu"]:.1f} % of one core while fed '
+                  f'{RATE:g} Hz ship poses for {args.node_seconds:g} s; '
+                  f'{result["outputs"]:.1f} outputs per second received '
+                  f'({result["sent"]} poses sent)', flush=True)
+
+
+if __name__ == '__main__':
+    main()
