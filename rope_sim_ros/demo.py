@@ -13,36 +13,43 @@
 # limitations under the License.
 
 """
-`make demo`: a live mooring line in one command, recorded to a bag and plotted.
+`make demo`: a ship at its berth on eight lines, loaded by a passing ship; recorded, plotted.
 
-Starts the colcon-installed executables mooring_line (with config/mooring_line.yaml,
-recording to a new bag out/demo_<time>/bag), ship_motion and line_monitor in their own ROS
-domain (unless ROS_DOMAIN_ID is set), forwards the monitor's lines to stdout for --duration
-seconds of output, then stops every child with SIGINT, by its process id, and waits for it.
-Then `rope_sim info` describes the bag, `rope_sim plot` draws out/demo_<time>/tension.png,
-and the demo says where both are.
+Starts, in their own ROS domain (unless ROS_DOMAIN_ID is set), the colcon-installed mooring
+node with config/berth.yaml (a 225 m bulk carrier on eight lines at 10 % of their MBL,
+use_sim_time, recording to a new bag out/demo_<time>/bag) and the berth demo
+(ros/berth_demo_node.py: the ship's pose and /clock, sim time running at --speed times the
+wall clock, a passing ship's surge and sway loading the springs near their working load
+limit, and the live table: one row a simulated second). The berth demo ends by itself
+after --duration simulated seconds; then the mooring node is stopped with SIGINT, by its
+process id, `rope_sim info` describes the bag, and the plots out/demo_<time>/tensions.png
+(every line's tension against its WLL and MBL, linear scales) and plan.png (the berth from
+above at the most loaded moment) are drawn (arrangement_plot.py).
 
-    python -m rope_sim_ros.demo [--duration 30] [--install install] [--params FILE] [--out out]
+    python -m rope_sim_ros.demo [--speed 2] [--install install] [--params FILE] [--out out]
 """
 
 import argparse
 import errno
 import os
 from pathlib import Path
-import queue
 import signal
 import subprocess
 import sys
-import threading
 import time
 
-from .params import ParameterError, read_params_file
+from .arrangement import read_arrangement_file
+from .params import ParameterError
+from .passing_ship import END, START
 
 REPO = Path(__file__).resolve().parent.parent
 PACKAGE = 'rope_sim_ros'
-START_TIMEOUT = 90.0  # a fresh install compiles the rope kernels on the first start
 STOP_TIMEOUT = 10.0
 MAX_SAFE_DOMAIN_ID = 101  # DDS ports of higher ids can collide with ephemeral ports
+PUBLISH_RATE = 20.0  # [Hz] outputs: plenty for the plots, a small bag
+DURATION = END + 8.0  # [s] simulated: the passing ship and the calm after it
+STORY = (f'A ship passing close by pushes the moored ship ahead, draws it off the quay and '
+         f'pulls it astern (t = {START:g}-{END:g} s); the springs hold it')
 
 
 def overlay_environment(prefix: Path) -> dict:
@@ -60,12 +67,6 @@ def overlay_environment(prefix: Path) -> dict:
     env.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
     env['PYTHONUNBUFFERED'] = '1'
     return env
-
-
-def _forward_lines(stream, lines: queue.Queue) -> None:
-    for line in stream:
-        lines.put(line.rstrip('\n'))
-    lines.put(None)
 
 
 def stop(children: dict) -> dict:
@@ -86,33 +87,34 @@ def stop(children: dict) -> dict:
 
 
 def main(argv=None) -> int:
-    """Run the demo; return the exit code (0 when every child started and stopped cleanly)."""
+    """Run the demo; return the exit code (0 when every step went through)."""
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
-    parser.add_argument('--duration', type=float, default=30.0,
-                        help='seconds of live output before stopping (default 30)')
+    parser.add_argument('--speed', type=float, default=2.0,
+                        help='simulated seconds per wall second (default 2)')
+    parser.add_argument('--duration', type=float, default=DURATION,
+                        help=f'simulated seconds (default {DURATION:g})')
     parser.add_argument('--install', type=Path, default=REPO / 'install',
                         help='colcon install base (default: <repo>/install)')
-    parser.add_argument('--params', type=Path, default=REPO / 'config' / 'mooring_line.yaml',
-                        help='parameter file of mooring_line (default config/mooring_line.yaml)')
+    parser.add_argument('--params', type=Path, default=REPO / 'config' / 'berth.yaml',
+                        help='parameter file of the mooring node (default config/berth.yaml)')
     parser.add_argument('--out', type=Path, default=REPO / 'out',
-                        help='where the run directory demo_<time>/ (bag and plot) is made '
+                        help='where the run directory demo_<time>/ (bag and plots) is made '
                         '(default: <repo>/out)')
     args = parser.parse_args(argv)
 
     prefix = args.install.resolve() / PACKAGE
     executables = prefix / 'lib' / PACKAGE
-    missing = [name for name in ('mooring_line', 'ship_motion', 'line_monitor', 'rope_sim')
+    missing = [name for name in ('mooring', 'rope_sim')
                if not (executables / name).is_file()]
     if missing:
         print(f'demo: {", ".join(missing)} not found in {executables}: run `make build` first',
               file=sys.stderr)
         return 2
     try:
-        length = float(read_params_file(args.params).get('length', 40.0))
+        setup = read_arrangement_file(args.params)
     except ParameterError as e:
         print(f'demo: {e}', file=sys.stderr)
         return 2
-
     try:
         run_dir = new_run_directory(args.out)
     except OSError as e:
@@ -122,25 +124,22 @@ def main(argv=None) -> int:
     bag = run_dir / 'bag'
 
     env = overlay_environment(prefix)
-    print(f'demo: ROS_DOMAIN_ID={env["ROS_DOMAIN_ID"]}, parameters {args.params}, '
-          f'{args.duration:g} s, recording to {bag}; Ctrl-C stops early', flush=True)
-    commands = {
-        'mooring_line': ['--ros-args', '--params-file', str(args.params),
-                         '-p', f'record_path:={bag}'],
-        'ship_motion': [],
-        'line_monitor': ['--ros-args', '-p', f'length:={length!r}'],
-    }
+    print(f'demo: ROS_DOMAIN_ID={env["ROS_DOMAIN_ID"]}, {len(setup.lines)} lines from '
+          f'{args.params}, {args.duration:g} s simulated at {args.speed:g}x, recording to '
+          f'{bag}; Ctrl-C stops early', flush=True)
     children = {}
-    lines: queue.Queue = queue.Queue()
-    ok = True
+    ok = False
     try:
-        for name, extra in commands.items():
-            children[name] = subprocess.Popen(
-                [str(executables / name), *extra], env=env, stdin=subprocess.DEVNULL,
-                stdout=subprocess.PIPE if name == 'line_monitor' else None, text=True)
-        threading.Thread(target=_forward_lines, args=(children['line_monitor'].stdout, lines),
-                         daemon=True).start()
-        ok = _show(children, lines, args.duration)
+        children['mooring'] = subprocess.Popen(
+            [str(executables / 'mooring'), '--ros-args', '--params-file', str(args.params),
+             '-p', f'record_path:={bag}', '-p', 'use_sim_time:=true',
+             '-p', f'publish_rate:={PUBLISH_RATE}'],
+            env=env, stdin=subprocess.DEVNULL)
+        children['berth_demo'] = subprocess.Popen(
+            [sys.executable, '-m', f'{PACKAGE}.ros.berth_demo_node', '--params',
+             str(args.params), '--speed', str(args.speed), '--duration', str(args.duration)],
+            env=env, stdin=subprocess.DEVNULL)
+        ok = children['berth_demo'].wait() == 0
     except KeyboardInterrupt:
         print('demo: interrupted', flush=True)
     finally:
@@ -149,7 +148,7 @@ def main(argv=None) -> int:
     if bad:
         print(f'demo: exit codes {bad}', file=sys.stderr)
     print(f'demo: stopped {", ".join(codes)}', flush=True)
-    shown = show_bag(executables / 'rope_sim', env, bag, run_dir / 'tension.png')
+    shown = show_bag(executables / 'rope_sim', env, bag, run_dir)
     return 0 if ok and not bad and shown else 1
 
 
@@ -173,18 +172,14 @@ def new_run_directory(base: Path) -> Path:
     raise FileExistsError(errno.EEXIST, 'too many runs this second', str(base / stem))
 
 
-def show_bag(rope_sim: Path, env: dict, bag: Path, png: Path) -> bool:
+def show_bag(rope_sim: Path, env: dict, bag: Path, run_dir: Path) -> bool:
     """
-    Run `rope_sim info` and `rope_sim plot` on the recorded bag and say where things are.
+    Describe the recorded bag with `rope_sim info`, draw its plots, say where things are.
 
-    A bag left incomplete (mooring_line had to be killed) is completed with
-    `rope_sim recover` first.
+    A bag left incomplete (mooring had to be killed) is completed with `rope_sim recover`
+    first.
 
-    :param rope_sim: the installed rope_sim executable.
-    :param env: the environment to run it in.
-    :param bag: the bag directory mooring_line recorded.
-    :param png: the plot to write.
-    :returns: True if the bag was there and both commands succeeded.
+    :returns: True if the bag was there, described and plotted.
     """
     if not (bag / 'metadata.yaml').is_file():
         if not bag.is_dir():
@@ -193,49 +188,19 @@ def show_bag(rope_sim: Path, env: dict, bag: Path, png: Path) -> bool:
         print(f'demo: {bag} was not closed; completing it with rope_sim recover', flush=True)
         if subprocess.run([str(rope_sim), 'recover', str(bag)], env=env).returncode != 0:
             return False
-    ok = True
-    for command in (['info', str(bag)], ['plot', str(bag), '-o', str(png)]):
-        print(f'demo: rope_sim {" ".join(command)}', flush=True)
-        ok = subprocess.run([str(rope_sim), *command], env=env).returncode == 0 and ok
-    print(f'demo: bag  {bag}', flush=True)
-    if png.is_file():
-        print(f'demo: plot {png}', flush=True)
-    return ok and png.is_file()
-
-
-def _show(children: dict, lines: queue.Queue, duration: float) -> bool:
-    """Print the monitor's lines until `duration` s after its first status line."""
-    start = time.monotonic()
-    end = start + START_TIMEOUT
-    first_status = False
-    while time.monotonic() < end:
-        for name, child in children.items():
-            if child.poll() is not None:
-                print(f'demo: {name} exited early with code {child.returncode}',
-                      file=sys.stderr)
-                return False
-        try:
-            line = lines.get(timeout=0.2)
-        except queue.Empty:
-            continue
-        if line is None:
-            return False
-        print(line, flush=True)
-        if not first_status and _is_status(line):
-            first_status = True
-            end = time.monotonic() + duration
-    if not first_status:
-        print(f'demo: no status line within {START_TIMEOUT:g} s', file=sys.stderr)
-    return first_status
-
-
-def _is_status(line: str) -> bool:
-    """Return True for a status line of line_monitor (it starts with the time)."""
+    print(f'demo: rope_sim info {bag}', flush=True)
+    ok = subprocess.run([str(rope_sim), 'info', str(bag)], env=env).returncode == 0
+    from .arrangement_plot import plot_record
+    from .bag import BagError
     try:
-        float(line.split()[0])
-    except (IndexError, ValueError):
+        plots = plot_record(bag, run_dir, STORY)
+    except (BagError, OSError) as e:
+        print(f'demo: no plots: {e}', file=sys.stderr)
         return False
-    return True
+    print(f'demo: bag   {bag}', flush=True)
+    for plot in plots:
+        print(f'demo: plot  {plot}', flush=True)
+    return ok
 
 
 if __name__ == '__main__':

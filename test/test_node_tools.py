@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""ship_motion, line_monitor and the demo driver: pure functions, then a short live demo."""
+"""ship_motion, line_monitor and the demo's passing ship: pure functions, then a live demo."""
 
 import math
 import subprocess
@@ -74,21 +74,46 @@ def test_monitor_max_strain():
     assert math.isnan(max_strain(PoseArray(), 4.0))
 
 
-def test_demo_runs_the_three_executables_and_stops_cleanly(colcon_install, colcon_env):
+def test_passing_ship_moves_the_ship_and_leaves_it_where_it_was():
+    from rope_sim_ros import passing_ship
+    times = np.arange(0.0, passing_ship.END + 10.0, 0.05)
+    poses = [passing_ship.ship_pose(t) for t in times]
+    positions = np.array([p for p, _ in poses])
+    rest = np.array(passing_ship.REST)
+    before = times < passing_ship.START
+    after = times > passing_ship.END
+    assert np.abs(positions[before | after] - rest).max() < 1e-12
+    surge, sway = positions[:, 0] - rest[0], positions[:, 1] - rest[1]
+    # ahead first, then astern, and off the quay (-y) in between
+    assert times[np.argmax(surge)] < times[np.argmin(surge)]
+    assert 0.25 < surge.max() < passing_ship.SURGE and -passing_ship.SURGE < surge.min() < -0.25
+    assert sway.min() == pytest.approx(-passing_ship.SWAY, rel=1e-3) and sway.max() <= 0.0
+    # smooth: no step in the velocity (the samples are 0.05 s apart)
+    assert np.abs(np.diff(positions, 2, axis=0)).max() < 1e-4
+    assert np.allclose([np.linalg.norm(q) for _, q in poses], 1.0)
+
+
+def test_demo_runs_the_berth_and_leaves_its_plots(colcon_install, colcon_env, tmp_path):
+    # the passing ship starts at t = 8 s: 14 s at 4x show the table, the bag and the plots
     result = subprocess.run(
-        [sys.executable, '-m', 'rope_sim_ros.demo', '--duration', '3',
-         '--install', str(colcon_install.parent)],
-        env=colcon_env, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=180)
+        [sys.executable, '-m', 'rope_sim_ros.demo', '--duration', '14', '--speed', '4',
+         '--install', str(colcon_install.parent), '--out', str(tmp_path)],
+        env=colcon_env, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=240)
     output = result.stdout + result.stderr
     assert result.returncode == 0, output
     assert 'Traceback' not in output, output
     rows = [line.split() for line in result.stdout.splitlines()
             if line.strip()[:1].isdigit()]
-    assert len(rows) >= 3, output
-    fairlead = [float(row[1]) for row in rows]
-    bollard = [float(row[2]) for row in rows]
-    # a loaded line, not a slack or torn one (the start rings by tens of percent)
-    assert all(50.0 < f < 5000.0 for f in fairlead + bollard), output
-    rtf = [float(row[5]) for row in rows[1:]]
-    assert all(0.5 < r < 1.5 for r in rtf), output
-    assert 'stopped mooring_line, ship_motion, line_monitor' in result.stdout
+    assert len(rows) >= 12, output
+    names = set(row[1] for row in rows)
+    assert names <= {'head_1', 'head_2', 'breast_fwd', 'spring_fwd', 'spring_aft',
+                     'breast_aft', 'stern_1', 'stern_2'}, names
+    utilisation = [float(row[3]) for row in rows]
+    # at rest every line holds its pretension, 10 % of its MBL; the passer loads a spring
+    assert utilisation[0] == pytest.approx(10.0, abs=0.3), output
+    assert max(utilisation) > 11.0 and rows[-1][1] == 'spring_fwd', output
+    assert 'stopped mooring, berth_demo' in result.stdout
+    run = next(tmp_path.glob('demo_*'))
+    assert (run / 'bag' / 'metadata.yaml').is_file()
+    for name in ('tensions.png', 'plan.png'):
+        assert (run / name).stat().st_size > 20_000, name

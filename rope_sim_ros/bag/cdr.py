@@ -176,6 +176,19 @@ def decode_wrench(data: bytes) -> Tuple[np.ndarray, np.ndarray]:
     return values[:3], values[3:]
 
 
+def decode_wrench_stamped(data: bytes) -> Tuple[int, int, str, np.ndarray, np.ndarray]:
+    """
+    Return the fields of a geometry_msgs/WrenchStamped's CDR bytes.
+
+    :returns: sec, nanosec, frame_id, force (3,) and torque (3,).
+    :raises BagError: the bytes are not a WrenchStamped.
+    """
+    cursor = _Cursor(data, 'geometry_msgs/msg/WrenchStamped')
+    sec, nanosec, frame_id = cursor.header()
+    values = cursor.doubles(6)
+    return sec, nanosec, frame_id, values[:3], values[3:]
+
+
 def decode_float64(data: bytes) -> float:
     """
     Return the value of a std_msgs/Float64's CDR bytes.
