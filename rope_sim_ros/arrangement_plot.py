@@ -170,18 +170,20 @@ def _placed(outline: np.ndarray, position, yaw: float) -> np.ndarray:
                             position[1] + s * outline[:, 0] + c * outline[:, 1]])
 
 
-def plot_record(path, out_dir, story: str = '') -> List[str]:
+def plot_record(path, out_dir, story: str = '', tensions: str = 'tensions.png',
+                plan: str = 'plan.png') -> List[str]:
     """
     Draw tensions.png and plan.png of an arrangement's bag into out_dir.
 
     :param story: what the run was, a sentence for the top of tensions.png ('' = none).
+    :param tensions, plan: the images' file names.
     :returns: the two image paths.
     :raises BagError: see read_record. OSError: an image cannot be written.
     """
     record = read_record(path)
     os.makedirs(os.fspath(out_dir), exist_ok=True)
-    tensions = os.path.join(os.fspath(out_dir), 'tensions.png')
-    plan = os.path.join(os.fspath(out_dir), 'plan.png')
+    tensions = os.path.join(os.fspath(out_dir), tensions)
+    plan = os.path.join(os.fspath(out_dir), plan)
     draw_tensions(record, tensions, story)
     draw_plan(path, record, plan)
     return [tensions, plan]

@@ -30,6 +30,7 @@ from typing import List, Optional
 
 import yaml
 
+from . import cli_arrangement as _arrangement
 from .bag import BagError
 from .params import ParameterError, SPECS
 from .physics.materials import MaterialError
@@ -171,10 +172,13 @@ def _compiling_notice(quiet: bool):
 
 
 def _cmd_run(args) -> int:
+    from .arrangement_runner import is_arrangement_file
     from .motion import read_motion
     from .runner import resolve_params, run_motion
     if args.out is None and args.bag is None:
         raise ParameterError('run: give --out OUT.csv and/or --bag DIR')
+    if args.params is not None and is_arrangement_file(args.params):
+        return _arrangement.run(args, parse_set(args.set), _progress, _compiling_notice)
     params = resolve_params(args.params, parse_set(args.set))
     motion = read_motion(args.motion)
     progress = _progress(args.quiet)
@@ -211,6 +215,8 @@ def _bag_params(args):
 
 def _cmd_resim(args) -> int:
     from .resim import resim
+    if _arrangement.is_arrangement(args):
+        return _arrangement.resim(args, parse_set(args.set), _progress, _compiling_notice)
     params = _bag_params(args)
     progress = _progress(args.quiet)
     try:
@@ -234,6 +240,8 @@ def _cmd_resim(args) -> int:
 
 def _cmd_plot(args) -> int:
     from .plot import plot_bag
+    if _arrangement.is_arrangement(args):
+        return _arrangement.plot(args)
     if args.shapes < 0:
         raise ParameterError(f'--shapes {args.shapes}: must be >= 0')
     params = _bag_params(args)
@@ -244,6 +252,8 @@ def _cmd_plot(args) -> int:
 def _cmd_info(args) -> int:
     from .plot import describe
     print(describe(args.bag))
+    if _arrangement.is_arrangement(args):
+        print(_arrangement.describe_lines(args.bag))
     return 0
 
 

@@ -74,6 +74,13 @@ def wrench(force: Sequence[float], torque: Sequence[float]) -> bytes:
     return CDR_LE + struct.pack('<6d', *force, *torque)
 
 
+def wrench_stamped(sec: int, nanosec: int, frame_id: str, force: Sequence[float],
+                   torque: Sequence[float]) -> bytes:
+    """Return a geometry_msgs/WrenchStamped as CDR bytes."""
+    return (CDR_LE + _pad(_header(sec, nanosec, frame_id), 8)
+            + struct.pack('<6d', *force, *torque))
+
+
 def string(text: str) -> bytes:
     """Return a std_msgs/String as CDR bytes (length, UTF-8, NUL; no trailing padding)."""
     return CDR_LE + _string(text)
