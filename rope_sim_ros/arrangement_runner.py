@@ -113,12 +113,15 @@ def with_overrides(setup: arrangement.ArrangementParams,
 
 
 def is_arrangement_file(path) -> bool:
-    """Tell whether a parameter file holds a `mooring:` section (else: a single line's)."""
+    """
+    Tell whether a parameter file holds an arrangement: `lines` for the mooring node.
+
+    A `/**:` section reaches every node: it is an arrangement only with `lines` in it.
+    """
     try:
-        read_params_file(path, arrangement.NODE_NAME)
+        return arrangement.LINES in read_params_file(path, arrangement.NODE_NAME)
     except ParameterError:
         return False
-    return True
 
 
 def read_ship_motion(path) -> ShipMotion:

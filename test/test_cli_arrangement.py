@@ -146,3 +146,12 @@ def test_bad_ship_motion_is_one_line(tmp_path, capsys, repo_root, text, message)
                      str(path), '--out', str(tmp_path / 'out.csv')])
     err = capsys.readouterr().err.strip()
     assert code == 2 and '\n' not in err and message in err, err
+
+
+def test_a_single_line_file_for_every_node_is_not_an_arrangement(tmp_path, repo_root):
+    from rope_sim_ros.arrangement_runner import is_arrangement_file
+    single = tmp_path / 'any_node.yaml'
+    single.write_text('/**:\n  ros__parameters:\n    length: 40.0\n')
+    assert not is_arrangement_file(single)
+    assert not is_arrangement_file(repo_root / 'config' / 'mooring_line.yaml')
+    assert is_arrangement_file(repo_root / 'config' / 'berth.yaml')
