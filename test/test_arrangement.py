@@ -319,11 +319,12 @@ def test_a_line_beyond_its_reach_is_held_and_restarted_as_alone():
     # The ship surges 4 m ahead and back: the short line's ends part farther than its reach
     # (14 m x 1.25), so its fairlead is held at the reach and the line restarts at rest
     # once they are back within it; the two long lines only pull. Each line as alone.
+    # Parting off: with it on, the short line parts long before its reach (test_parting).
     def surge(t):
         return [4.0 * math.sin(math.pi * min(t, 2.0) / 2.0) ** 2, 0.0, 0.0], [0, 0, 0, 1.0]
 
     values = {
-        'lines': ['short', 'long', 'wire'], 'segments': 10,
+        'lines': ['short', 'long', 'wire'], 'segments': 10, 'parting': False,
         'short': dict(material='polyester', fairlead_offset=[0.0, 0.0, 5.0],
                       bollard_position=[-14.0, 0.0, 0.0], length=14.0),
         'long': dict(material='polyester', fairlead_offset=[0.0, 5.0, 5.0],
