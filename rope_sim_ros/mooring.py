@@ -18,13 +18,14 @@ A ship's mooring lines stepped together: one physics System, one kernel call per
 Each line keeps a Simulator (simulator.py) for the rules of one line, so that each rule
 has one home: its parameters and properties, its end trajectories, the fairlead held
 within the line's reach, the start at rest, a teleport, the step division, an end brought
-back onto its track. The Mooring steps the particles of every line in one System (line k
-between point 2k, its bollard, and point 2k + 1, its fairlead) with the smallest of the
-lines' steps: the kernels step each line whose ends are fixed or driven on its own, so a
+back onto its track, its winch, its parting, its peak hold, the state check's bound. Lines
+with equal steps share one System (simulator.share_system: line j between point 2 j, its
+bollard, and point 2 j + 1, its fairlead), and the Mooring steps it through the
+Simulators' public pieces (drive, reach_steps, blend_ends, divisions, follow_run,
+load_bound): the kernels step each line whose ends are fixed or driven on its own, so a
 line here steps exactly as its single-line Simulator does at that step (a test finds eight
-lines equal to eight single-line runs to round-off). Each Simulator's rope is a view of
-its line in the shared System; when a Simulator starts its rope again (a restart, a
-teleport) the new rope is copied in and viewed again (_load_line).
+lines equal to eight single-line runs to round-off). A Simulator that starts its rope
+again (a restart, a teleport, a restore) puts it in its place in the shared System itself.
 
 The ship pose drives every fairlead: fairlead k is the pose ⊕ its fairlead_offset (body
 frame), pushed to its Simulator as that line's fairlead sample, so it is interpolated as
@@ -35,10 +36,9 @@ The total load on the ship (mooring_wrench) is the sum of the fairlead forces an
 moments about the ship's origin: in the ship's body frame, F = R^T sum F_k and
 M = sum o_k x (R^T F_k), with o_k the fairlead offsets and R the ship's orientation.
 
-Extension points for the single-line features to come (parting, winches, a per-step peak
-hold): MooringOutput.parted and .fairlead_peaks are per-line outputs that follow the
-Simulators once they carry them; until then no line parts and the peak is the tension
-at the output.
+A parted line goes on as its two pieces; its fairlead force, and so its part of the total
+wrench, is the pull of the piece still on the ship (nothing once that piece hangs free).
+Each line's winch takes its own commands (command_winch).
 """
 
 from collections import deque
@@ -53,10 +53,10 @@ from .frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
 from .params import ParameterError
 from .physics.catenary import CatenaryError, solve_catenary
 from .physics.integrators import implicit_bending
-from .physics.objects import Line, Point, System
-from .physics.rope import RopeProperties, tension_bound
+from .physics.objects import System
+from .physics.rope import RopeProperties
 from .physics.superelastic import MAX_ITERATIONS
-from .simulator import load_materials, Simulator
+from .simulator import load_materials, Parting, share_system, Simulator, take_peaks
 from .trajectory import TrajectoryError
 
 ROOT3 = math.sqrt(3.0)
@@ -156,10 +156,12 @@ class MooringOutput:
         for a payload line).
     :ivar max_strains: each line's largest structural strain (L,).
     :ivar payload_positions: a payload line's payload (3,) [m], else None, per line.
-    :ivar parted: whether each line has parted (L,) (extension point: none parts yet).
+    :ivar parted: whether each line has parted (L,).
     :ivar fairlead_peaks: each line's largest fairlead tension since the previous output
-        (L,) [N] (extension point: the tension at the output until a per-step peak hold).
+        (L,) [N]: every step's, this output's included (Output.fairlead_peak).
     :ivar fairlead_tensions: |fairlead force| of each line (L,) [N]; bollard_tensions too.
+    :ivar bollard_peaks: each line's largest bollard (or payload) tension likewise (L,) [N].
+    :ivar line_lengths: each line's unstretched length now (L,) [m] (its winch changes it).
     """
 
     t: float
@@ -172,6 +174,13 @@ class MooringOutput:
     fairlead_peaks: np.ndarray
     fairlead_tensions: np.ndarray
     bollard_tensions: np.ndarray
+    bollard_peaks: np.ndarray
+    line_lengths: np.ndarray
+
+    @property
+    def peaks(self) -> np.ndarray:
+        """Return each line's largest tension at either end since the previous output (L,)."""
+        return np.maximum(self.fairlead_peaks, self.bollard_peaks)
 
 
 @dataclass(frozen=True)
@@ -185,12 +194,14 @@ class MooringAdvance:
         state', 'unphysical state', 'back within reach'), see Simulator.advance_to.
     :ivar beyond_reach: {line index: the largest distance between its ends [m]} for every
         line whose fairlead was held at its reach.
+    :ivar parted: {line index: its Parting} for every line that parted in these steps.
     """
 
     steps: int
     lag: float
     restarted: Dict[int, str] = field(default_factory=dict)
     beyond_reach: Dict[int, float] = field(default_factory=dict)
+    parted: Dict[int, Parting] = field(default_factory=dict)
 
 
 class _Group:
@@ -246,7 +257,6 @@ class Mooring:
         # ship samples (t, position, unit quaternion): the newest at or before an output
         # gives its orientation (as LineDriver.lever does for the levers)
         self._ship: deque = deque()
-        self._bounds: List[tuple] = [(None, math.nan, math.nan)] * len(self.sims)
         self._group()
 
     # -- lines ----------------------------------------------------------------------------
@@ -286,8 +296,6 @@ class Mooring:
             keys.setdefault(key, []).append(k)
         self.groups = [_Group(members, step, bending)
                        for (step, bending), members in sorted(keys.items())]
-        self._where = {k: (group, j) for group in self.groups
-                       for j, k in enumerate(group.members)}
 
     def _regroup(self) -> None:
         """Group the lines again after a step changed; rebuild the Systems if started."""
@@ -326,8 +334,7 @@ class Mooring:
         teleported = []
         for k, (sim, point) in enumerate(zip(self.sims, points)):
             if sim.push_fairlead(t, point) == 'teleport' and self.started:
-                self._load_line(k)
-                teleported.append(k)
+                teleported.append(k)  # restarted in its place in the shared System
         return teleported
 
     def push_bollard(self, k: int, t: float, point) -> str:
@@ -336,10 +343,7 @@ class Mooring:
 
         :raises TrajectoryError: non-finite, or not after that bollard's newest sample.
         """
-        event = self.sims[k].push_bollard(t, point)
-        if event == 'teleport' and self.started:
-            self._load_line(k)
-        return event
+        return self.sims[k].push_bollard(t, point)
 
     def ship_pose(self, t: float) -> Tuple[np.ndarray, np.ndarray]:
         """Return (position, unit quaternion) of the newest ship pose at or before t."""
@@ -384,8 +388,8 @@ class Mooring:
                 continue
             sim = self.sims[k]
             try:
-                length = length_for_tension(sim.props, *self._free_ends(sim, t),
-                                            line.pretension)
+                ends = sim.free_ends([t])[0][0]
+                length = length_for_tension(sim.props, ends[0], ends[1], line.pretension)
                 params = line.params.with_values({'length': length})
             except ParameterError as e:
                 raise ParameterError(f'line {line.name!r}: {e}') from None
@@ -398,59 +402,32 @@ class Mooring:
             self._group()  # a new length can give a line another step
         return lengths
 
-    @staticmethod
-    def _free_ends(sim: Simulator, t: float) -> tuple:
-        """Return a line's bollard and fairlead at t as their samples put them (not held)."""
-        times = np.array([t])
-        fairlead = sim.fairlead.sample(times)[0][0]
-        if len(sim.bollard):
-            return sim.bollard.sample(times)[0][0], fairlead
-        return np.asarray(sim.params.bollard_position, dtype=float), fairlead
-
     def _build(self) -> None:
-        """Make each group's System from its Simulators' ropes, then view each rope in it."""
+        """Put each group's lines in one System (simulator.share_system)."""
         for group in self.groups:
-            system = System(self.sims[group.members[0]].props.environment)
-            for j, k in enumerate(group.members):
-                sim = self.sims[k]
-                for point in sim.system.points:
-                    system.add_point(Point(point.kind, point.position.copy(), point.mass,
-                                           point.velocity.copy(), point.volume,
-                                           point.drag_area, point.added_mass))
-                rope = sim.rope
-                system.add_line(Line(rope.line_type, rope.rest.copy(), rope.x.copy(),
-                                     (2 * j, 2 * j + 1)))
-                system.lines[j].v[:] = rope.v
-            system.pack()
-            group.system = system
-            group.starts = np.array([0] + [len(line.x) for line in system.lines]).cumsum()
-            for j, k in enumerate(group.members):
-                self.sims[k].rope.x = system.lines[j].x
-                self.sims[k].rope.v = system.lines[j].v
-
-    def _load_line(self, k: int) -> None:
-        """Copy line k's Simulator's new rope (a restart) into its System; view it there."""
-        group, j = self._where[k]
-        sim, system = self.sims[k], group.system
-        line = system.lines[j]
-        line.x[:] = sim.rope.x
-        line.v[:] = sim.rope.v
-        system.point_x[2 * j:2 * j + 2] = sim.system.point_x
-        system.point_v[2 * j:2 * j + 2] = sim.system.point_v
-        line.line_type = sim.rope.line_type
-        system.refresh()  # the state changed other than by a step
-        sim.rope.x, sim.rope.v = line.x, line.v
+            group.system = share_system([self.sims[k] for k in group.members])
+            group.starts = np.array([0] + [len(line.x) for line in group.system.lines]).cumsum()
 
     def restart(self, t: Optional[float] = None) -> None:
         """Put every rope back at rest between its ends (at the state time, or t)."""
         t = self.time if t is None else t
-        for k in range(len(self.sims)):
-            self._restart_line(k, t)
+        for sim in self.sims:
+            sim.restart(t)
         self._set_time(t)
 
-    def _restart_line(self, k: int, t: float) -> None:
-        self.sims[k].restart(t)
-        self._load_line(k)
+    def restore(self) -> None:
+        """Give every line back its length and its whole rope, at rest at the state time."""
+        self._set_time(self.time)
+        for sim in self.sims:
+            sim.restore()
+
+    def command_winch(self, k: int, speed: float) -> None:
+        """
+        Command line k's winch speed [m/s] (+ pays out) from its next step.
+
+        :raises ParameterError: speed is not a finite number (Simulator.command_winch).
+        """
+        self.sims[k].command_winch(speed)
 
     # -- time -----------------------------------------------------------------------------
 
@@ -460,51 +437,57 @@ class Mooring:
 
         Each line follows Simulator.advance_to's rules: held at its reach while its ends are
         farther apart, restarted at rest once they are back within it, and restarted when
-        its state turns non-finite or past its tension_bound. Every group ends within a step
-        of t; the state time is the earliest group's.
+        its state turns non-finite or past its load_bound; it parts, and its winch runs, in
+        the steps. Every group ends within a step of t; the state time is the earliest
+        group's.
         """
         start = self.time
-        restarted: Dict[int, str] = {}
-        beyond_reach: Dict[int, float] = {}
+        done = MooringAdvance(0, 0.0)  # what the groups' steps did, gathered
         steps = 0
         for group in self.groups:
             count = max(0, int(math.floor((t - group.time) / group.step + 1e-9)))
             if count:
                 steps = max(steps, count)
                 self._advance_group(group, group.time + group.step * np.arange(1, count + 1),
-                                    restarted, beyond_reach)
+                                    done)
         self.time = min(group.time for group in self.groups)
-        return MooringAdvance(steps, t - self.time, restarted, beyond_reach) if steps else \
-            MooringAdvance(0, t - start)
+        if not steps:
+            return MooringAdvance(0, t - start)
+        return MooringAdvance(steps, t - self.time, done.restarted, done.beyond_reach,
+                              done.parted)
 
-    def _advance_group(self, group: _Group, times: np.ndarray, restarted: Dict[int, str],
-                       beyond_reach: Dict[int, float]) -> None:
+    def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
         """Take the steps of one group to `times` (Simulator.advance_to's rules)."""
         drive_x, drive_v, distances = self._drive(group, times)
         sims = [self.sims[k] for k in group.members]
-        beyond = distances > np.array([sim.reach for sim in sims])
+        reach = np.array([sim.reach for sim in sims])
+        beyond = distances > reach
+        if not (beyond.any() or any(sim.held for sim in sims)):  # the common case
+            self._step(group, times, drive_x, drive_v, done)
+            return
+        back = np.empty_like(beyond)
+        for j, sim in enumerate(sims):
+            beyond[:, j], back[:, j] = sim.reach_steps(distances[:, j])
         for j in np.flatnonzero(beyond.any(axis=0)):
             k = group.members[j]
-            beyond_reach[k] = max(beyond_reach.get(k, 0.0),
-                                  float(distances[beyond[:, j], j].max()))
-        held = np.array([sim._held for sim in sims])
-        back = ~beyond & np.vstack([held, beyond[:-1]])
+            done.beyond_reach[k] = max(done.beyond_reach.get(k, 0.0),
+                                       float(distances[beyond[:, j], j].max()))
         if back.any():
             # a line back within reach restarts at rest at that step (its state there is the
             # restart's, whatever the step did): step the group to it, then go on
             i = int(np.flatnonzero(back.any(axis=1))[0])
-            self._step(group, times[:i + 1], drive_x[:i + 1], drive_v[:i + 1], restarted)
+            self._step(group, times[:i + 1], drive_x[:i + 1], drive_v[:i + 1], done)
             for j in np.flatnonzero(back[i]):
-                self._restart_line(group.members[j], float(times[i]))
-                restarted[group.members[j]] = 'back within reach'
+                sims[j].restart(float(times[i]))
+                done.restarted[group.members[j]] = 'back within reach'
             for j in np.flatnonzero(~back[i]):
-                sims[j]._held = bool(beyond[i, j])
+                sims[j].held = bool(beyond[i, j])
             if i + 1 < len(times):
-                self._advance_group(group, times[i + 1:], restarted, beyond_reach)
+                self._advance_group(group, times[i + 1:], done)
             return
         for j, sim in enumerate(sims):
-            sim._held = bool(beyond[-1, j])
-        self._step(group, times, drive_x, drive_v, restarted)
+            sim.held = bool(beyond[-1, j])
+        self._step(group, times, drive_x, drive_v, done)
 
     def _drive(self, group: _Group, times: np.ndarray) -> tuple:
         """Return a group's driven points at `times` (n, Q, 3) twice and end distances (n, L)."""
@@ -513,39 +496,45 @@ class Mooring:
         drive_v = np.empty((n, 2 * count, 3))
         distances = np.empty((n, count))
         for j, k in enumerate(group.members):
-            ends, velocities, distances[:, j] = self.sims[k]._ends(times)
+            ends, velocities, distances[:, j] = self.sims[k].drive(times)
             drive_x[:, 2 * j:2 * j + 2] = ends
             drive_v[:, 2 * j:2 * j + 2] = velocities
         return drive_x, drive_v, distances
 
     def _step(self, group: _Group, times: np.ndarray, drive_x: np.ndarray,
-              drive_v: np.ndarray, restarted: Dict[int, str]) -> None:
+              drive_v: np.ndarray, done: MooringAdvance) -> None:
         """Take a group's steps to `times` (as Simulator._step), then check its lines."""
         sims = [self.sims[k] for k in group.members]
         for j, sim in enumerate(sims):  # ends brought back onto their tracks (views)
-            sim._blend_ends(times, drive_x[:, 2 * j:2 * j + 2], drive_v[:, 2 * j:2 * j + 2])
-        parts = max(sim._divisions(drive_v[:, 2 * j:2 * j + 2]) for j, sim in enumerate(sims))
+            sim.blend_ends(times, drive_x[:, 2 * j:2 * j + 2], drive_v[:, 2 * j:2 * j + 2])
+        parts = max(sim.divisions(drive_v[:, 2 * j:2 * j + 2]) for j, sim in enumerate(sims))
         if parts == 1:
-            self._run(group, group.step, drive_x, drive_v)
+            self._run(group, group.step, drive_x, drive_v, done)
             self._set_group_time(group, float(times[-1]))
         else:
             for t in times:  # a violent stretch somewhere: look again before every step
                 start = group.time
-                parts = max(sim._divisions(drive_v[:, 2 * j:2 * j + 2])
+                parts = max(sim.divisions(drive_v[:, 2 * j:2 * j + 2])
                             for j, sim in enumerate(sims))
                 fine = start + (t - start) * np.arange(1, parts + 1) / parts
                 fine_x, fine_v, _ = self._drive(group, fine)
                 for j, sim in enumerate(sims):
-                    sim._blend_ends(fine, fine_x[:, 2 * j:2 * j + 2], fine_v[:, 2 * j:2 * j + 2])
-                self._run(group, (t - start) / len(fine), fine_x, fine_v)
+                    sim.blend_ends(fine, fine_x[:, 2 * j:2 * j + 2], fine_v[:, 2 * j:2 * j + 2])
+                self._run(group, (t - start) / len(fine), fine_x, fine_v, done)
                 self._set_group_time(group, float(t))
         speeds = ROOT3 * np.abs(drive_v).max(axis=(0, 2)).reshape(-1, 2).max(axis=1)
-        self._check(group, speeds, restarted)
+        self._check(group, speeds, done.restarted)
 
-    def _run(self, group: _Group, dt: float, drive_x: np.ndarray, drive_v: np.ndarray) -> None:
+    def _run(self, group: _Group, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
+             done: MooringAdvance) -> None:
         """Take len(drive_x) substeps of dt of a group's lines: one kernel call."""
-        group.system.step(self.sims[group.members[0]].params.integrator, dt, drive_x, drive_v,
-                          MAX_ITERATIONS, group.bending)
+        parted = group.system.step(self.sims[group.members[0]].params.integrator, dt, drive_x,
+                                   drive_v, MAX_ITERATIONS, group.bending)
+        for k in group.members:
+            self.sims[k].follow_run(dt, parted)
+        for j, _ in parted:
+            k = group.members[j]
+            done.parted[k] = self.sims[k].parting
 
     def _set_group_time(self, group: _Group, t: float) -> None:
         group.time = t
@@ -559,7 +548,7 @@ class Mooring:
 
     def _check(self, group: _Group, end_speeds: np.ndarray, restarted: Dict[int, str]) -> None:
         """
-        Restart every line of a group whose state is not finite or past its tension_bound.
+        Restart every line of a group whose state is not finite or past its load_bound.
 
         Simulator._unphysical's rule, for all its lines from one computation of the loads.
 
@@ -573,26 +562,13 @@ class Mooring:
                        & np.isfinite(system.point_v).all(axis=1)).reshape(-1, 2).all(axis=1)
             for j in np.flatnonzero(~finite):  # first, so that the others' loads count
                 restarted[group.members[j]] = 'non-finite state'
-                self._restart_line(group.members[j], group.time)
-        forces, strains = system.loads()  # computed by largest_load, once per state
-        ea = np.array([self.sims[k].props.axial_stiffness for k in group.members])
-        largest = np.maximum(np.linalg.norm(forces, axis=2).max(axis=1), ea * strains)
-        for j in np.flatnonzero(~(largest <= self._bound(group, end_speeds))):  # also NaN
+                self.sims[group.members[j]].restart(group.time)
+        largest = system.line_loads()  # from the loads largest_load computed, once per state
+        bounds = np.array([self.sims[k].load_bound(end_speeds[j])
+                           for j, k in enumerate(group.members)])
+        for j in np.flatnonzero(~(largest <= bounds)):  # also NaN
             restarted[group.members[j]] = 'unphysical state'
-            self._restart_line(group.members[j], group.time)
-
-    def _bound(self, group: _Group, end_speeds: np.ndarray) -> np.ndarray:
-        """Return each line's tension_bound at its end speed (it is linear in the speed)."""
-        bounds = np.empty(len(group.members))
-        for j, k in enumerate(group.members):
-            sim = self.sims[k]
-            props, at_rest, per_speed = self._bounds[k]
-            if props is not sim.props:
-                at_rest = tension_bound(sim.props)
-                per_speed = tension_bound(sim.props, 1.0) - at_rest
-                self._bounds[k] = (sim.props, at_rest, per_speed)
-            bounds[j] = at_rest + per_speed * end_speeds[j]
-        return bounds
+            self.sims[group.members[j]].restart(group.time)
 
     def skip_to(self, t: float) -> None:
         """Move the state time to t without simulating (see Simulator.skip_to)."""
@@ -620,14 +596,8 @@ class Mooring:
         self.check_update(k, values)
         sim = self.sims[k]
         step = sim.time_step
-        sim.update(values)
+        sim.update(values)  # on its line in the shared System too
         self.arrangement = self.arrangement.with_line(self.names[k], sim.params)
-        if self.started:
-            group, j = self._where[k]
-            group.system.lines[j].line_type = sim.props.line_type
-            group.system.refresh()
-            if tuple(group.system.environment.current) != sim.props.current:
-                group.system.set_current(sim.props.current)
         if sim.time_step != step:
             self._regroup()
 
@@ -641,19 +611,28 @@ class Mooring:
     # -- outputs --------------------------------------------------------------------------
 
     def output(self) -> MooringOutput:
-        """Return the current state of every line: particles, end forces, strains."""
+        """
+        Return the current state of every line: particles, end forces, strains, peaks.
+
+        The peaks are those since the previous output (this call clears them).
+        """
         count = len(self.sims)
         forces, strains = np.empty((count, 2, 3)), np.empty(count)
+        peaks = np.empty((count, 2))
         positions: List[Optional[np.ndarray]] = [None] * count
         payloads: List[Optional[np.ndarray]] = [None] * count
         for group in self.groups:
-            group_forces, group_strains = group.system.loads()
-            forces[group.members], strains[group.members] = group_forces, group_strains
+            system = group.system
+            forces[group.members], strains[group.members] = system.loads()
+            peaks[group.members] = take_peaks(system)
             for j, k in enumerate(group.members):
-                positions[k] = group.system.lines[j].x.copy()
+                line = system.lines[j]
+                positions[k] = line.x.copy()
                 if self.sims[k].payload:
-                    payloads[k] = group.system.point_x[2 * j].copy()
+                    payloads[k] = system.point_x[line.ends[0]].copy()
         tensions = np.linalg.norm(forces, axis=2)
+        parted = np.array([sim.parting is not None for sim in self.sims])
+        lengths = np.array([sim.length for sim in self.sims])
         return MooringOutput(
             self.time, tuple(positions), forces[:, 1], forces[:, 0], strains, tuple(payloads),
-            np.zeros(count, dtype=bool), tensions[:, 1], tensions[:, 1], tensions[:, 0])
+            parted, peaks[:, 1], tensions[:, 1], tensions[:, 0], peaks[:, 0], lengths)

@@ -29,7 +29,7 @@ import math
 import os
 from pathlib import Path
 import sys
-from typing import List, Optional
+from typing import List, Optional, Sequence
 
 import numpy as np
 
@@ -289,10 +289,19 @@ class Simulator:
     """
     One mooring line between a bollard (particle 0) and a fairlead (particle N).
 
-    :ivar system: the physics System (None before start): point 0 the bollard (driven, or
-        free with a payload), point 1 the fairlead (driven), line 0 the rope.
-    :ivar rope: the line (system.lines[0]; None before start): its x and v (N+1, 3) are the
-        state the integrators step.
+    Alone, it steps its own System (advance_to). Sharing one with other lines
+    (share_system), it keeps every rule of its line and its owner steps them all at once,
+    through the same public pieces advance_to is made of: drive (the ends it follows),
+    reach_steps and held (the fairlead held at the reach), blend_ends, divisions,
+    follow_run (what a step did to the line) and load_bound (the state check).
+
+    :ivar system: the physics System (None before start): alone, point 0 the bollard
+        (driven, or free with a payload), point 1 the fairlead (driven), line 0 the rope;
+        shared, line `index` between points 2 index and 2 index + 1.
+    :ivar index: the rope's line index in system (0 alone).
+    :ivar rope: the line (system.lines[index]; None before start): its x and v (N+1, 3)
+        are the state the integrators step.
+    :ivar held: the fairlead was held at the reach at the last step taken.
     """
 
     # How far [m] the newest end sample lies from that end's place before it (see _push).
@@ -326,13 +335,15 @@ class Simulator:
         self.fairlead = EndTrajectory(keep=history, method=params.end_interpolation)
         self.bollard = EndTrajectory(keep=history, method=params.end_interpolation)
         self.system: Optional[System] = None
+        self.index = 0
+        self._shared = False  # the System holds other lines too: its owner steps it
         self.time = math.nan
         self._blends: List[Optional[EndBlend]] = [None, None]  # bollard, fairlead
         self._off_track = False  # a sample or a skip may have moved an end's track under it
-        self._held = False  # the fairlead was held at the reach at the last step
+        self.held = False
         # tension_bound of props at rest, and its growth per m/s of the ends (it is linear)
         self._bound = (None, math.nan, math.nan)
-        # drag_rate of props at 1 m/s (see _divisions)
+        # drag_rate of props at 1 m/s (see divisions)
         self._drag = (None, math.nan)
         self.length = params.length  # the unstretched length now: the winch changes it
         self.parting: Optional[Parting] = None  # set when the line parts, until restore()
@@ -342,7 +353,7 @@ class Simulator:
     @property
     def rope(self) -> Optional[Line]:
         """Return the line (x, v, strains()), None before start."""
-        return None if self.system is None else self.system.lines[0]
+        return None if self.system is None else self.system.lines[self.index]
 
     @property
     def payload(self) -> bool:
@@ -444,15 +455,15 @@ class Simulator:
                                  'number [m/s] (+ pays out)')
         self._winch_command = float(speed)
         if self.system is not None:
-            self.system.set_winch(0, command=self.winch().command)
+            self.system.set_winch(self.index, command=self.winch().command)
 
     def _apply_winch(self) -> None:
         """Give the line the winch and break load the parameters ask for now."""
         p = self.params
         if p.winch_mode == 'constant_tension' and not p.winch_tension and \
                 not math.isfinite(self._held_tension):
-            self._held_tension = float(np.linalg.norm(self.system.loads()[0][0, 1]))
-        line = self.system.lines[0]
+            self._held_tension = float(np.linalg.norm(self.system.loads()[0][self.index, 1]))
+        line = self.rope
         line.break_load = self.break_load
         line.winch = self.winch()
         self.system.refresh()
@@ -499,7 +510,7 @@ class Simulator:
         if winch != (before.winch_mode, before.winch_tension):
             self._held_tension = math.nan  # constant_tension takes the tension of now
         if self.system is not None:
-            self.system.lines[0].line_type = self.props.line_type
+            self.rope.line_type = self.props.line_type
             self._apply_winch()  # also refreshes the tables
             if tuple(self.system.environment.current) != self.props.current:
                 self.system.set_current(self.props.current)
@@ -557,22 +568,51 @@ class Simulator:
         A fairlead farther from the bollard than the line's reach is held at the reach. With
         a payload the rope follows the fairlead only: the bollard's columns repeat it.
         """
-        return self._ends(times)[:2]
+        return self.drive(times)[:2]
 
-    def _ends(self, times: np.ndarray) -> tuple:
-        """Return ends_at(times) and the end distances [m] before holding, shape (n,)."""
+    def free_ends(self, times: np.ndarray) -> tuple:
+        """
+        Return the ends where their samples put them at `times`, not held: (n, 2, 3) twice.
+
+        The bollard is at bollard_position before its first sample; with a payload the
+        bollard's columns repeat the fairlead (a free end follows no track).
+        """
         times = np.atleast_1d(np.asarray(times, dtype=float))
         ends = np.empty((len(times), 2, 3))
         velocities = np.zeros((len(times), 2, 3))
         ends[:, 1], velocities[:, 1] = self.fairlead.sample(times)
-        if self.payload:  # a free end: nothing to follow, nothing to hold
+        if self.payload:
             ends[:, 0], velocities[:, 0] = ends[:, 1], velocities[:, 1]
-            return ends, velocities, np.zeros(len(times))
-        if len(self.bollard):
+        elif len(self.bollard):
             ends[:, 0], velocities[:, 0] = self.bollard.sample(times)
         else:
             ends[:, 0] = self.params.bollard_position
+        return ends, velocities
+
+    def drive(self, times: np.ndarray) -> tuple:
+        """
+        Return what drives the rope's ends at `times`: ends_at(times) and the distances.
+
+        :returns: ends, velocities (n, 2, 3), bollard first, the fairlead held within reach;
+            and the end distances [m] before holding, (n,) (zeros with a payload: nothing
+            to hold).
+        """
+        ends, velocities = self.free_ends(times)
+        if self.payload:  # a free end: nothing to hold
+            return ends, velocities, np.zeros(len(ends))
         return ends, velocities, self._hold_within_reach(ends, velocities)
+
+    def reach_steps(self, distances: np.ndarray) -> tuple:
+        """
+        Return, over coming steps, where the fairlead is beyond reach and where it is back.
+
+        :param distances: the end distances [m] at the steps (drive's), (n,).
+        :returns: beyond (n,): the ends are farther apart than the reach (the fairlead is
+            held at it); back (n,): they are within it again after a held step (held before
+            the first): the rope restarts at rest at the first such step (see advance_to).
+        """
+        beyond = distances > self.reach
+        return beyond, ~beyond & np.append(self.held, beyond[:-1])
 
     def _hold_within_reach(self, ends: np.ndarray, velocities: np.ndarray) -> np.ndarray:
         """
@@ -613,7 +653,7 @@ class Simulator:
             raise TrajectoryError('cannot start the rope before the first fairlead sample')
         self.restart(t)
         if shape is not None:
-            self.system = self._build(np.asarray(shape, dtype=float))
+            self._place(self._build(np.asarray(shape, dtype=float)))
 
     def restart(self, t: Optional[float] = None) -> None:
         """
@@ -627,19 +667,27 @@ class Simulator:
         to rest.
         """
         t = self.time if t is None else t
-        ends, _, distances = self._ends([t])
-        self._held = bool(distances[0] > self.reach)
+        ends, _, distances = self.drive([t])
+        self.held = bool(distances[0] > self.reach)
         p = self.line_props
         if self.payload:
             shape = hanging_shape(p, ends[0, 1])
         else:
             shape = start_shape(p.line_type, p.environment, ends[0, 0], ends[0, 1], p.length,
                                 p.segments)
-        self.system = self._build(shape)
-        if not self._held and (not relax(p, self.system) or self._unphysical()):
-            self.system = self._build(shape)
+        alone = self._build(shape)
+        if not self.held and (not relax(p, alone) or self._unphysical(system=alone)):
+            alone = self._build(shape)
+        self._place(alone)
         self._apply_winch()
         self.time = t
+
+    def _place(self, alone: System) -> None:
+        """Make the line of `alone` (a System of it only) the rope: its System, or its share."""
+        if self._shared:
+            self.system.load_line(self.index, alone)
+        else:
+            self.system, self.index = alone, 0
 
     def _build(self, shape: np.ndarray) -> System:
         """
@@ -678,7 +726,11 @@ class Simulator:
         (22 MJ on the default line), which released would whip it at up to c max_strain
         (630 m/s) with segments snapping to the limit and MN tensions for tens of seconds:
         the energy of a line that in truth could not reach, not of the motion.
+
+        A Simulator sharing its System (share_system) is stepped by the System's owner.
         """
+        if self._shared:
+            raise RuntimeError('a line sharing its System is stepped by its owner')
         dt = self.time_step
         steps = max(0, int(math.floor((t - self.time) / dt + 1e-9)))
         if max_steps is not None:
@@ -686,12 +738,12 @@ class Simulator:
         if steps == 0:
             return Advance(0, t - self.time)
         times = self.time + dt * np.arange(1, steps + 1)
-        ends, velocities, distances = self._ends(times)
+        ends, velocities, distances = self.drive(times)
         beyond_reach = 0.0
-        if self._held or distances.max() > self.reach:
-            beyond = distances > self.reach
+        if self.held or distances.max() > self.reach:
+            beyond, back = self.reach_steps(distances)
             beyond_reach = float(distances[beyond].max()) if beyond.any() else 0.0
-            back = np.flatnonzero(~beyond & np.append(self._held, beyond[:-1]))
+            back = np.flatnonzero(back)
             if back.size:
                 k = int(back[0])
                 if k:
@@ -700,7 +752,7 @@ class Simulator:
                 rest = self.advance_to(t, None if max_steps is None else max_steps - k - 1)
                 return Advance(steps, rest.lag, rest.restarted or 'back within reach',
                                max(beyond_reach, rest.beyond_reach))
-            self._held = bool(beyond[-1])
+            self.held = bool(beyond[-1])
         parting = self.parting
         self._step(times, ends, velocities)
         restarted = self._unphysical(motion_spread(self.rope.v, velocities)[1])
@@ -722,22 +774,24 @@ class Simulator:
         line whipping at the limit with MN tensions for as long as it ran; divided, the
         same release rings down as with the explicit step.
         """
-        self._blend_ends(times, ends, velocities)
-        if self._divisions(velocities) == 1:
+        self.blend_ends(times, ends, velocities)
+        if self.divisions(velocities) == 1:
             self._run(self.time_step, ends, velocities)
             self.time = float(times[-1])
             return
         for t in times:  # a violent stretch: look again before every step
-            start, parts = self.time, self._divisions(velocities)
+            start, parts = self.time, self.divisions(velocities)
             fine = start + (t - start) * np.arange(1, parts + 1) / parts
-            fine_ends, fine_velocities, _ = self._ends(fine)
-            self._blend_ends(fine, fine_ends, fine_velocities)
+            fine_ends, fine_velocities, _ = self.drive(fine)
+            self.blend_ends(fine, fine_ends, fine_velocities)
             self._run((t - start) / len(fine), fine_ends, fine_velocities)
             self.time = float(t)
 
-    def _divisions(self, velocities: np.ndarray) -> int:
+    def divisions(self, velocities: np.ndarray) -> int:
         """
         Return into how many parts a step must be divided (see _step).
+
+        :param velocities: the ends' velocities over the coming steps (n, 2, 3) (drive's).
 
         Also, for improved_euler, until drag takes no more than the particle's speed in
         one part: its rate 2 K |u| / m (u: the speed through the fluid) is no part of the
@@ -758,27 +812,37 @@ class Simulator:
             return 1
         return math.ceil(min(parts, MAX_DIVISIONS))
 
-    def _unphysical(self, end_speed: float = 0.0) -> str:
+    def _unphysical(self, end_speed: float = 0.0, system: Optional[System] = None) -> str:
         """
         Say what is wrong with the state ('' when nothing is): the one check of every output.
 
         Parting (a segment past break_load, the MBL by default) acts far below this bound.
 
         :param end_speed: the ends' largest speed over the steps just taken [m/s].
+        :param system: the System to check (default: the rope's, of this line alone).
         """
-        finite, largest = self.system.largest_load()
+        finite, largest = (system or self.system).largest_load()
         if not finite:
             return 'non-finite state'
+        if not largest <= self.load_bound(end_speed):  # also NaN (an overflow)
+            return 'unphysical state'
+        return ''
+
+    def load_bound(self, end_speed: float = 0.0) -> float:
+        """
+        Return the largest end force or EA strain [N] a physical state of the line can have.
+
+        rope.tension_bound of the line at its length now, with its ends moving at up to
+        end_speed [m/s]; a state past it is restarted (see advance_to).
+        """
         props = self.line_props
         if self._bound[0] is not props:
             at_rest = tension_bound(props)
             self._bound = (props, at_rest, tension_bound(props, 1.0) - at_rest)
         _, at_rest, per_speed = self._bound
-        if not largest <= at_rest + per_speed * end_speed:  # also NaN (an overflow)
-            return 'unphysical state'
-        return ''
+        return at_rest + per_speed * end_speed
 
-    def _blend_ends(self, times: np.ndarray, ends: np.ndarray, velocities: np.ndarray) -> None:
+    def blend_ends(self, times: np.ndarray, ends: np.ndarray, velocities: np.ndarray) -> None:
         """
         Bring an end that is off its trajectory back onto it (in place), never by a jump.
 
@@ -811,10 +875,21 @@ class Simulator:
         """Take len(ends) substeps of dt: ends, velocities (n, 2, 3) drive points 0 and 1."""
         parted = self.system.step(self.params.integrator, dt, ends, velocities, MAX_ITERATIONS,
                                   implicit_bending(self.props, dt), self.compiled)
-        self.length = self.system.unstretched_length(0)
-        for _, step in parted:
-            self.parting = Parting(self.time + (step + 1) * dt, self.rope.parted,
-                                   self.break_load)
+        self.follow_run(dt, parted)
+
+    def follow_run(self, dt: float, parted: list) -> None:
+        """
+        Take in what a run of steps of dt from the state time did to the line.
+
+        Its length (the winch's) and its parting. Call it before moving the state time on.
+
+        :param parted: System.step's (line index, step of the run) of the lines that parted.
+        """
+        self.length = self.system.unstretched_length(self.index)
+        for k, step in parted:
+            if k == self.index:
+                self.parting = Parting(self.time + (step + 1) * dt, self.rope.parted,
+                                       self.break_load)
 
     def skip_to(self, t: float) -> None:
         """
@@ -836,15 +911,58 @@ class Simulator:
         bollard, fairlead, strain = self._forces()
         position = velocity = None
         if self.payload:
-            position = self.system.point_x[0].copy()
-            velocity = self.system.point_v[0].copy()
-        peaks = self.system.take_peaks()[0]
+            bollard_point = self.rope.ends[0]
+            position = self.system.point_x[bollard_point].copy()
+            velocity = self.system.point_v[bollard_point].copy()
+        peaks = take_peaks(self.system, [self.index])[0]
         return Output(self.time, self.rope.x.copy(), fairlead, bollard, strain, position,
-                      velocity, max(peaks[1], float(np.linalg.norm(fairlead))),
-                      max(peaks[0], float(np.linalg.norm(bollard))), self.length,
-                      self.system.winch_speed(0), self.parting is not None)
+                      velocity, peaks[1], peaks[0], self.length,
+                      self.system.winch_speed(self.index), self.parting is not None)
 
     def _forces(self) -> tuple:
         """Return the forces on the bollard and the fairlead and the largest strain."""
         forces, strains = self.system.loads()
-        return forces[0, 0], forces[0, 1], float(strains[0])
+        return forces[self.index, 0], forces[self.index, 1], float(strains[self.index])
+
+
+def take_peaks(system: System, lines=slice(None)) -> np.ndarray:
+    """
+    Return the lines' peak end tensions since the previous output, (L, 2) [N]; clear them.
+
+    Every step's largest (System.take_peaks), and the tension now: an output's peak is never
+    below its own tension.
+
+    :param lines: which of the System's lines (an index list or a slice).
+    """
+    forces = system.loads()[0][lines]
+    return np.maximum(system.take_peaks(lines), np.linalg.norm(forces, axis=2))
+
+
+def share_system(sims: Sequence[Simulator]) -> System:
+    """
+    Put the started lines of `sims` in one new System; make it each Simulator's from now on.
+
+    Line j of the System is sims[j]'s rope, between points 2 j (its bollard) and 2 j + 1
+    (its fairlead), with all it had: its state, winch, parting and held peaks. One step of
+    the System steps every line exactly as its Simulator would alone at that step (the
+    kernels step each line whose ends are fixed or driven on its own). The caller steps it
+    (see the Simulator's docstring); each Simulator keeps its rules, and its restarts,
+    teleports, winch commands and parameter changes act on its line in the System.
+
+    :param sims: started Simulators with one environment and integrator.
+    """
+    system = System(sims[0].props.environment)
+    for j, sim in enumerate(sims):
+        rope = sim.rope
+        for q in rope.ends:
+            point = sim.system.points[q]
+            system.add_point(Point(point.kind, point.position.copy(), point.mass,
+                                   point.velocity.copy(), point.volume, point.drag_area,
+                                   point.added_mass))
+        system.add_line(Line(rope.line_type, rope.rest.copy(), rope.x.copy(),
+                             (2 * j, 2 * j + 1)))
+    system.pack()
+    for j, sim in enumerate(sims):
+        system.load_line(j, sim.system, sim.index)
+        sim.system, sim.index, sim._shared = system, j, True
+    return system

@@ -681,11 +681,54 @@ class System:
         line.winch = replace(line.winch, **changes)
         self._line_changes(k, line)
 
-    def take_peaks(self) -> np.ndarray:
-        """Return each line's largest end forces since the last call, (L, 2) [N]; clear them."""
-        peaks = self.line_real[:, [PEAK_A, PEAK_B]].copy()
-        self.line_real[:, [PEAK_A, PEAK_B]] = 0.0
+    def take_peaks(self, lines=slice(None)) -> np.ndarray:
+        """
+        Return the lines' largest end forces since the last call, (L, 2) [N]; clear them.
+
+        :param lines: which lines (an index array or a slice; all by default): the others
+            keep holding theirs.
+        """
+        peaks = self.line_real[lines][:, [PEAK_A, PEAK_B]]
+        self.line_real[lines, PEAK_A] = 0.0
+        self.line_real[lines, PEAK_B] = 0.0
         return peaks
+
+    def load_line(self, k: int, source: 'System', j: int = 0) -> None:
+        """
+        Make line k and its end points what line j of `source` and its end points are.
+
+        Everything of the line is taken: its particles' state, its type and rest lengths, its
+        winch (and the speed it ran at), break load and parting, its held peaks; and the
+        positions and velocities of the points its ends sit on. The two lines must have as
+        many segments, and their points be of the same kinds. The other lines and points go
+        on untouched. This is how a line started at rest in a System of its own (relaxed
+        alone) takes its place in a System it shares with others.
+        """
+        line, other = self.lines[k], source.lines[j]
+        if line.segments != other.segments:
+            raise ValueError(f'line {k} has {line.segments} segments, the source line '
+                             f'{other.segments}')
+        line.x[:] = other.x
+        line.v[:] = other.v
+        line.line_type = other.line_type
+        line.rest[:] = other.rest
+        line.winch, line.break_load, line.parted = other.winch, other.break_load, other.parted
+        for mine, theirs in zip(line.ends, other.ends):
+            self.point_x[mine] = source.point_x[theirs]
+            self.point_v[mine] = source.point_v[theirs]
+        self.refresh()
+        self.line_real[k, [WINCH_SPEED, PEAK_A, PEAK_B]] = \
+            source.line_real[j, [WINCH_SPEED, PEAK_A, PEAK_B]]
+
+    def line_loads(self) -> np.ndarray:
+        """
+        Return each line's largest end force or EA times strain now, (L,) [N].
+
+        largest_load's number, line by line (NaN or inf where the numbers overflow).
+        """
+        forces, strains = self.loads()
+        return np.maximum(np.linalg.norm(forces, axis=2).max(axis=1),
+                          self.line_real[:, AXIAL_STIFFNESS] * strains)
 
     def unstretched_length(self, k: int) -> float:
         """Return line k's unstretched length now [m] (its winch changes it)."""
