@@ -61,13 +61,13 @@ from numba.core.dispatcher import Dispatcher
 import rope_sim_ros
 from rope_sim_ros import cli
 from rope_sim_ros.params import LineParams
-from rope_sim_ros.ros.mooring_line_node import _warm_up
+from rope_sim_ros.ros.mooring_line_node import warm_up
 motion, out = sys.argv[1:]
 codes = [cli.main(['run', '--motion', motion, '--out', out, '--quiet', '--set', 'segments=50',
                    '--set', 'material=steel_wire', '--set', 'integrator=' + name])
          for name in ('implicit_euler', 'improved_euler')]
 said = []
-_warm_up(LineParams(), said.append)
+warm_up(LineParams(), said.append)
 stats = {}
 for name, module in list(sys.modules.items()):
     for attribute, value in vars(module or object).items():

@@ -207,7 +207,7 @@ class MooringLineNode(Node):
         try:
             line = params.from_values(values)
             self.driver = LineDriver(line)
-            _warm_up(line, self.get_logger().info)
+            warm_up(line, self.get_logger().info)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise StartupError(str(e)) from None
         # ticks since the newest sample of each end (see LIVE_INPUT)
@@ -353,10 +353,10 @@ class MooringLineNode(Node):
                          reliability=POSE_RELIABILITY[self.simulator.params.pose_reliability])
         overrides = QoSOverridingOptions(
             (QoSPolicyKind.RELIABILITY, QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH),
-            callback=_check_pose_qos)
+            callback=check_pose_qos)
         events = SubscriptionEventCallbacks(message_lost=functools.partial(self._on_lost, topic))
         try:
-            with warnings.catch_warnings():  # rclpy warns of depth 0; _check_pose_qos says it
+            with warnings.catch_warnings():  # rclpy warns of depth 0; check_pose_qos says it
                 warnings.simplefilter('ignore', UserWarning)
                 return self.create_subscription(PoseStamped, topic, callback, qos,
                                                 event_callbacks=events,
@@ -705,7 +705,7 @@ class MooringLineNode(Node):
             self.get_logger().warning(text)
 
 
-def _warm_up(line: params.LineParams, say=None) -> None:
+def warm_up(line: params.LineParams, say=None) -> None:
     """
     Run a few steps of a throw-away line, so the compiled kernels load before spinning.
 
@@ -727,7 +727,7 @@ def _tick_period(rate: float) -> float:
     return 1.0 / min(rate, MooringLineNode.MAX_TICK_RATE)
 
 
-def _check_pose_qos(qos: QoSProfile) -> SetParametersResult:
+def check_pose_qos(qos: QoSProfile) -> SetParametersResult:
     """Refuse pose subscription QoS overrides that would keep no pose or never get one."""
     if qos.history != HistoryPolicy.KEEP_ALL and qos.depth < 1:
         return SetParametersResult(successful=False, reason=f'depth {qos.depth} keeps no pose')
@@ -772,14 +772,14 @@ def main(args=None) -> int:
         if rclpy.ok():  # else SIGTERM came between start-up and spinning
             spin_until_shutdown(node)
     finally:
-        with _signals_ignored():  # a second Ctrl-C must not cut the bag short
+        with signals_ignored():  # a second Ctrl-C must not cut the bag short
             node.destroy_node()
         rclpy.try_shutdown()
     return 0
 
 
 @contextlib.contextmanager
-def _signals_ignored():
+def signals_ignored():
     """Ignore SIGINT and SIGTERM inside the block (main thread only); SIGKILL still works."""
     saved = {}
     try:

@@ -63,9 +63,9 @@ from visualization_msgs.msg import MarkerArray
 
 from . import conversions
 from .mooring_display import line_diagnostics, LineMarkers
-from .mooring_line_node import (_check_pose_qos, _signals_ignored, _warm_up, describe,
-                                MooringLineNode, POSE_QUEUE_DEPTH, POSE_RELIABILITY,
-                                QOS_OVERRIDES_ALLOWED, StartupError)
+from .mooring_line_node import (check_pose_qos, describe, MooringLineNode, POSE_QUEUE_DEPTH,
+                                POSE_RELIABILITY, QOS_OVERRIDES_ALLOWED, signals_ignored,
+                                StartupError, warm_up)
 from .recorder import Recorder
 from .spinning import spin_until_shutdown
 from .. import arrangement
@@ -156,7 +156,7 @@ class MooringNode(Node):
         setup = self._declare_parameters()
         try:
             self.driver = MooringDriver(setup)
-            _warm_up(setup.lines[0].params, self.get_logger().info)
+            warm_up(setup.lines[0].params, self.get_logger().info)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise StartupError(str(e)) from None
         mooring = self.driver.mooring
@@ -321,7 +321,7 @@ class MooringNode(Node):
         qos = QoSProfile(depth=POSE_QUEUE_DEPTH, reliability=reliability)
         overrides = QoSOverridingOptions(
             (QoSPolicyKind.RELIABILITY, QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH),
-            callback=_check_pose_qos)
+            callback=check_pose_qos)
         # Only the ship's stream keeps rclpy's default incompatible-QoS handlers: the
         # executor walks every handler at every wake-up (16 lines' bollard streams tripled
         # its walk), and one warning for a best-effort ship pose publisher tells the story.
@@ -678,7 +678,7 @@ def main(args=None) -> int:
         if rclpy.ok():
             spin_until_shutdown(node)
     finally:
-        with _signals_ignored():  # a second Ctrl-C must not cut the bag short
+        with signals_ignored():  # a second Ctrl-C must not cut the bag short
             node.destroy_node()
         rclpy.try_shutdown()
     return 0
