@@ -18,8 +18,8 @@ The offline commands of an arrangement: `rope_sim run`, `resim` and `info` of ma
 The ship's poses go into one mooring_driver.MooringDriver, the node's own rules, in stamp
 order (with the bollard poses of a ship-to-ship bag), each stream taken for finished after
 its last sample; outputs every 1 / rate s from the first ship pose to the last. Each output
-goes to OUT.csv (OUT_COLUMNS, then each line's NAME_tension, NAME_bollard_tension and
-NAME_utilisation) and/or a bag with the topics, types and stamps the mooring node records
+goes to OUT.csv (OUT_COLUMNS, then each line's LINE_COLUMNS: NAME_tension, ...,
+NAME_parted) and/or a bag with the topics, types and stamps the mooring node records
 (log time = publish time = the output stamp). The node's clock decisions (mooring/events:
 a silent stream, a skip, a reset) are not replayed: a bag of a steady stream re-simulates
 to the node's own outputs.
@@ -43,6 +43,7 @@ from .arrangement_plot import stored_arrangement
 from .bag import BagError, read_messages
 from .bag.cdr import decode_pose_stamped, decode_wrench
 from .frames import lines_tangent_quaternions, pose_point, split_ns
+from .line_driver import PARTED_TOPIC
 from .line_status import Rating
 from .mooring_driver import MooringDriver, MooringPublished, SHIP
 from .motion import MotionError
@@ -55,6 +56,12 @@ WRENCH = '/ship/mooring_wrench'
 WORLD_WRENCH = '/ship/mooring_wrench_world'
 POSE_TYPE = 'geometry_msgs/msg/PoseStamped'
 OUT_COLUMNS = ('t', 'force_x', 'force_y', 'force_z', 'moment_x', 'moment_y', 'moment_z')
+# Each line's columns, after OUT_COLUMNS: the tensions, the utilisation, and as the single-line
+# OUT.csv (motion.OUT_COLUMNS) the peaks since the previous row, the length and parted (0, 1).
+LINE_COLUMNS = ('tension', 'bollard_tension', 'utilisation', 'fairlead_peak_tension',
+                'bollard_peak_tension', 'line_length', 'parted')
+# Each line's Float64 topics, as the node publishes them.
+FLOAT_TOPICS = ('fairlead/peak_tension', 'bollard/peak_tension', 'winch/length')
 QUATERNION = ('qx', 'qy', 'qz', 'qw')
 DEFAULT_RATE = 100.0
 
@@ -256,6 +263,10 @@ class ArrangementBag:
             self.writer.add_topic(f'/{line}/rope/particles', 'geometry_msgs/msg/PoseArray')
             for end in ('fairlead', 'bollard'):
                 self.writer.add_topic(f'/{line}/{end}/tension', 'geometry_msgs/msg/Wrench')
+            for relative in FLOAT_TOPICS:
+                self.writer.add_topic(f'/{line}/{relative}', 'std_msgs/msg/Float64')
+            self.writer.add_topic(f'/{line}/{PARTED_TOPIC}', 'std_msgs/msg/Bool')
+        self._parted_said: List[Optional[bool]] = [None] * len(setup.names)
         for topic in (WRENCH, WORLD_WRENCH):
             self.writer.add_topic(topic, 'geometry_msgs/msg/WrenchStamped')
 
@@ -289,6 +300,13 @@ class ArrangementBag:
             self._write(f'/{line}/fairlead/tension',
                         wrench_cdr(out.fairlead_forces[k], published.levers[k]), ns)
             self._write(f'/{line}/bollard/tension', wrench_cdr(out.bollard_forces[k]), ns)
+            for relative, value in zip(FLOAT_TOPICS, (out.fairlead_peaks[k],
+                                                      out.bollard_peaks[k], out.line_lengths[k])):
+                self._write(f'/{line}/{relative}', cdr.float64(value), ns)
+            parted = bool(out.parted[k])
+            if parted is not self._parted_said[k]:  # as the node: when it changes
+                self._parted_said[k] = parted
+                self._write(f'/{line}/{PARTED_TOPIC}', cdr.boolean(parted), ns)
         world = published.world_wrench()
         for topic, frame, (force, moment) in (
                 (WRENCH, self.setup.ship_frame_id, (published.force, published.moment)),
@@ -350,8 +368,8 @@ def run_ship_motion(setup: arrangement.ArrangementParams, ship: ShipMotion, out_
 def _csv_sink(stream, setup: arrangement.ArrangementParams):
     ratings = _ratings(setup)
     writer = csv.writer(stream)
-    writer.writerow(list(OUT_COLUMNS) + [f'{line}_{column}' for line in setup.names for column
-                                         in ('tension', 'bollard_tension', 'utilisation')])
+    writer.writerow(list(OUT_COLUMNS) + [f'{line}_{column}' for line in setup.names
+                                         for column in LINE_COLUMNS])
 
     def sink(published: MooringPublished) -> None:
         out = published.output
@@ -359,7 +377,9 @@ def _csv_sink(stream, setup: arrangement.ArrangementParams):
         for k in range(len(setup.names)):
             fairlead, bollard = out.fairlead_tensions[k], out.bollard_tensions[k]
             row += [f'{fairlead:.6g}', f'{bollard:.6g}',
-                    f'{ratings[k].utilisation(max(fairlead, bollard)):.6g}']
+                    f'{ratings[k].utilisation(max(fairlead, bollard)):.6g}',
+                    f'{out.fairlead_peaks[k]:.6g}', f'{out.bollard_peaks[k]:.6g}',
+                    f'{out.line_lengths[k]:.6g}', str(int(out.parted[k]))]
         writer.writerow(row)
     return sink
 

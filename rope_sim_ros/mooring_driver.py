@@ -285,7 +285,9 @@ class MooringDriver:
         force, moment = mooring_wrench(out.fairlead_forces, offsets, orientation)
         # one sum is finite only if every number is (an overflow to inf is refused too)
         total = (sum(float(p.sum()) for p in out.positions) + float(out.fairlead_forces.sum())
-                 + float(out.bollard_forces.sum()) + float(force.sum()) + float(moment.sum()))
+                 + float(out.bollard_forces.sum()) + float(force.sum()) + float(moment.sum())
+                 + float(out.fairlead_peaks.sum()) + float(out.bollard_peaks.sum())
+                 + float(out.line_lengths.sum()))
         if not math.isfinite(total):
             mooring.restart()
             self._fresh = True
@@ -305,9 +307,18 @@ class MooringDriver:
         self._fresh = True
 
     def reset(self) -> None:
-        """Restart every rope at rest on its catenary at the state time (~/reset)."""
-        self.mooring.restart()
+        """Restart every rope whole, at its length, at rest on its catenary (~/reset)."""
+        self.mooring.restore()
         self._fresh = True
+
+    def command_winch(self, name: str, speed: float) -> None:
+        """
+        Command the named line's winch speed [m/s] (+ pays out) from its next step.
+
+        :raises ValueError: no line of that name.
+        :raises ParameterError: speed is not a finite number.
+        """
+        self.mooring.command_winch(self.mooring.names.index(name), speed)
 
     def clear(self) -> None:
         """Start from scratch (a clock jump back): new lines waiting for a ship pose."""

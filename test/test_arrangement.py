@@ -73,9 +73,15 @@ def ship_pose(t):
     return [surge, SHIP_Y + sway, 0.1 * math.sin(t)], [cy * sr, sy * sr, sy * cr, cy * cr]
 
 
-def run_arrangement(values, seconds=3.0, pose=ship_pose, rate=RATE):
-    """Drive a MooringDriver with ship poses at `rate` for `seconds`; return it and its outputs."""
+def run_arrangement(values, seconds=3.0, pose=ship_pose, rate=RATE, winches=None):
+    """
+    Drive a MooringDriver with ship poses at `rate` for `seconds`; return it and its outputs.
+
+    :param winches: {line: speed [m/s]} commanded before the first pose.
+    """
     driver = MooringDriver(arrangement.from_values(values), rate=rate, history=math.inf)
+    for name, speed in (winches or {}).items():
+        driver.command_winch(name, speed)
     outputs = []
     for i in range(round(seconds * rate) + 1):
         t = i / rate
@@ -87,9 +93,11 @@ def run_arrangement(values, seconds=3.0, pose=ship_pose, rate=RATE):
     return driver, outputs
 
 
-def run_single(params, seconds=3.0, pose=ship_pose, rate=RATE):
+def run_single(params, seconds=3.0, pose=ship_pose, rate=RATE, winch=None):
     """Drive one line alone through LineDriver with the same poses; return its outputs."""
     driver = LineDriver(params, rate=rate, history=math.inf)
+    if winch is not None:
+        driver.command_winch(winch)
     outputs = []
     for i in range(round(seconds * rate) + 1):
         t = i / rate
@@ -130,7 +138,7 @@ def test_eight_lines_together_step_as_eight_lines_alone(eight_lines):
     for k, line in enumerate(driver.arrangement.lines):
         alone = run_single(line.params)  # at its own step, as in the arrangement
         assert [o.stamp_ns for o in alone] == [o.stamp_ns for o in together], line.name
-        for key in ('fairlead_force', 'bollard_force'):
+        for key in ('fairlead_force', 'bollard_force', 'fairlead_peak', 'bollard_peak'):
             mine = np.array([getattr(o.output, key + 's')[k] for o in together])
             single = np.array([getattr(o.output, key) for o in alone])
             scale = np.abs(single).max()
@@ -138,6 +146,19 @@ def test_eight_lines_together_step_as_eight_lines_alone(eight_lines):
             assert np.abs(mine - single).max() <= 1e-9 * scale, (line.name, key)
         positions = np.array([o.output.positions[k] for o in together])
         assert np.abs(positions - np.array([o.output.positions for o in alone])).max() < 1e-9
+
+
+def test_peaks_hold_every_steps_tension_not_only_the_outputs(eight_lines):
+    # The outputs sample at 50 Hz, the lines step at 2.5 to 5 ms: the peak since the previous
+    # output is never below the tension at it, and on the snatching breast lines and springs
+    # it is kilonewtons above every sampled tension around it.
+    _, outputs = eight_lines
+    for end in ('fairlead', 'bollard'):
+        tensions = np.array([getattr(o.output, end + '_tensions') for o in outputs])
+        peaks = np.array([getattr(o.output, end + '_peaks') for o in outputs])
+        assert (peaks >= tensions).all()
+        between = np.maximum(tensions[1:], tensions[:-1])  # the samples either side
+        assert (peaks[1:] - between).max() > 1.0e3, end
 
 
 def test_lines_pull_and_the_ship_moves_them(eight_lines):
@@ -351,3 +372,73 @@ def test_a_line_beyond_its_reach_is_held_and_restarted_as_alone():
         single = np.array([o.output.fairlead_force for o in alone])
         assert mine.shape == single.shape
         assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
+
+
+# ------------------------------------------------------------------ winches and parting
+
+
+def test_a_line_that_parts_leaves_the_others_and_its_pull_leaves_the_wrench():
+    # stern_2 pulls 63 to 214 kN in the motion: at a break load of 150 kN it parts once; every
+    # line, the parted one included, goes on exactly as it would alone, and the total wrench
+    # keeps only what its piece on the ship still pulls.
+    values = berth_values(stern_2=dict(BERTH['stern_2'], break_load=150.0e3))
+    driver, together = run_arrangement(values)
+    k = driver.mooring.names.index('stern_2')
+    events = [(o.output.t, o.advance.parted) for o in together
+              if o.advance is not None and o.advance.parted]
+    assert len(events) == 1 and set(events[0][1]) == {k}
+    when, parting = events[0][0], events[0][1][k]
+    assert when - 1.0 / RATE < parting.t <= when and parting.break_load == 150.0e3
+    assert 0 <= parting.segment < 12
+    parted = np.array([o.output.parted for o in together])
+    times = np.array([o.output.t for o in together])
+    assert (parted[:, k] == (times >= when)).all() and 0.5 < when < 2.5
+    assert not np.delete(parted, k, axis=1).any()
+    for line_k, line in enumerate(driver.arrangement.lines):
+        alone = run_single(line.params)
+        mine = np.array([o.output.fairlead_forces[line_k] for o in together])
+        single = np.array([o.output.fairlead_force for o in alone])
+        assert np.isfinite(mine).all()
+        assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
+        assert [o.output.parted for o in alone] == list(parted[:, line_k]), line.name
+    # the pull before the break, and what the piece on the fairlead pulls a second later
+    before = together[int(np.flatnonzero(times < when)[-1])].output.fairlead_tensions[k]
+    assert before > 140.0e3
+    offsets = np.array([line.params.fairlead_offset for line in driver.arrangement.lines])
+    others = np.arange(len(offsets)) != k
+    for published in together:
+        if published.output.t < when + 1.0:
+            continue
+        out = published.output
+        assert out.fairlead_tensions[k] < 0.05 * before  # a hanging piece of rope
+        force, moment = mooring_wrench(out.fairlead_forces[others], offsets[others],
+                                       published.ship_orientation)
+        assert np.linalg.norm(published.force - force) == pytest.approx(
+            out.fairlead_tensions[k], rel=1e-9)
+        assert np.isfinite(published.force).all() and np.isfinite(published.moment).all()
+
+
+def test_a_winch_command_changes_only_its_lines_length():
+    # Every line has a speed winch; head_1's is told to heave in at 0.3 m/s from the start:
+    # its length falls by 0.3 m/s for the 3 s less the ramp up, the others keep theirs (to
+    # round-off: a winch at rest sums its rest lengths again), and each line goes on exactly
+    # as alone with the same command.
+    values = berth_values(winch_mode='speed')
+    driver, together = run_arrangement(values, winches={'head_1': -0.3})
+    names = driver.mooring.names
+    lengths = np.array([o.output.line_lengths for o in together])
+    k = names.index('head_1')
+    hauled = lengths[0, k] - lengths[-1, k]
+    assert lengths[0, k] == pytest.approx(BERTH['head_1']['length'], abs=1e-9)
+    assert 0.3 * (3.0 - 1.5) < hauled < 0.3 * 3.0
+    assert (np.diff(lengths[:, k]) <= 0.0).all()
+    assert np.abs(np.delete(lengths - lengths[0], k, axis=1)).max() < 1e-12  # round-off
+    for line_k, line in enumerate(driver.arrangement.lines):
+        alone = run_single(line.params, winch=-0.3 if line.name == 'head_1' else None)
+        mine = np.array([o.output.fairlead_forces[line_k] for o in together])
+        single = np.array([o.output.fairlead_force for o in alone])
+        assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
+        assert np.array_equal(lengths[:, line_k], [o.output.line_length for o in alone])
+    # heaved in 0.9 m on a 47 m line: it pulls harder than the same line without a command
+    still = run_arrangement(values)[1]
+    assert together[-1].output.fairlead_tensions[k] > 2.0 * still[-1].output.fairlead_tensions[k]

@@ -27,6 +27,8 @@ import numpy as np
 import pytest
 from rope_sim_ros import arrangement, cli, passing_ship
 from rope_sim_ros.arrangement_runner import decode_tensions, read_ship_motion
+from rope_sim_ros.bag import read_messages
+from rope_sim_ros.bag.cdr import decode_float64
 from rope_sim_ros.mooring_driver import MooringDriver
 from rope_sim_ros.motion import MotionError
 
@@ -72,12 +74,35 @@ def test_run_writes_every_line_and_the_wrench(berth_run):
         driver.push_ship(int(motion.t_ns[i]), motion.position[i], motion.orientation[i])
         outputs += driver.advance(math.inf, max_lag=math.inf).outputs
     k = setup.names.index('spring_fwd')
+    length = driver.arrangement.lines[k].params.length  # chosen for its pretension
     for row, published in zip(rows, outputs):
-        assert float(row['t']) == pytest.approx(published.output.t, abs=1e-6)
+        out = published.output
+        assert float(row['t']) == pytest.approx(out.t, abs=1e-6)
         assert float(row['spring_fwd_tension']) == pytest.approx(
-            published.output.fairlead_tensions[k], rel=1e-5)
+            out.fairlead_tensions[k], rel=1e-5)
         assert float(row['force_x']) == pytest.approx(published.force[0], rel=1e-5, abs=1.0)
+        # as the single-line OUT.csv: the peaks since the previous row, the length, parted
+        peak = float(row['spring_fwd_fairlead_peak_tension'])
+        assert peak == pytest.approx(out.fairlead_peaks[k], rel=1e-5)
+        assert peak >= float(row['spring_fwd_tension'])
+        assert float(row['spring_fwd_bollard_peak_tension']) == pytest.approx(
+            out.bollard_peaks[k], rel=1e-5)
+        assert float(row['spring_fwd_line_length']) == pytest.approx(length, rel=1e-5)
+        assert row['spring_fwd_parted'] == '0'
     assert float(last['moment_z']) != 0.0
+
+
+def test_the_bag_holds_the_peaks_lengths_and_parted(berth_run):
+    folder, params, _, rows = berth_run
+    setup = arrangement.read_arrangement_file(params)
+    for name in setup.names:
+        messages = {topic: list(read_messages(folder / 'bag', [f'/{name}/{topic}']))
+                    for topic in ('fairlead/peak_tension', 'winch/length', 'rope/parted')}
+        peaks = [decode_float64(m.data) for m in messages['fairlead/peak_tension']]
+        assert peaks == pytest.approx(
+            [float(row[f'{name}_fairlead_peak_tension']) for row in rows], rel=1e-5)
+        assert len(messages['winch/length']) == len(rows)
+        assert [m.data[-1] for m in messages['rope/parted']] == [0]  # once: not parted
 
 
 def test_info_lists_every_lines_peak(berth_run, capsys):
