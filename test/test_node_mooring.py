@@ -16,12 +16,14 @@
 The mooring node over real DDS, from the colcon install, as a subscriber sees it.
 
 One node (three lines, sim time driven by the test) serves the parameter, marker,
-diagnostic, wrench and reset tests, in that order; the refusals start short-lived ones.
+diagnostic, wrench, reset, winch and parting tests, in that order; the refusals start
+short-lived ones.
 The lines lead aft from a ship that surges 0.5 m ahead and yaws a little: their lengths are
 chosen so that, the ship held there, they pull 30 %, 65 % and 95 % of their MBL: below the
 WLL (50 %), past it, and past 90 %.
 """
 
+import json
 import math
 import subprocess
 import time
@@ -34,6 +36,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
+from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros import arrangement, params
 from rope_sim_ros.frames import pose_point
@@ -43,6 +46,7 @@ from rope_sim_ros.ros.mooring_display import line_diagnostics, line_markers
 from rope_sim_ros.ros.mooring_line_node import describe
 from rope_sim_ros.simulator import Simulator
 from rosgraph_msgs.msg import Clock
+from std_msgs.msg import Bool, Float64, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
 import yaml
@@ -131,8 +135,11 @@ class Client:
         self.executor.add_node(self.node)
         self.ship_pub = self.node.create_publisher(PoseStamped, 'ship/pose', 1000)
         self.clock_pub = self.node.create_publisher(Clock, '/clock', 10)
+        self.winch_pub = self.node.create_publisher(Float64, 'easy/winch/command', 10)
         self.markers, self.diagnostics, self.wrenches = [], [], []
         self.tensions = {name: [] for name in NAMES}  # by publication sequence number
+        self.events, self.parted = [], []
+        self.lengths = {name: [] for name in NAMES}
         subs = [
             self.node.create_subscription(MarkerArray, 'mooring/markers',
                                           self.markers.append, 100),
@@ -144,6 +151,13 @@ class Client:
         for name in NAMES:
             subs.append(self.node.create_subscription(
                 Wrench, f'{name}/fairlead/tension', self._keep(self.tensions[name]), 2000))
+            subs.append(self.node.create_subscription(
+                Float64, f'{name}/winch/length', self._keep(self.lengths[name]), 2000))
+        subs.append(self.node.create_subscription(
+            String, 'mooring/events', lambda msg: self.events.append(json.loads(msg.data)), 100))
+        subs.append(self.node.create_subscription(  # latched, as the node offers it
+            Bool, 'hard/rope/parted', lambda msg: self.parted.append(msg.data),
+            QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)))
         self.subscriptions = subs
         self.parameters = AsyncParameterClient(self.node, 'mooring')
         self.reset = self.node.create_client(Trigger, 'mooring/reset')
@@ -173,6 +187,7 @@ class Client:
                                      f'{node.text()}')
             return (self.parameters.services_are_ready() and self.reset.service_is_ready()
                     and self.ship_pub.get_subscription_count() > 0
+                    and self.winch_pub.get_subscription_count() > 0
                     and self.clock_pub.get_subscription_count() > 0
                     and all(s.get_publisher_count() > 0 for s in self.subscriptions))
         self.wait_for(ready, timeout, 'the mooring node')
@@ -344,6 +359,68 @@ def test_reset_shows_as_error_then_clears(mooring):
     final = statuses(client.diagnostics[-1])
     assert [final[name][0] for name in NAMES] == [
         DiagnosticStatus.OK, DiagnosticStatus.WARN, DiagnosticStatus.WARN]
+
+
+def set_parameter(client, name, value) -> None:
+    future = client.parameters.set_parameters([Parameter(name, value=value)])
+    client.wait_for(future.done, 10.0, f'setting {name}')
+    assert future.result().results[0].successful, future.result().results[0].reason
+
+
+def test_a_winch_command_moves_only_its_line(mooring):
+    # easy's winch pays out at 0.4 m/s for 2.5 s and stops; its length grows by 0.4 m/s for
+    # that time less half of each 1 s ramp, the other lines keep theirs
+    _, client = mooring
+    set_parameter(client, 'easy.winch_mode', 'speed')
+    before = {name: client.lengths[name][-1][1].data for name in NAMES}
+    assert before['easy'] == pytest.approx(line_values()['easy']['length'], abs=1e-9)
+    client.winch_pub.publish(Float64(data=0.4))
+    client.drive(9.5, 2.5)
+    client.winch_pub.publish(Float64(data=0.0))
+    client.drive(12.0, 1.5)
+    paid_out = client.lengths['easy'][-1][1].data - before['easy']
+    assert 0.4 * 1.5 < paid_out < 0.4 * 3.0, paid_out
+    for name in ('working', 'hard'):
+        assert client.lengths[name][-1][1].data == before[name]
+    winch = [e for e in client.events if e['event'] == 'winch']
+    assert [(e['line'], e['speed']) for e in winch] == [('easy', 0.4), ('easy', 0.0)]
+
+
+def test_a_line_that_parts_shows_to_every_subscriber(mooring):
+    # hard pulls 95 % of its MBL; a break load of half the MBL parts it at its next step
+    _, client = mooring
+    assert client.parted == [False]  # latched at the first output, unchanged since
+    working = client.tensions['working'][-1][1].force
+    hard = client.tensions['hard'][-1][1].force
+    mbl = Simulator(params.from_values(LINE)).material.mbl
+    set_parameter(client, 'hard.break_load', 0.5 * mbl)
+    client.drive(13.5, 2.5)
+    parted = [e for e in client.events if e['event'] == 'parted']
+    assert len(parted) == 1 and parted[0]['line'] == 'hard'
+    assert 0 <= parted[0]['segment'] < 10 and parted[0]['t'] > 13.0
+    assert client.parted == [False, True]
+    report = statuses(client.diagnostics[-1])
+    assert report['hard'][:2] == (DiagnosticStatus.ERROR, 'parted')
+    assert report['working'][0] == DiagnosticStatus.WARN
+    markers = {(m.ns, m.id): m for m in client.markers[-1].markers}
+    assert markers[('lines', 2)].type == Marker.LINE_LIST
+    assert colour(markers[('lines', 2)]) == tuple(round(c, 3) for c in COLOURS['parted'])
+    assert markers[('labels', 2)].text == 'hard parted'
+    assert markers[('lines', 1)].type == Marker.LINE_STRIP
+    # its pull is gone, the others' is as it was (the ship held still)
+    now = {name: client.tensions[name][-1][1].force for name in NAMES}
+    before_pull = math.hypot(hard.x, hard.y, hard.z)
+    assert math.hypot(now['hard'].x, now['hard'].y, now['hard'].z) < 0.05 * before_pull
+    assert now['working'].x == pytest.approx(working.x, rel=1e-3)
+    by_sequence = [dict(client.tensions[name]) for name in NAMES]
+    wrenches = dict(client.wrenches)
+    last = max(set(wrenches).intersection(*by_sequence))  # one output's messages
+    forces = np.array([[w.force.x, w.force.y, w.force.z]
+                       for w in (store[last] for store in by_sequence)])
+    body = forces @ rotation_matrix(ship_pose(RAMP[1])[1])
+    wrench = wrenches[last].wrench.force
+    assert np.allclose([wrench.x, wrench.y, wrench.z], body.sum(axis=0), rtol=1e-9, atol=1e-6)
+    assert abs(body[2, 0]) < 0.05 * before_pull  # what the hanging piece still pulls
 
 
 def test_parted_line_looks_parted_to_a_subscriber():

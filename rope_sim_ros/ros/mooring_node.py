@@ -23,14 +23,18 @@ pose stream, outputs every 1 / publish_rate, skip ahead past MAX_LAG.
 
 Inputs: ship/pose (geometry_msgs/PoseStamped) drives every fairlead (pose ⊕ the line's
 fairlead_offset); <line>/bollard/pose, optional, moves that line's bollard (ship-to-ship
-mooring). Outputs per line under its name: <line>/rope/particles (PoseArray),
-<line>/fairlead/tension and <line>/bollard/tension (Wrench, torque about the pose origin,
-as the single-line node), <line>/payload/pose with a payload. For the ship:
+mooring); <line>/winch/command (std_msgs/Float64) commands that line's winch speed, as the
+single-line node's winch/command. Outputs per line under its name, as the single-line
+node's: <line>/rope/particles (PoseArray), <line>/fairlead/tension and
+<line>/bollard/tension (Wrench, torque about the pose origin), <line>/fairlead/peak_tension,
+<line>/bollard/peak_tension and <line>/winch/length (Float64), <line>/rope/parted (Bool,
+latched, sent when it changes), <line>/payload/pose with a payload. For the ship:
 ship/mooring_wrench (WrenchStamped in ship_frame_id: the total force and moment about the
 ship's origin, what a ship simulator adds to its equations of motion) and
 ship/mooring_wrench_world (the same in frame_id axes, about the same origin). For people:
 mooring/markers (mooring_display.py) at marker_rate and /diagnostics at 1 Hz of the node's
-clock. Decisions taken on the clock go to mooring/events (std_msgs/String, JSON).
+clock. Decisions taken on the clock, winch commands and partings go to mooring/events
+(std_msgs/String, JSON; each names its line).
 
 QoS: as the single-line node, the pose subscriptions are reliable (pose_reliability,
 qos_overrides) with a deep queue, so every pose is simulated in order; every output is
@@ -55,9 +59,9 @@ from rclpy.event_handler import (PublisherEventCallbacks, QoSMessageLostInfo,
 from rclpy.exceptions import ParameterException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
-from rclpy.qos import QoSPolicyKind, QoSProfile
+from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile
 from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions
-from std_msgs.msg import String
+from std_msgs.msg import Bool, Float64, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
@@ -73,7 +77,7 @@ from ..arrangement import (ARRANGEMENT_SPECS, LINE_SPECS, LINES, LINES_DESCRIPTI
                            OWN_SPECS, SHARED)
 from ..bag import BagError, cdr
 from ..frames import cross_rows, lines_tangent_quaternions, split_ns
-from ..line_driver import encode_event
+from ..line_driver import encode_event, PARTED_TOPIC
 from ..line_status import Rating
 from ..mooring_driver import MooringDriver, MooringPublished, SHIP
 from ..params import ParameterError, SPECS
@@ -92,10 +96,19 @@ DIAGNOSTICS_PERIOD = 1.0  # [s] of the node's clock
 # Every output topic of a line, relative to its namespace, and its type.
 LINE_OUTPUTS = {'rope/particles': 'geometry_msgs/msg/PoseArray',
                 'fairlead/tension': 'geometry_msgs/msg/Wrench',
-                'bollard/tension': 'geometry_msgs/msg/Wrench'}
+                'bollard/tension': 'geometry_msgs/msg/Wrench',
+                'fairlead/peak_tension': 'std_msgs/msg/Float64',
+                'bollard/peak_tension': 'std_msgs/msg/Float64',
+                'winch/length': 'std_msgs/msg/Float64',
+                PARTED_TOPIC: 'std_msgs/msg/Bool'}
 PAYLOAD_OUTPUT = ('payload/pose', 'geometry_msgs/msg/PoseStamped')
 MESSAGE_CLASSES = {'geometry_msgs/msg/PoseArray': PoseArray, 'geometry_msgs/msg/Wrench': Wrench,
-                   'geometry_msgs/msg/PoseStamped': PoseStamped}
+                   'geometry_msgs/msg/PoseStamped': PoseStamped,
+                   'std_msgs/msg/Float64': Float64, 'std_msgs/msg/Bool': Bool}
+WINCH_COMMAND = 'winch/command'  # a line's, relative to its namespace
+# whether a line has parted is a state, not a stream: latched, so that a monitor started later
+# sees it (as the single-line node's rope/parted)
+PARTED_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
 def spec_of(name: str):
@@ -169,7 +182,7 @@ class MooringNode(Node):
         self._latest: Optional[MooringPublished] = None
         self._peaks = np.zeros(len(self.names))
         self._restarted: List[Optional[str]] = [None] * len(self.names)
-        self._parted = np.zeros(len(self.names), dtype=bool)
+        self._parted_said: List[Optional[bool]] = [None] * len(self.names)  # on rope/parted
         self._line_markers = LineMarkers()
 
         self._outputs: Dict[str, Any] = {}
@@ -179,7 +192,8 @@ class MooringNode(Node):
                 topics[PAYLOAD_OUTPUT[0]] = PAYLOAD_OUTPUT[1]
             for relative, type_name in topics.items():
                 self._outputs[f'{name}/{relative}'] = self._publisher(
-                    MESSAGE_CLASSES[type_name], f'{name}/{relative}', 10)
+                    MESSAGE_CLASSES[type_name], f'{name}/{relative}',
+                    PARTED_QOS if relative == PARTED_TOPIC else 10)
         self._wrench_pub = self._publisher(WrenchStamped, WRENCH_TOPIC, 10)
         self._world_wrench_pub = self._publisher(WrenchStamped, WORLD_WRENCH_TOPIC, 10)
         self._markers_pub = self._publisher(MarkerArray, MARKERS_TOPIC, 10)
@@ -189,6 +203,11 @@ class MooringNode(Node):
         for name in self.names:
             self._pose_subs[name] = self._pose_subscription(
                 f'{name}/bollard/pose', functools.partial(self._on_bollard, name))
+        # without event handlers: the executor walks every handler at every wake-up
+        self._winch_subs = [self.create_subscription(
+            Float64, f'{name}/{WINCH_COMMAND}', functools.partial(self._on_winch_command, name),
+            10, event_callbacks=SubscriptionEventCallbacks(use_default_callbacks=False))
+            for name in self.names]
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
         rate = setup.shared.publish_rate
         self._timer = self.create_timer(self._tick_period(rate), self._on_tick)
@@ -200,7 +219,7 @@ class MooringNode(Node):
             f'step {mooring.time_step * 1e3:.4g} ms, {rate:g} Hz; waiting for the first '
             f'pose on {self._pose_subs[SHIP].topic_name}')
 
-    def _publisher(self, cls, topic: str, depth: int):
+    def _publisher(self, cls, topic: str, qos):
         """
         Create a publisher without QoS event handlers.
 
@@ -210,7 +229,7 @@ class MooringNode(Node):
         subscriber's QoS takes, so there is no incompatibility to report.
         """
         return self.create_publisher(
-            cls, topic, depth, event_callbacks=PublisherEventCallbacks(
+            cls, topic, qos, event_callbacks=PublisherEventCallbacks(
                 use_default_callbacks=False))
 
     # -- parameters -----------------------------------------------------------------------
@@ -486,6 +505,15 @@ class MooringNode(Node):
         advance = published.advance
         if advance is None:
             return
+        for k, parting in advance.parted.items():
+            name = self.names[k]
+            self._event('parted', line=name, t=parting.t, segment=parting.segment,
+                        break_load=parting.break_load)
+            self.get_logger().error(
+                f'{name} parted at t = {parting.t:.3f} s, segment {parting.segment} of '
+                f'{self.driver.mooring.sims[k].props.segments} (0 at the bollard): its tension '
+                f'passed the break load of {parting.break_load / 1e3:.0f} kN. Both pieces go '
+                'on; ~/reset restores every line')
         for k, distance in advance.beyond_reach.items():
             self._warn(f'reach {k}', f'{self.names[k]}: its ends are {distance:.1f} m apart, '
                        f"beyond the line's reach of {self.driver.mooring.sims[k].reach:.1f} m:"
@@ -504,6 +532,7 @@ class MooringNode(Node):
         self.driver.reset()
         self._event('reset', t=self.driver.time)
         self._restarted = ['reset'] * len(self.names)
+        self._publish_parted(np.zeros(len(self.names), dtype=bool))
         response.success = True
         response.message = f'every line restarted at rest at t = {self.driver.time:.3f} s'
         self.get_logger().info(response.message)
@@ -529,6 +558,9 @@ class MooringNode(Node):
                                                  poses[starts[k]:starts[k + 1]]),
                 'fairlead/tension': cdr.wrench(out.fairlead_forces[k], fairlead_torques[k]),
                 'bollard/tension': cdr.wrench(out.bollard_forces[k], bollard_torques[k]),
+                'fairlead/peak_tension': cdr.float64(out.fairlead_peaks[k]),
+                'bollard/peak_tension': cdr.float64(out.bollard_peaks[k]),
+                'winch/length': cdr.float64(out.line_lengths[k]),
             }
             if out.payload_positions[k] is not None:
                 messages['payload/pose'] = pose_stamped_cdr(stamp_ns, frame_id,
@@ -549,10 +581,35 @@ class MooringNode(Node):
             msg.wrench = Wrench(force=_vector3(force), torque=_vector3(moment))
             publisher.publish(msg)
             self.record(topic, msg)
+        self._publish_parted(out.parted)
         self._latest = published
-        tensions = np.maximum(out.fairlead_tensions, out.bollard_tensions)
-        self._peaks = np.maximum(self._peaks, np.maximum(tensions, out.fairlead_peaks))
-        self._parted |= out.parted
+        self._peaks = np.maximum(self._peaks, out.peaks)  # every step's, not only outputs'
+
+    def _publish_parted(self, parted: np.ndarray) -> None:
+        """Publish (and record) on <line>/rope/parted whether each line has parted, if new."""
+        for k, now in enumerate(parted.tolist()):
+            if now is self._parted_said[k]:
+                continue
+            self._parted_said[k] = now
+            topic = f'{self.names[k]}/{PARTED_TOPIC}'
+            msg = Bool(data=now)
+            self._outputs[topic].publish(msg)
+            self.record(topic, msg)
+
+    def _on_winch_command(self, name: str, msg: Float64) -> None:
+        """Take a winch speed for one line [m/s] (+ pays out); refuse a non-finite one."""
+        topic = f'{name}/{WINCH_COMMAND}'
+        try:
+            self.driver.command_winch(name, msg.data)
+        except ParameterError as e:
+            self._warn(f'{topic}: bad', f'{topic}: {e}; ignored')
+            return
+        self._event('winch', line=name, t=self.driver.time if self.driver.started else 0.0,
+                    speed=msg.data)
+        mode = self.driver.mooring.sims[self.names.index(name)].params.winch_mode
+        if mode != 'speed':
+            self._warn(f'{topic}: mode', f'{topic} {msg.data:g} m/s kept: it acts while '
+                       f"{name}.winch_mode is 'speed' (now '{mode}')")
 
     def _on_markers(self) -> None:
         """Publish the lines as markers, coloured by their utilisation (mooring_display)."""
@@ -582,7 +639,7 @@ class MooringNode(Node):
             msg = line_diagnostics(
                 published.stamp_ns, self.names,
                 np.maximum(out.fairlead_tensions, out.bollard_tensions), self._peaks,
-                out.max_strains, self.ratings, self._parted, self._restarted)
+                out.max_strains, self.ratings, out.parted, self._restarted)
             self._peaks = np.zeros(len(self.names))
             self._restarted = [None] * len(self.names)
         self._diagnostics_pub.publish(msg)
