@@ -344,7 +344,7 @@ class Simulator:
         # tension_bound of props at rest, and its growth per m/s of the ends (it is linear)
         self._bound = (None, math.nan, math.nan)
         # drag_rate of props at 1 m/s (see divisions)
-        self._drag = (None, math.nan)
+        self._drag = (None, math.nan, math.nan)
         self.length = params.length  # the unstretched length now: the winch changes it
         self.parting: Optional[Parting] = None  # set when the line parts, until restore()
         self._winch_command = 0.0  # the speed last commanded on winch/command [m/s]
@@ -798,16 +798,20 @@ class Simulator:
         stability limit (it grows with the speed), and past 2 / step the explicit step blows
         up (K_A = 1e4 on the default line turned the state non-finite within 0.05 s of a 3 m
         jerk). K: the seed's K_A plus the fluid drag's 1/2 rho (Cd + pi CdAx) d in the
-        densest fluid present (integrators.drag_rate).
+        densest fluid present (integrators.drag_rate). And until no part is longer than the
+        automatic step of the line at its length now: a winch that hauls the line in
+        shortens and stiffens its segments, and the step chosen for 40 m blew up at 26 m.
         """
         p = self.line_props
         spread, _, speed = motion_spread(self.rope.v, velocities)
         parts = spread * self.time_step / (MAX_STEP_MOTION * p.segment_length)
         if self.params.integrator == 'improved_euler':
-            if self._drag[0] is not p:  # drag_rate is linear in the speed: once per props
-                self._drag = (p, drag_rate(p, 1.0))
+            if self._drag[0] is not p:  # once per props: drag_rate is linear in the speed
+                stable = self.time_step if p is self.props else automatic_time_step(p)
+                self._drag = (p, drag_rate(p, 1.0), stable)
             relative = speed + (math.hypot(*p.current) if p.has_water else 0.0)
-            parts = max(parts, self._drag[1] * relative * self.time_step)
+            parts = max(parts, self._drag[1] * relative * self.time_step,
+                        self.time_step / self._drag[2])
         if not parts > 1.0:  # also NaN: the state check restarts a non-finite rope
             return 1
         return math.ceil(min(parts, MAX_DIVISIONS))
