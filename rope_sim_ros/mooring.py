@@ -528,8 +528,13 @@ class Mooring:
     def _run(self, group: _Group, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
              done: MooringAdvance) -> None:
         """Take len(drive_x) substeps of dt of a group's lines: one kernel call."""
-        parted = group.system.step(self.sims[group.members[0]].params.integrator, dt, drive_x,
-                                   drive_v, MAX_ITERATIONS, group.bending)
+        integrator = self.sims[group.members[0]].params.integrator
+        fine = 0.0
+        if integrator == 'adaptive':  # each line's own improved Euler step
+            fine = [self.sims[k].fine_step(drive_v[:, 2 * j:2 * j + 2])
+                    for j, k in enumerate(group.members)]
+        parted = group.system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS,
+                                   group.bending, fine_step=fine)
         for k in group.members:
             self.sims[k].follow_run(dt, parted)
         for j, _ in parted:

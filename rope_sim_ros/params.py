@@ -29,7 +29,7 @@ import yaml
 
 NODE_NAME = 'mooring_line'
 MATERIALS = ('nylon', 'polyester', 'hmpe', 'steel_wire', 'manila')
-INTEGRATORS = ('improved_euler', 'implicit_euler')
+INTEGRATORS = ('adaptive', 'improved_euler', 'implicit_euler')
 DAMPING_MODELS = ('axial', 'seed')
 LOAD_EXTENSIONS = ('linear', 'curve')
 RELIABILITIES = ('reliable', 'best_effort')
@@ -210,14 +210,17 @@ SPECS: Mapping[str, Spec] = {
     'superelastic_adjustment': Spec(
         True, '', 'apply the position and velocity adjustment at max_strain', read_only=False),
     'integrator': Spec(
-        'implicit_euler', '', 'implicit_euler: stable at any step, fastest for stiff lines; '
-        'improved_euler: the explicit scheme of the seed paper', choices=INTEGRATORS),
+        'implicit_euler', '', 'implicit_euler: stable at any step, fastest for stiff lines, '
+        'but it damps snap loads; adaptive: implicit steps, and improved_euler steps through '
+        'a snap (a segment tension changing by more than 5 % in one implicit step), so that '
+        'snap loads come out right; improved_euler: the explicit scheme of the seed paper',
+        choices=INTEGRATORS),
     'time_step': Spec(
         0.0, 's', 'integration step; 0 = automatic (improved_euler: 0.8 of the smaller of its '
-        'stability limit and the time an axial wave takes to cross a segment; implicit_euler: '
-        'a quarter of the first axial period, at most 5 ms). '
-        'improved_euler takes it as given and refuses one above its stability limit; for '
-        'implicit_euler it is an upper bound: a larger one is divided into equal substeps no '
+        'stability limit and the time an axial wave takes to cross a segment; implicit_euler '
+        'and adaptive: a quarter of the first axial period, at most 5 ms). improved_euler '
+        'takes it as given and refuses one above its stability limit; for implicit_euler and '
+        'adaptive it is an upper bound: a larger one is divided into equal substeps no '
         'longer than the automatic step. Any step is divided further while the rope moves '
         'more than half a segment in one', 0.0, 0.1),
     'end_interpolation': Spec(

@@ -52,6 +52,8 @@ USES_NUMBA = re.compile(rb'^\s*(?:import|from)\s+numba\b', re.MULTILINE)
 # types (a System packs any lines and points into the same tables). The payload runs only
 # make sure that stays so.
 CONFIGURATIONS = (
+    {'integrator': 'adaptive', 'end_interpolation': 'cubic'},
+    {'integrator': 'adaptive', 'payload_mass': 1000.0},
     {'integrator': 'implicit_euler', 'end_interpolation': 'cubic'},
     {'integrator': 'improved_euler', 'end_interpolation': 'linear'},
     {'integrator': 'implicit_euler', 'payload_mass': 1000.0},

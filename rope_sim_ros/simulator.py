@@ -806,15 +806,32 @@ class Simulator:
         spread, _, speed = motion_spread(self.rope.v, velocities)
         parts = spread * self.time_step / (MAX_STEP_MOTION * p.segment_length)
         if self.params.integrator == 'improved_euler':
-            if self._drag[0] is not p:  # once per props: drag_rate is linear in the speed
-                stable = self.time_step if p is self.props else automatic_time_step(p)
-                self._drag = (p, drag_rate(p, 1.0), stable)
-            relative = speed + (math.hypot(*p.current) if p.has_water else 0.0)
-            parts = max(parts, self._drag[1] * relative * self.time_step,
-                        self.time_step / self._drag[2])
+            parts = max(parts, self.time_step / self._explicit_step(speed))
         if not parts > 1.0:  # also NaN: the state check restarts a non-finite rope
             return 1
         return math.ceil(min(parts, MAX_DIVISIONS))
+
+    def fine_step(self, velocities: np.ndarray) -> float:
+        """
+        Return the largest improved Euler step [s] the line can take now (see divisions).
+
+        The adaptive integrator's step through a snap: the automatic improved Euler step of
+        the line at its length now, no longer than the drag takes the particles' speed in.
+
+        :param velocities: the ends' velocities over the coming steps (n, 2, 3).
+        """
+        return self._explicit_step(motion_spread(self.rope.v, velocities)[2])
+
+    def _explicit_step(self, speed: float) -> float:
+        """Return improved Euler's step at the line's length now and the particles' speed."""
+        p = self.line_props
+        if self._drag[0] is not p:  # once per props: drag_rate is linear in the speed
+            own = p is self.props and self.params.integrator == 'improved_euler'
+            stable = self.time_step if own else automatic_time_step(p)
+            self._drag = (p, drag_rate(p, 1.0), stable)
+        relative = speed + (math.hypot(*p.current) if p.has_water else 0.0)
+        rate = self._drag[1] * relative
+        return self._drag[2] if not rate * self._drag[2] > 1.0 else 1.0 / rate
 
     def _unphysical(self, end_speed: float = 0.0, system: Optional[System] = None) -> str:
         """
@@ -877,8 +894,9 @@ class Simulator:
 
     def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
         """Take len(ends) substeps of dt: ends, velocities (n, 2, 3) drive points 0 and 1."""
+        fine = self.fine_step(velocities) if self.params.integrator == 'adaptive' else 0.0
         parted = self.system.step(self.params.integrator, dt, ends, velocities, MAX_ITERATIONS,
-                                  implicit_bending(self.props, dt), self.compiled)
+                                  implicit_bending(self.props, dt), self.compiled, fine)
         self.follow_run(dt, parted)
 
     def follow_run(self, dt: float, parted: list) -> None:

@@ -34,7 +34,7 @@ from rope_sim_ros.physics.integrators import automatic_time_step, stability_limi
 from rope_sim_ros.physics.layout import INV_MASS, PARTED, REST, UNSTRETCHED
 from rope_sim_ros.physics.materials import MaterialError, MaterialLibrary
 from rope_sim_ros.physics.objects import Environment, LineType, Point, single_line, Winch
-from rope_sim_ros.physics.parting import part_overloaded
+from rope_sim_ros.physics.parting import check_segments
 from rope_sim_ros.physics.rope import RopeProperties, tension_bound
 from rope_sim_ros.physics.tension_curve import TensionCurve
 from rope_sim_ros.physics.winch import quasi_static_stiffness, render
@@ -500,8 +500,8 @@ def test_a_curve_line_parts_where_its_table_passes_the_break_load():
     for strain, parted in ((0.24, -1.0), (0.255, 1.0)):
         system = _wound_line([0.1, strain, 0.1], break_load=MBL)
         rest = system.particles[:, REST].copy()
-        part_overloaded(system.x, system.v, system.particles, system.lines_table,
-                        system.line_real, rest, 0)
+        check_segments(system.x, system.v, system.particles, system.lines_table,
+                       system.line_real, rest, 0)
         assert system.line_real[0, PARTED] == parted
 
 

@@ -34,7 +34,7 @@ from rope_sim_ros.params import (
     ('axial_damping', math.inf, '>= 0'),
     ('gravity', [0.0, math.nan, -9.81], 'a list of 3 finite numbers'),
     ('gravity', [0.0, -9.81], 'a list of 3 finite numbers'),
-    ('integrator', 'rk4', 'one of improved_euler, implicit_euler'),
+    ('integrator', 'rk4', 'one of adaptive, improved_euler, implicit_euler'),
     ('time_step', -0.001, '>= 0'),
     ('superelastic_adjustment', 'yes', 'true or false'),
 ])

@@ -223,11 +223,12 @@ def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler
     Choose the step used when the user sets time_step 0 [s].
 
     improved_euler: the stability limit times a safety factor. implicit_euler (stable for any
-    step): a step that still sees the first axial mode, at most IMPLICIT_MAX_STEP.
+    step) and adaptive (implicit Euler steps but in a snap): a step that still sees the first
+    axial mode, at most IMPLICIT_MAX_STEP.
 
     :raises ValueError: the line has no damping, so the improved Euler step is never stable.
     """
-    if integrator == 'implicit_euler':
+    if integrator in ('implicit_euler', 'adaptive'):
         return min(IMPLICIT_MAX_STEP, first_axial_period(props) / IMPLICIT_STEPS_PER_AXIAL_PERIOD)
     limit = min(stability_limit(props), wave_time_step(props))
     if limit <= 0.0:

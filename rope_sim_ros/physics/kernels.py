@@ -39,11 +39,11 @@ from .forces.springs import add_springs, spring_block_at
 from .layout import (ADDED_MASS, ADJUST, AXIAL, BENDING, DIAMETER, DRAG,
                      DRAG_AREA, DRIVEN, END_A, ENV_AIR_DENSITY, ENV_CURRENT, ENV_GRAVITY,
                      ENV_QUAY_NORMAL, ENV_SEABED_LEVEL, ENV_WATER_DENSITY, ENV_WATER_LEVEL,
-                     FIRST, FLUID, FREE, INV_MASS, KIND, LAST, LENGTH, MASS, MAX_STRAIN,
+                     FIRST, FLUID, FREE, HISTORY, INV_MASS, KIND, LAST, LENGTH, MASS, MAX_STRAIN,
                      NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS, POINT_SINK, REST, SINK, SIZE,
                      TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS, TOTAL_MASS, VOLUME,
                      VOLUME_AREA, VOLUME_DIAMETER)
-from .parting import hold_peaks, part_overloaded
+from .parting import check_segments, hold_peaks
 from .superelastic import adjust, over_limit
 from .tension_curve import axial_tension
 from .winch import pay_out, render
@@ -481,9 +481,9 @@ def largest_load(x, v, point_x, point_v, particles, lines, line_real, env, force
 @numba.njit(cache=True)
 def _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, step, gravity,
                 scratch):
-    """After step `step` of a run: brakes render, overloaded lines part, peaks are held."""
+    """After step `step` of a run: brakes render, lines part or are watched, peaks are held."""
     render(x, particles, lines, line_real, points, rest, inv_mass, dt)
-    part_overloaded(x, v, particles, lines, line_real, rest, step)
+    check_segments(x, v, particles, lines, line_real, rest, step)
     hold_peaks(x, v, particles, lines, line_real, gravity, scratch)
 
 
@@ -595,7 +595,12 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
 #     (M + h C + h^2/2 S) a1 = f(x^, v0),
 # with S and C the stiffness and damping matrices of the forces (minus their Jacobians).
 # Unconditionally stable, first order, and it damps the fastest axial waves; predictors that
-# extrapolate the acceleration (Newmark gamma < 1) blew up on slack-taut snaps.
+# extrapolate the acceleration (Newmark gamma < 1) blew up on slack-taut snaps. The adaptive
+# integrator (adaptive.py) takes them all the same, Newmark's general step
+#     x1 = x0 + h v0 + h^2 ((1/2 - beta) a0 + beta a1),   v1 = v0 + h ((1 - gamma) a0 + gamma a1),
+#     (M + gamma h C + beta h^2 S) a1 = f(x^, v^)   about that predictor,
+# because it takes every run in which a snap starts again with improved Euler; a0 is the
+# acceleration the step before solved for (accel, point_accel).
 #
 # The unknowns are the accelerations of every line's interior particles and of every free
 # point. A line couples particle i to i+1 and i+2 only: its interior block A_k is
@@ -880,7 +885,7 @@ def _particle_system(x, v, f, i, particles, line_real, k, environment, tangents,
 def _implicit_kinematic_line(x, v, f, particles, line_real, k, first, last, axial,
                              implicit_bending, dt, half_h2, env, gravity, environment,
                              tangents, contact, sub, tangent, block, rhs, rhs_flat, band,
-                             diagonal, lower, inverse, multiplier):
+                             diagonal, lower, inverse, multiplier, accel):
     """
     Take the implicit step of one line whose two ends are on fixed or driven points.
 
@@ -923,33 +928,59 @@ def _implicit_kinematic_line(x, v, f, particles, line_real, k, first, last, axia
         for p in range(3):
             x[first + 1 + i, p] += half_h2 * rhs[i, p]
             v[first + 1 + i, p] += dt * rhs[i, p]
+            accel[first + 1 + i, p] = rhs[i, p]
+
+
+@numba.njit(cache=True, inline='always')
+def _newmark(k, newmark, ready, dt):
+    """
+    Return step k's (h gamma, h^2 beta, (1/2 - beta) h^2, (1 - gamma) h) of a run.
+
+    newmark: (gamma, beta). The first step of a run on lines not ready (their accelerations
+    are not their last step's: HISTORY 0) takes gamma 1, beta 1/2, which need none.
+    """
+    gamma, beta = newmark
+    if k == 0 and not ready:
+        gamma, beta = 1.0, 0.5
+    return gamma * dt, beta * dt * dt, (0.5 - beta) * dt * dt, (1.0 - gamma) * dt
+
+
+@numba.njit(cache=True, inline='always')
+def _predict(x, v, accel, dt, ahead_x, ahead_v, first, stop):
+    """Rows first..stop-1's predictor: x += h v + ahead_x a0, v += ahead_v a0 (a0: accel)."""
+    for i in range(first, stop):
+        for p in range(3):
+            x[i, p] += dt * v[i, p] + ahead_x * accel[i, p]
+            v[i, p] += ahead_v * accel[i, p]
 
 
 @numba.njit(cache=True, inline='always')
 def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
                               line_real, points, env, max_iterations, implicit_bending,
                               inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal, lower,
-                              inverse, multiplier, sub, tangent):
+                              inverse, multiplier, sub, tangent, newmark, accel):
     """Take implicit_euler_run's steps when no point is free (its scratch arrays passed in)."""
-    half_h2 = 0.5 * dt * dt
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
     for k in range(drive_x.shape[0]):
         pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
-        for i in range(x.shape[0]):
-            for p in range(3):
-                x[i, p] += dt * v[i, p]
+        for line in range(lines.shape[0]):  # each line from its own history
+            _, _, ahead_x, ahead_v = _newmark(k, newmark, line_real[line, HISTORY] > 0.0, dt)
+            _predict(x, v, accel, dt, ahead_x, ahead_v, lines[line, FIRST],
+                     lines[line, LAST] + 1)
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         line_forces(x, v, f, particles, lines, line_real)
         line_passes(x, particles, lines, line_real, env, sub, tangent)
         for line in range(lines.shape[0]):
+            h_gamma, h2_beta, _, _ = _newmark(k, newmark, line_real[line, HISTORY] > 0.0, dt)
             _implicit_kinematic_line(x, v, f, particles, line_real, line, lines[line, FIRST],
                                      lines[line, LAST], lines[line, AXIAL] == 1,
-                                     implicit_bending, dt, half_h2, env, gravity,
+                                     implicit_bending, h_gamma, h2_beta, env, gravity,
                                      lines[line, FLUID] == 1 or contact,
                                      lines[line, TANGENTS] == 1, contact, sub, tangent, block,
-                                     rhs, rhs_flat, band, diagonal, lower, inverse, multiplier)
+                                     rhs, rhs_flat, band, diagonal, lower, inverse, multiplier,
+                                     accel)
         _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
         _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
                     f)  # f: scratch here, the next step computes it afresh
@@ -957,19 +988,22 @@ def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, part
 
 @numba.njit(cache=True)
 def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                       line_real, points, env, max_iterations, implicit_bending):
+                       line_real, points, env, max_iterations, implicit_bending, gamma, beta,
+                       accel, point_accel):
     """
-    Take len(drive_x) implicit Euler steps of the whole system in place.
+    Take len(drive_x) implicit steps of the whole system in place.
 
     Arguments as improved_euler_run; implicit_bending: put the bending springs in the matrix
     too (needed only when they are stiff enough to limit an explicit step; it widens a
-    line's band from 5 to 8).
+    line's band from 5 to 8). gamma, beta: Newmark's (1, 1/2: implicit Euler, as above; the
+    adaptive integrator's are less damping), from accel and point_accel (P, 3), (Q, 3), the
+    accelerations of each line's step before where its HISTORY says they are (the run leaves
+    its last ones there).
     """
     n_points = points.shape[0]
     n_lines = lines.shape[0]
     inv_mass = np.ascontiguousarray(particles[:, INV_MASS])  # for the strain limit
     rest = np.ascontiguousarray(particles[:, REST])
-    half_h2 = 0.5 * dt * dt
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
     sub = np.zeros(x.shape[0])  # submerged length of each particle
@@ -1000,12 +1034,14 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
                                       lines, line_real, points, env, max_iterations, True,
                                       inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
-                                      lower, inverse, multiplier, sub, tangent)
+                                      lower, inverse, multiplier, sub, tangent,
+                                      (gamma, beta), accel)
         else:
             _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
                                       lines, line_real, points, env, max_iterations, False,
                                       inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
-                                      lower, inverse, multiplier, sub, tangent)
+                                      lower, inverse, multiplier, sub, tangent,
+                                      (gamma, beta), accel)
         return
     solution = np.zeros_like(x)  # interior accelerations, by particle row
     # free points: the Schur system, its right-hand side, and per line the coupling B and
@@ -1021,15 +1057,18 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     end_col = np.array([0, 3])
     end_free = np.zeros(2, dtype=np.bool_)
     free_index = np.zeros(2, dtype=np.int64)
+    ready = True  # lines joined by free points step as one: all from their history, or none
+    for line in range(n_lines):
+        ready &= line_real[line, HISTORY] > 0.0
     for k in range(drive_x.shape[0]):
+        dt_c, half_h2, ahead_x, ahead_v = _newmark(k, (gamma, beta), ready, dt)
         pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
-        for i in range(x.shape[0]):
-            for p in range(3):
-                x[i, p] += dt * v[i, p]
+        _predict(x, v, accel, dt, ahead_x, ahead_v, 0, x.shape[0])
         for q in range(n_points):
             if points[q, KIND] == FREE:
                 for p in range(3):
-                    point_x[q, p] += dt * point_v[q, p]
+                    point_x[q, p] += dt * point_v[q, p] + ahead_x * point_accel[q, p]
+                    point_v[q, p] += ahead_v * point_accel[q, p]
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         line_forces(x, v, f, particles, lines, line_real)
@@ -1042,7 +1081,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                 added, weight = _point_environment(point_x, point_v, q, points, contact, env,
                                                    point_force, 0)
                 block[:] = 0.0
-                _point_environment_block(point_x, point_v, q, points, contact, env, dt,
+                _point_environment_block(point_x, point_v, q, points, contact, env, dt_c,
                                          half_h2, block)
                 mass = points[q, OWN_MASS] + added
                 for p in range(3):
@@ -1069,7 +1108,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             if coupled:
                 coupling[:m] = 0.0
             for i in range(first, last):
-                spring_block_at(x, particles, i, False, half_h2, dt, axial, block,
+                spring_block_at(x, particles, i, False, half_h2, dt_c, axial, block,
                                 line_real[line])
                 if coupled:
                     _scatter(block, i, i + 1, first, last, end_col, end_free, free_index,
@@ -1080,7 +1119,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                     _add_chain_block(diagonal, lower, i - first, m, block)
             if implicit_bending:
                 for i in range(first, last - 1):
-                    spring_block_at(x, particles, i, True, half_h2, dt, axial, block,
+                    spring_block_at(x, particles, i, True, half_h2, dt_c, axial, block,
                                     line_real[line])
                     if coupled:
                         _scatter(block, i, i + 2, first, last, end_col, end_free,
@@ -1091,7 +1130,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             for i in range(first + 1, last):
                 local = i - first - 1
                 _particle_system(x, v, f, i, particles, line_real, line, environment,
-                                 tangents, contact, env, gravity, sub, tangent, dt, half_h2,
+                                 tangents, contact, env, gravity, sub, tangent, dt_c, half_h2,
                                  rhs, local, block)
                 if implicit_bending:
                     _add_band(band, local, local, block, 1.0)
@@ -1106,7 +1145,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                 row = first if e == 0 else last
                 j = free_index[e]
                 _particle_system(x, v, f, row, particles, line_real, line, environment,
-                                 tangents, contact, env, gravity, sub, tangent, dt, half_h2,
+                                 tangents, contact, env, gravity, sub, tangent, dt_c, half_h2,
                                  end_force, 0, block)
                 for p in range(3):
                     point_rhs[3 * j + p] += end_force[0, p]
@@ -1176,12 +1215,14 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             if j >= 0:
                 for p in range(3):
                     point_x[q, p] += half_h2 * point_rhs[3 * j + p]
-                    point_v[q, p] += dt * point_rhs[3 * j + p]
+                    point_v[q, p] += dt_c * point_rhs[3 * j + p]
+                    point_accel[q, p] = point_rhs[3 * j + p]
         for line in range(n_lines):
             for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
                 for p in range(3):
                     x[i, p] += half_h2 * solution[i, p]
-                    v[i, p] += dt * solution[i, p]
+                    v[i, p] += dt_c * solution[i, p]
+                    accel[i, p] = solution[i, p]
         set_ends(x, v, lines, point_x, point_v)
         _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
                        max_iterations)

@@ -32,7 +32,10 @@ PARTICLE table (P, PARTICLE_COLUMNS), one row per particle of every line, lines 
     LENGTH: the line's length lumped at the particle (half of each neighbouring segment) [m];
     SINK: the contact damping's ramp depth [m];
     REST_RATE: how fast the winch changes l_i [m/s]: the damper acts on the stretch rate,
-        the rate of the length less the rate of the rest length.
+        the rate of the length less the rate of the rest length;
+    TENSION, TENSION_BEFORE: state: the structural spring's elastic tension after the last
+        step and after the one before [N] (NaN until a step has measured it), from which the
+        adaptive integrator's watch measures its change (parting.check_segments).
 
 LINE table (L, LINE_COLUMNS), integers: FIRST, LAST (its particle rows), END_A, END_B (the
 points its particles FIRST and LAST sit on), AXIAL (1: axial damping, 0: the seed's
@@ -72,7 +75,9 @@ BEND_DAMPING = 8
 LENGTH = 9
 SINK = 10
 REST_RATE = 11
-PARTICLE_COLUMNS = 12
+TENSION = 12
+TENSION_BEFORE = 13
+PARTICLE_COLUMNS = 14
 
 FIRST = 0
 LAST = 1
@@ -112,10 +117,20 @@ PARTED_STEP = 22  # state: the step of the run in which it parted (0-based), -1 
 PEAK_A = 23  # state: the largest end force on end A's point since it was cleared [N]
 PEAK_B = 24  # likewise end B
 WINCH_RAMP = 25  # state: the winch's acceleration in the last step [m/s^2]
+# state, since they were cleared, as fractions of each step's tension scale (its largest
+# segment tension, at least SNAP_FLOOR [N]): the largest change of a segment's tension in one
+# step, and the largest impact of a slack segment (what tells a snap to the adaptive
+# integrator: parting.check_segments, adaptive.py)
+TENSION_CHANGE = 26
+SLACK_IMPACT = 27
+SNAP_FLOOR = 28
+# state: 1 when the line's rows of the accelerations (System.accel) are its last step's, which
+# the adaptive integrator's implicit step starts from (kernels.implicit_euler_run); else 0
+HISTORY = 29
 # the strain-tension curve (tension_curve.py); none of it is state
-CURVE_POINTS = 26
+CURVE_POINTS = 30
 CURVE_CAPACITY = 32
-CURVE_STRAIN = 27
+CURVE_STRAIN = 31
 CURVE_TENSION = CURVE_STRAIN + CURVE_CAPACITY
 CURVE_SLOPE = CURVE_TENSION + CURVE_CAPACITY
 LINE_REAL_COLUMNS = CURVE_SLOPE + CURVE_CAPACITY

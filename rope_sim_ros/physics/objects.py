@@ -49,7 +49,7 @@ from typing import List, Sequence
 
 import numpy as np
 
-from . import kernels, parting, winch
+from . import adaptive, kernels, parting, winch
 from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST,
                      BEND_STIFFNESS, BENDING, DAMPING, DIAMETER, DRAG, DRAG_AREA, DRIVEN,
                      ENV_AIR_DENSITY, ENV_COLUMNS, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_DEPTH,
@@ -59,14 +59,16 @@ from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, B
                      LINE_COLUMNS, LINE_REAL_COLUMNS, MASS, MAX_STRAIN, NORMAL_ADDED_MASS,
                      NORMAL_DRAG, OWN_MASS, PARTICLE_COLUMNS, POINT_COLUMNS, POINT_SINK, REST,
                      SINK, SIZE, STIFFNESS, TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS,
-                     TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
-from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, UNSTRETCHED,
+                     TENSION, TENSION_BEFORE, TOTAL_MASS, VOLUME, VOLUME_AREA,
+                     VOLUME_DIAMETER)
+from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, SNAP_FLOOR, UNSTRETCHED,
                      WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND, WINCH_END,
                      WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
                      WINCH_RESPONSE, WINCH_SPEED)
 from .tension_curve import check_curve, TensionCurve
 
 KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE}
+STANDARD_GRAVITY = 9.80665  # [m/s^2]
 SMALLEST_SINK = 1e-4  # [m]: the contact damping's ramp depth at least (a buoyant line's)
 
 
@@ -98,7 +100,7 @@ class LineType:
         tension_curve; with one, the nominal EA of its bending springs only.
     :ivar axial_damping: BA [N s]: a segment's damping coefficient is BA / its rest length.
     :ivar diameter: nominal diameter d [m]: drag and contact width.
-    :ivar mbl: minimum breaking load [N] (for the parting model to come).
+    :ivar mbl: minimum breaking load [N] (the default break load; the snap watch's scale).
     :ivar bending_stiffness_ratio: bending spring stiffness / structural spring stiffness.
     :ivar bending_damping_ratio: bending spring damping / structural spring damping.
     :ivar damping_model: 'axial' (stretch rate only) or 'seed' (K_SD (V_A - V_B)).
@@ -477,6 +479,13 @@ class System:
         # what every step passes after the state, built once: a step runs at kHz
         self._tables = (self.particles, self.lines_table, self.line_real, self.points_table,
                         self.env)
+        # the accelerations of the last implicit step (P, 3), (Q, 3), and the step count at
+        # which they are the state's (-1: they are not); each line's improved Euler time left
+        # in the adaptive integrator [s]
+        self.accel = np.zeros_like(self.x)
+        self.point_accel = np.zeros_like(self.point_x)
+        self._accel_at = -1
+        self.fine_left = np.zeros(len(self.lines))
         self._forces = np.zeros((len(self.lines), 2, 3))
         self._strains = np.zeros(len(self.lines))
         self._loads_at = -1  # the step count at which _forces and _strains were computed
@@ -485,6 +494,7 @@ class System:
         """Build particles, lines_table, line_real and points_table."""
         starts = self._starts
         self.particles = np.zeros((int(starts[-1]), PARTICLE_COLUMNS))
+        self.particles[:, [TENSION, TENSION_BEFORE]] = np.nan  # not measured yet
         self.lines_table = np.zeros((len(self.lines), LINE_COLUMNS), dtype=np.int64)
         self.line_real = np.zeros((len(self.lines), LINE_REAL_COLUMNS))
         self.points_table = np.zeros((len(self.points), POINT_COLUMNS))
@@ -530,6 +540,12 @@ class System:
                                         or t.bending_damping_ratio > 0.0),
                 t.superelastic_adjustment)
             self.line_real[k, MAX_STRAIN] = t.max_strain
+            # the adaptive integrator's tension scale at least: the line's weight (under
+            # standard gravity, so that a line without gravity has one too), or a share of
+            # its MBL
+            self.line_real[k, SNAP_FLOOR] = max(
+                adaptive.SNAP_FLOOR * masses.sum() * STANDARD_GRAVITY,
+                adaptive.SNAP_FLOOR_MBL * t.mbl if math.isfinite(t.mbl) else 0.0)
             self.line_real[k, AXIAL_STIFFNESS] = t.axial_stiffness
             if t.curve is not None:
                 t.curve.fill(self.line_real[k])
@@ -636,21 +652,77 @@ class System:
 
     def step(self, integrator: str, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
              max_iterations: int, implicit_bending: bool = False,
-             compiled: bool = True) -> list:
+             compiled: bool = True, fine_step: float = 0.0) -> list:
         """
         Take len(drive_x) steps of dt with the driven points at drive_x, drive_v (n, Q, 3).
 
+        :param integrator: 'improved_euler', 'implicit_euler' or 'adaptive' (adaptive.py).
         :param compiled: False runs the same kernels' Python code (``.py_func``), for tests.
-        :returns: (line index, step of the run) of every line that parted in these steps.
+        :param fine_step: adaptive only: the largest stable improved Euler step now [s], one
+            for every line or each line's (L,).
+        :returns: (line index, step of the run) of every line that parted in these steps
+            (a fraction where the adaptive integrator's improved Euler steps parted it).
+        """
+        if integrator == 'adaptive':
+            adaptive.run(self, dt, drive_x, drive_v, fine_step, max_iterations,
+                         implicit_bending, compiled)
+        else:
+            self.run_kernel(integrator, dt, drive_x, drive_v, max_iterations,
+                            implicit_bending, compiled)
+        self.steps += 1
+        # the accelerations the adaptive step leaves are the state's (HISTORY says whose)
+        self._accel_at = self.steps if integrator == 'adaptive' else -1
+        return self._follow_line_changes()
+
+    def run_kernel(self, integrator: str, dt: float, drive_x: np.ndarray,
+                   drive_v: np.ndarray, max_iterations: int, implicit_bending: bool,
+                   compiled: bool, newmark: tuple = (1.0, 0.5)) -> None:
+        """
+        Take len(drive_x) steps of one integrator's kernel; the Lines are not told.
+
+        :param newmark: implicit_euler's (gamma, beta): (1, 1/2) is implicit Euler; others
+            start each line from its accelerations of the step before where its HISTORY
+            column says they are.
         """
         if integrator == 'implicit_euler':
-            run, last = kernels.implicit_euler_run, (max_iterations, implicit_bending)
+            run = kernels.implicit_euler_run
+            last = (max_iterations, implicit_bending, newmark[0], newmark[1], self.accel,
+                    self.point_accel)
         else:
             run, last = kernels.improved_euler_run, (max_iterations,)
         (run if compiled else run.py_func)(self.x, self.v, self.point_x, self.point_v, drive_x,
                                            drive_v, dt, *self._tables, *last)
-        self.steps += 1
-        return self._follow_line_changes()
+
+    @property
+    def history_kept(self) -> bool:
+        """Tell whether the accelerations are from the step taken last (the adaptive one)."""
+        return self._accel_at == self.steps
+
+    def save_state(self) -> tuple:
+        """Return a copy of everything a step changes (load_state puts it back)."""
+        return (self.x.copy(), self.v.copy(), self.point_x.copy(), self.point_v.copy(),
+                self.particles.copy(), self.line_real.copy(), self.accel.copy(),
+                self.point_accel.copy())
+
+    def load_state(self, saved: tuple) -> None:
+        """Put back what save_state copied, in place (the Lines' and Points' views see it)."""
+        for mine, kept in zip(self._state(), saved):
+            mine[:] = kept
+
+    def load_line_state(self, saved: tuple, k: int) -> None:
+        """Put back line k's part of what save_state copied: its particles and table rows."""
+        rows = slice(self.lines_table[k, FIRST], self.lines_table[k, LAST] + 1)
+        x, v, _, _, particles, line_real, accel, _ = saved
+        self.x[rows] = x[rows]
+        self.v[rows] = v[rows]
+        self.accel[rows] = accel[rows]
+        self.particles[rows] = particles[rows]
+        self.line_real[k] = line_real[k]
+
+    def _state(self) -> tuple:
+        """Return the arrays save_state copies, in its order."""
+        return (self.x, self.v, self.point_x, self.point_v, self.particles, self.line_real,
+                self.accel, self.point_accel)
 
     def _follow_line_changes(self) -> list:
         """
@@ -672,7 +744,8 @@ class System:
                     line.rest[~whole] = real[UNSTRETCHED] - rest[whole].sum()
             if line.parted is None and real[PARTED] >= 0.0:
                 line.parted = int(real[PARTED])
-                parted.append((k, int(real[PARTED_STEP])))
+                step = float(real[PARTED_STEP])
+                parted.append((k, int(step) if step.is_integer() else step))
         return parted
 
     def set_winch(self, k: int, **changes) -> None:

@@ -34,10 +34,11 @@ import numba
 import numpy as np
 
 from .forces.springs import add_springs
-from .layout import (AXIAL, BEND_DAMPING, BEND_STIFFNESS, BENDING, BREAK_LOAD, DAMPING, FIRST,
-                     LAST, MASS, PARTED, PARTED_STEP, PEAK_A, PEAK_B, REST, REST_RATE,
-                     STIFFNESS)
-from .winch import segment_tension
+from .layout import (AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_STIFFNESS, BENDING, BREAK_LOAD,
+                     DAMPING, FIRST, LAST, LENGTH, MASS, PARTED, PARTED_STEP, PEAK_A, PEAK_B,
+                     REST, REST_RATE, SLACK_IMPACT, SNAP_FLOOR, STIFFNESS, TENSION,
+                     TENSION_BEFORE, TENSION_CHANGE)
+from .winch import elastic_tension, stretch
 
 PARTED_REST = 1e300  # [m]: the rest length of a parted segment, never stretched
 
@@ -57,22 +58,50 @@ def part(particles, lines, rest, k, i):
 
 
 @numba.njit(cache=True)
-def part_overloaded(x, v, particles, lines, line_real, rest, step):
-    """After step `step` of a run: part every whole line with a segment past its break load."""
+def check_segments(x, v, particles, lines, line_real, rest, step):
+    """
+    After step `step` of a run: part every whole line with a segment past its break load.
+
+    On the way, for the adaptive integrator (adaptive.py), each segment's spring tension goes
+    to its TENSION column (the one before to TENSION_BEFORE), and each line's TENSION_CHANGE
+    and SLACK_IMPACT are raised to, as fractions of the step's tension scale (the largest
+    segment tension, spring and damper, at least SNAP_FLOOR): the largest change of a
+    segment's spring tension per step over this step and the one before (from NaN, a tension
+    not yet measured, none), and the largest impact of a slack segment, the tension
+    sqrt(EA m) |u| it would take if it came taut at its stretch rate u now.
+    """
     for k in range(lines.shape[0]):
-        limit = line_real[k, BREAK_LOAD]
-        if line_real[k, PARTED] >= 0.0 or not limit < np.inf:
-            continue
+        real = line_real[k]
         first = lines[k, FIRST]
         worst, where = -np.inf, first
+        change = 0.0
+        impact = 0.0
         for i in range(first, lines[k, LAST]):
-            tension = segment_tension(x, v, particles, line_real[k], i)
+            length, rate = stretch(x, v, i)
+            elastic = elastic_tension(particles, real, i, length)
+            tension = elastic + particles[i, DAMPING] * (rate - particles[i, REST_RATE])
             if tension > worst:
                 worst, where = tension, i
-        if worst > limit:  # the most loaded segment goes
+            # the watch reads the spring alone, and its change over two steps: a stiff end
+            # segment rings at the step's own period under both implicit schemes (they damp
+            # it little), hundreds of newtons up and down every step, and that is no snap
+            difference = 0.5 * abs(elastic - particles[i, TENSION_BEFORE])
+            if difference > change:
+                change = difference
+            particles[i, TENSION_BEFORE] = particles[i, TENSION]
+            particles[i, TENSION] = elastic
+            if length < particles[i, REST]:
+                # the impedance of the line there: EA over the wave speed sqrt(EA / m)
+                mass_per_length = particles[i + 1, MASS] / particles[i + 1, LENGTH]
+                impact = max(impact, np.sqrt(real[AXIAL_STIFFNESS] * mass_per_length)
+                             * abs(rate - particles[i, REST_RATE]))
+        scale = max(worst, real[SNAP_FLOOR])
+        real[TENSION_CHANGE] = max(real[TENSION_CHANGE], change / scale)
+        real[SLACK_IMPACT] = max(real[SLACK_IMPACT], impact / scale)
+        if real[PARTED] < 0.0 and worst > real[BREAK_LOAD]:  # the most loaded one goes
             part(particles, lines, rest, k, where)
-            line_real[k, PARTED] = where - first
-            line_real[k, PARTED_STEP] = step
+            real[PARTED] = where - first
+            real[PARTED_STEP] = step
 
 
 @numba.njit(cache=True)

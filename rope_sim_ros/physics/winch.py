@@ -76,13 +76,8 @@ def elastic_tension(particles, real, i, length):
 
 
 @numba.njit(cache=True, inline='always')
-def segment_tension(x, v, particles, real, i):
-    """
-    Return the axial tension of the structural spring (i, i + 1) [N]: spring and damper.
-
-    The spring (EA, or the line's curve: real is its LINE_REAL row) pulls only when
-    stretched; the damper acts on the stretch rate (it can push).
-    """
+def stretch(x, v, i):
+    """Return the length [m] of the structural spring (i, i + 1) and its rate [m/s]."""
     dx = x[i + 1, 0] - x[i, 0]
     dy = x[i + 1, 1] - x[i, 1]
     dz = x[i + 1, 2] - x[i, 2]
@@ -90,6 +85,18 @@ def segment_tension(x, v, particles, real, i):
     inv = 1.0 / max(length, 1e-12)
     rate = ((v[i + 1, 0] - v[i, 0]) * dx + (v[i + 1, 1] - v[i, 1]) * dy
             + (v[i + 1, 2] - v[i, 2]) * dz) * inv
+    return length, rate
+
+
+@numba.njit(cache=True, inline='always')
+def segment_tension(x, v, particles, real, i):
+    """
+    Return the axial tension of the structural spring (i, i + 1) [N]: spring and damper.
+
+    The spring (EA, or the line's curve: real is its LINE_REAL row) pulls only when
+    stretched; the damper acts on the stretch rate (it can push).
+    """
+    length, rate = stretch(x, v, i)
     return elastic_tension(particles, real, i, length) + particles[i, DAMPING] * (
         rate - particles[i, REST_RATE])
 

@@ -1,0 +1,221 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The adaptive integrator: implicit steps while tensions change slowly, improved Euler in a snap.
+
+Implicit Euler at its few-millisecond step carries a line in ship motion at a hundred times
+real time, but it damps the axial waves that carry a snap load (a slack line jerked taut
+peaked 31 % low at its automatic step) and, at a damping of about w h / 2 of critical, the
+slow motions too (a 5 t payload's 3 Hz bounce on its wire, so that the snatches after the
+first came at other times and 89-98 % low). Improved Euler at its stable step (a fraction of
+a millisecond) gets every one of those peaks within 0.5 %, at a sixth of the speed.
+
+So the adaptive integrator takes the implicit step in Newmark's form with gamma = GAMMA and
+beta = (gamma + 1/2)^2 / 4, second order in all but the gamma - 1/2 that damps a motion by
+about (gamma - 1/2) w h / 2 of critical (a tenth of implicit Euler's at gamma 0.55; gamma =
+1/2, which damps nothing, blew up where a slack segment came taut), and it watches every
+segment after every step (parting.check_segments). A step in which
+
+- a segment's spring tension changed by more than SNAP_TOLERANCE of the line's scale per
+  step (over two steps: a stiff end segment rings up and down every step, which is no snap),
+- or a slack segment moved so that, came taut, it would pull more than that (sqrt(EA m) times
+  its stretch rate: the impact of a slack line caught, before it is caught),
+
+is taken again from its start with improved Euler at its stable step, and improved Euler
+goes on for HOLD_TIME; then implicit steps try again. Taken again, not corrected: the implicit
+step's damped wave never reaches an output, and the peak is the explicit one.
+
+The scale is the line's largest segment tension in the step, and never less than SNAP_FLOOR
+times its weight nor SNAP_FLOOR_MBL of its MBL: on a slack line every change is a large part
+of a small tension. A stiff HMPE spring that falls slack as its ship surges 0.5 m and comes
+taut again pulls a few hundred newtons more in a step, which on its 0.9 kN of slack tension
+took it to improved Euler at every surge; 0.5 % of its MBL (6 kN) lets the implicit step
+carry that, and a snap under it breaks nothing. (At 1 % of the MBL the jerked line of
+test_snap_loads was seen late: 3.8 % low.)
+
+Why a change per step: an implicit step damps a motion that changes the tension by a
+fraction r of the scale per step by the order of r times its amplitude, so a change below
+SNAP_TOLERANCE bounds what it takes off a peak to a few per cent of the scale.
+
+The improved Euler steps take the driven ends along the cubic Hermite curve through the
+implicit steps' samples (positions and velocities), which is the end's own cubic within one
+sample interval of its trajectory.
+"""
+
+import numba
+import numpy as np
+
+from .layout import HISTORY, PARTED, PARTED_STEP, SLACK_IMPACT, TENSION_CHANGE
+
+SNAP_TOLERANCE = 0.05
+SNAP_FLOOR = 1.0
+SNAP_FLOOR_MBL = 0.005
+HOLD_TIME = 0.1  # [s]
+GAMMA = 0.55
+NEWMARK = (GAMMA, 0.25 * (GAMMA + 0.5) ** 2)
+
+
+def run(system, dt, drive_x, drive_v, fine_steps, max_iterations, implicit_bending, compiled):
+    """
+    Take len(drive_x) adaptive steps of dt of `system` in place (see the module's docstring).
+
+    Every step is judged on its own, so that the outcome does not depend on how the steps
+    are split into runs (a live stream and a whole motion file give the same numbers). Lines
+    whose ends are all fixed or driven are judged each on its own, and a line's improved
+    Euler steps are its own step's: in a System of many lines, each steps as it would alone.
+    Lines joined by free points are judged together, at the smallest of their steps. While no
+    line is in improved Euler, the run is first tried in one kernel call; only where a step
+    in it snapped is the run taken again step by step.
+
+    :param system: an objects.System; its fine_left (each line's improved Euler time left
+        [s]) and its lines' HISTORY are this integrator's state.
+    :param fine_steps: the largest stable improved Euler step now [s], of every line or of
+        each line (L,).
+    Other arguments as System.step. A line that parts gets its PARTED_STEP in steps of dt
+    from the start of the run (a fraction where it parted in an improved Euler step).
+    """
+    real = system.line_real
+    if not system.history_kept:
+        real[:, HISTORY] = 0.0
+    whole = np.empty(len(real), dtype=np.bool_)
+    snapped = np.empty(len(real), dtype=np.bool_)
+    if not system.fine_left.max(initial=0.0) > 1e-9:  # (rounding of the hold)
+        saved = system.save_state()
+        if not _take(system, 'implicit_euler', dt, drive_x, drive_v, 0, 1, max_iterations,
+                     implicit_bending, compiled, NEWMARK, whole, snapped):
+            real[:, HISTORY] = 1.0
+            return
+        system.load_state(saved)
+    fine_steps = np.broadcast_to(np.asarray(fine_steps, dtype=float), (len(real),))
+    if not (fine_steps > 0.0).all():
+        raise ValueError(f'the adaptive step needs improved Euler steps > 0, not {fine_steps}')
+    together = len(system.free_points) > 0
+    for k in range(len(drive_x)):
+        _step(system, dt, drive_x[k:k + 1], drive_v[k:k + 1], k, fine_steps, together,
+              max_iterations, implicit_bending, compiled, whole, snapped)
+
+
+def _step(system, dt, step_x, step_v, k, fine_steps, together, max_iterations,
+          implicit_bending, compiled, whole, snapped):
+    """Take step k of a run: implicit where no line snaps, else again with improved Euler."""
+    real = system.line_real
+    fine = system.fine_left > 1e-9
+    saved = system.save_state()
+    implicit = None
+    if not fine.all():
+        _take(system, 'implicit_euler', dt, step_x, step_v, k, 1, max_iterations,
+              implicit_bending, compiled, NEWMARK, whole, snapped)
+        if not (fine | snapped).any():
+            real[:, HISTORY] = 1.0
+            return
+        implicit = system.save_state()  # a snap: the step again, with improved Euler
+        system.fine_left[snapped] = HOLD_TIME
+        fine |= snapped
+    if together:
+        fine[:] = True
+    _take_fine(system, dt, step_x, step_v, k, fine, fine_steps, together, saved, implicit,
+               max_iterations, implicit_bending, compiled, whole, snapped)
+    real[:, HISTORY] = ~fine
+    system.fine_left[fine] -= dt
+
+
+def _take_fine(system, dt, step_x, step_v, k, fine, fine_steps, together, saved, implicit,
+               max_iterations, implicit_bending, compiled, whole, snapped):
+    """
+    Take step k again with improved Euler for the `fine` lines, each at its own step.
+
+    From `saved` (the state before the step): one run of every line a distinct step, each
+    line's part kept from the run of its step, the other lines' from `implicit`.
+    """
+    steps = [float(fine_steps[fine].min())] if together else sorted(set(fine_steps[fine]))
+    runs = {}
+    for fine_step in steps:
+        system.load_state(saved)
+        parts = max(1, int(np.ceil(dt / fine_step - 1e-9)))
+        fine_x, fine_v = hermite(system.point_x, system.point_v, step_x, step_v, dt, parts)
+        _take(system, 'improved_euler', dt / parts, fine_x, fine_v, k, parts, max_iterations,
+              implicit_bending, compiled, (1.0, 0.5), whole, snapped)
+        if len(steps) > 1 or implicit is not None and not together:
+            runs[fine_step] = system.save_state()
+    if not runs:  # one run took every line: it stands
+        return
+    system.load_state(implicit if implicit is not None else runs[steps[0]])
+    for line in np.flatnonzero(fine):
+        system.load_line_state(runs[steps[0] if together else fine_steps[line]], line)
+
+
+def _take(system, integrator, dt, drive_x, drive_v, first, parts, max_iterations,
+          implicit_bending, compiled, newmark, whole, snapped):
+    """
+    Take one kernel run from a cleared watch; set `snapped` to the lines that snapped in it.
+
+    A parting's step is put in the run's steps of parts * dt from `first`. Returns whether
+    any line snapped.
+    """
+    _clear_watch(system.line_real, whole)
+    system.run_kernel(integrator, dt, drive_x, drive_v, max_iterations, implicit_bending,
+                      compiled, newmark)
+    return _read_watch(system.line_real, whole, first, parts, snapped)
+
+
+@numba.njit(cache=True)
+def _clear_watch(line_real, whole):
+    """Clear every line's watch columns; note which lines are whole (in `whole`)."""
+    for k in range(line_real.shape[0]):
+        line_real[k, TENSION_CHANGE] = 0.0
+        line_real[k, SLACK_IMPACT] = 0.0
+        whole[k] = line_real[k, PARTED] < 0.0
+
+
+@numba.njit(cache=True)
+def _read_watch(line_real, whole, first, parts, snapped):
+    """
+    Set `snapped` to the lines whose tensions changed faster than implicit steps follow.
+
+    In a step of the run, a spring tension changing by more than SNAP_TOLERANCE of the line's
+    scale (parts improved Euler steps count as one implicit step), or a slack segment that
+    would come taut with more than that. Also times the partings of the run. Returns whether
+    any line snapped.
+    """
+    anything = False
+    for k in range(line_real.shape[0]):
+        if whole[k] and line_real[k, PARTED] >= 0.0:
+            line_real[k, PARTED_STEP] = first + (line_real[k, PARTED_STEP] + 1.0) / parts - 1.0
+        snapped[k] = (line_real[k, TENSION_CHANGE] * parts > SNAP_TOLERANCE
+                      or line_real[k, SLACK_IMPACT] > SNAP_TOLERANCE)
+        anything |= snapped[k]
+    return anything
+
+
+def hermite(point_x, point_v, drive_x, drive_v, dt, parts):
+    """
+    Return driven points at `parts` equal substeps of each step, (n parts, Q, 3) twice.
+
+    Each step goes from the points' state before it (point_x, point_v for the first, then the
+    previous sample) to its sample (drive_x, drive_v: (n, Q, 3)) along the cubic Hermite
+    curve through both ends' positions and velocities.
+    """
+    x0 = np.concatenate([point_x[None], drive_x[:-1]])
+    v0 = np.concatenate([point_v[None], drive_v[:-1]])
+    s = (np.arange(1, parts + 1) / parts)[None, :, None, None]
+    s2, s3 = s * s, s * s * s
+    x0, v0 = x0[:, None], v0[:, None]
+    x1, v1 = drive_x[:, None], drive_v[:, None]
+    x = ((2 * s3 - 3 * s2 + 1) * x0 + (s3 - 2 * s2 + s) * dt * v0
+         + (3 * s2 - 2 * s3) * x1 + (s3 - s2) * dt * v1)
+    v = ((6 * s2 - 6 * s) * (x0 - x1) / dt + (3 * s2 - 4 * s + 1) * v0
+         + (3 * s2 - 2 * s) * v1)
+    shape = (len(drive_x) * parts,) + drive_x.shape[1:]
+    return x.reshape(shape), v.reshape(shape)
