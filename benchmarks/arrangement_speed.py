@@ -37,6 +37,7 @@ the ship pose at 100 Hz for --node-seconds of wall time, its process CPU read fr
 /proc, and the outputs it delivered.
 
     python benchmarks/arrangement_speed.py [--duration 60] [--moordyn-duration 5] [--node]
+        [--integrator adaptive]
 """
 
 import argparse
@@ -292,6 +293,8 @@ def main():
     parser.add_argument('--duration', type=float, default=60.0)
     parser.add_argument('--moordyn-duration', type=float, default=5.0)
     parser.add_argument('--skip-moordyn', action='store_true')
+    parser.add_argument('--integrator', default='implicit_euler',
+                        help="every line's integrator (implicit_euler, adaptive, ...)")
     parser.add_argument('--node', action='store_true', help='also time the mooring node')
     parser.add_argument('--node-seconds', type=float, default=30.0)
     args = parser.parse_args()
@@ -304,7 +307,8 @@ def main():
           '% of one core |')
     print('|---|---|---|---|---|---|')
     for kind in MATERIALS:
-        cpu, driver, outputs = run_mooring(berth(kind), args.duration)
+        cpu, driver, outputs = run_mooring(dict(berth(kind), integrator=args.integrator),
+                                           args.duration)
         mooring = driver.mooring
         steps = ', '.join(f'{1e3 * group.step:.2f}' for group in mooring.groups)
         # the start's and one per period, the last pose's held back (one pose behind)
