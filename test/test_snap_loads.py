@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Snap loads: the adaptive integrator against converged runs."""
+"""Snap loads: the adaptive integrator against converged runs (its snatches: test_payload)."""
 
 import math
 
@@ -23,7 +23,6 @@ from rope_sim_ros.params import from_values
 from rope_sim_ros.physics import adaptive
 from rope_sim_ros.physics.layout import PARTED_STEP, PEAK_B
 from rope_sim_ros.simulator import Simulator
-from test_payload import _crane, _read
 
 JERK = ((0.0, 38.0), (0.5, 38.0), (0.7, 39.5), (3.0, 39.5))  # (t [s], fairlead x [m])
 
@@ -55,19 +54,6 @@ def test_a_slack_line_jerked_taut_peaks_as_the_converged_run(converged_jerk):
     # +0.1 % measured (converged 101.26 kN); implicit_euler at the same 5 ms: -30.9 %
     assert peak == pytest.approx(converged_jerk, rel=0.05)
     assert _jerk('implicit_euler')[0] < 0.8 * converged_jerk
-
-
-def test_a_payload_caught_after_falling_slack_peaks_as_moordyn(reference_dir):
-    """The heaved 5 t payload's first three snatches (0.92, 0.19, 1.53 MN) within 5 %."""
-    rows, force, _ = _crane(reference_dir, 'snatch', 'adaptive', 6.5)
-    t = np.array([r['t_s'] for r in rows])
-    peaks = [p for p in _read(reference_dir, 'payload_snatch_peaks.csv')
-             if p['case'] == 'snatch' and p['t_peak_s'] <= 6.5]
-    assert len(peaks) == 3
-    for peak in peaks:
-        window = (t >= peak['t_start_s']) & (t <= peak['t_end_s'])
-        # -0.1 %, -1.5 %, -1.5 % measured; implicit_euler: -7.6 %, -98 %, -89 %
-        assert force[window].max() == pytest.approx(peak['F_top_peak_sampled_N'], rel=0.05)
 
 
 def test_ship_motion_takes_implicit_steps_only(monkeypatch):
