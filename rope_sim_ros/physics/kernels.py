@@ -599,7 +599,7 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
 # integrator (adaptive.py) takes them all the same, Newmark's general step
 #     x1 = x0 + h v0 + h^2 ((1/2 - beta) a0 + beta a1),   v1 = v0 + h ((1 - gamma) a0 + gamma a1),
 #     (M + gamma h C + beta h^2 S) a1 = f(x^, v^)   about that predictor,
-# because it takes every run in which a snap starts again with improved Euler; a0 is the
+# because it takes every step in which a snap starts again with improved Euler; a0 is the
 # acceleration the step before solved for (accel, point_accel).
 #
 # The unknowns are the accelerations of every line's interior particles and of every free
@@ -947,7 +947,17 @@ def _newmark(k, newmark, ready, dt):
 
 @numba.njit(cache=True, inline='always')
 def _predict(x, v, accel, dt, ahead_x, ahead_v, first, stop):
-    """Rows first..stop-1's predictor: x += h v + ahead_x a0, v += ahead_v a0 (a0: accel)."""
+    """
+    Rows first..stop-1's predictor: x += h v + ahead_x a0, v += ahead_v a0 (a0: accel).
+
+    Without a0 terms (implicit Euler), accel is not read: it may hold what a state restarted
+    since left there, even NaN.
+    """
+    if ahead_x == 0.0 and ahead_v == 0.0:
+        for i in range(first, stop):
+            for p in range(3):
+                x[i, p] += dt * v[i, p]
+        return
     for i in range(first, stop):
         for p in range(3):
             x[i, p] += dt * v[i, p] + ahead_x * accel[i, p]
@@ -1067,8 +1077,10 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
         for q in range(n_points):
             if points[q, KIND] == FREE:
                 for p in range(3):
-                    point_x[q, p] += dt * point_v[q, p] + ahead_x * point_accel[q, p]
-                    point_v[q, p] += ahead_v * point_accel[q, p]
+                    point_x[q, p] += dt * point_v[q, p]
+                    if ahead_x != 0.0 or ahead_v != 0.0:
+                        point_x[q, p] += ahead_x * point_accel[q, p]
+                        point_v[q, p] += ahead_v * point_accel[q, p]
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         line_forces(x, v, f, particles, lines, line_real)
