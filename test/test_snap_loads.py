@@ -82,8 +82,8 @@ def test_ship_motion_takes_implicit_steps_only(monkeypatch):
     assert 900.0 < min(tensions) and max(tensions) < 1400.0  # 1.33 kN converged
 
 
-def test_a_snapping_run_is_taken_again_from_its_start():
-    """What the implicit run did is undone: the peak held is the improved Euler one."""
+def test_a_step_taken_again_starts_from_everything_it_changed():
+    """save_state and load_state, which take a snapping step back, restore all a step writes."""
     _, sim = _jerk('adaptive')
     system = sim.system
     saved = system.save_state()
@@ -118,10 +118,9 @@ def test_a_line_parting_in_improved_euler_steps_is_timed_within_the_run():
     """A break load the jerk passes: the parting's step is a fraction of the run's steps."""
     peak, sim = _jerk('adaptive', break_load=50.0e3)
     assert sim.parting is not None
-    # the converged jerk passes 50 kN at 0.96 s; the parting is timed to an improved Euler
-    # step (0.21 ms), not to the 5 ms step of the run
+    # the converged jerk passes 50 kN at about 0.98 s; the parting is timed to an improved
+    # Euler step (0.21 ms), not to the 5 ms step of the run
     step = float(sim.system.line_real[0, PARTED_STEP])
     assert 0.9 < sim.parting.t < 1.05
-    assert sim.parting.t == pytest.approx(round(sim.parting.t / 0.005) * 0.005 + 0.0, abs=0.005)
     assert step != round(step)
     assert np.isfinite(sim.rope.x).all() and peak < 1.2 * 50.0e3

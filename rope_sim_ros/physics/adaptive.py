@@ -39,11 +39,10 @@ step's damped wave never reaches an output, and the peak is the explicit one.
 
 The scale is the line's largest segment tension in the step, and never less than SNAP_FLOOR
 times its weight nor SNAP_FLOOR_MBL of its MBL: on a slack line every change is a large part
-of a small tension. A stiff HMPE spring that falls slack as its ship surges 0.5 m and comes
-taut again pulls a few hundred newtons more in a step, which on its 0.9 kN of slack tension
-took it to improved Euler at every surge; 0.5 % of its MBL (6 kN) lets the implicit step
-carry that, and a snap under it breaks nothing. (At 1 % of the MBL the jerked line of
-test_snap_loads was seen late: 3.8 % low.)
+of a small tension (a stiff HMPE spring fallen slack to 0.9 kN as its ship surged went to
+improved Euler at most steps). The MBL's share keeps such changes, which break nothing, out;
+at 1 % of the MBL the jerked line of test_snap_loads was seen late (3.8 % low), at 0.5 % not
+(0.2 %).
 
 Why a change per step: an implicit step damps a motion that changes the tension by a
 fraction r of the scale per step by the order of r times its amplitude, so a change below
