@@ -56,7 +56,8 @@ from .physics.integrators import implicit_bending
 from .physics.objects import System
 from .physics.rope import RopeProperties
 from .physics.superelastic import MAX_ITERATIONS
-from .simulator import load_materials, Parting, share_system, Simulator, take_peaks
+from .simulator import (divide_run, load_materials, Parting, share_system, Simulator,
+                        take_peaks)
 from .trajectory import TrajectoryError
 
 ROOT3 = math.sqrt(3.0)
@@ -507,23 +508,33 @@ class Mooring:
         sims = [self.sims[k] for k in group.members]
         for j, sim in enumerate(sims):  # ends brought back onto their tracks (views)
             sim.blend_ends(times, drive_x[:, 2 * j:2 * j + 2], drive_v[:, 2 * j:2 * j + 2])
-        parts = max(sim.divisions(drive_v[:, 2 * j:2 * j + 2]) for j, sim in enumerate(sims))
+        parts, violent = self._divisions(sims, drive_v)
         if parts == 1:
             self._run(group, group.step, drive_x, drive_v, done)
-            self._set_group_time(group, float(times[-1]))
+        elif not violent:  # only explicit steps' bounds: divide the whole run alike
+            self._run_divided(group, sims, divide_run(group.time, times, parts), done)
         else:
             for t in times:  # a violent stretch somewhere: look again before every step
-                start = group.time
-                parts = max(sim.divisions(drive_v[:, 2 * j:2 * j + 2])
-                            for j, sim in enumerate(sims))
-                fine = start + (t - start) * np.arange(1, parts + 1) / parts
-                fine_x, fine_v, _ = self._drive(group, fine)
-                for j, sim in enumerate(sims):
-                    sim.blend_ends(fine, fine_x[:, 2 * j:2 * j + 2], fine_v[:, 2 * j:2 * j + 2])
-                self._run(group, (t - start) / len(fine), fine_x, fine_v, done)
+                parts = self._divisions(sims, drive_v)[0]
+                self._run_divided(group, sims, divide_run(group.time, [t], parts), done)
                 self._set_group_time(group, float(t))
+        self._set_group_time(group, float(times[-1]))
         speeds = ROOT3 * np.abs(drive_v).max(axis=(0, 2)).reshape(-1, 2).max(axis=1)
         self._check(group, speeds, done.restarted)
+
+    @staticmethod
+    def _divisions(sims: List[Simulator], drive_v: np.ndarray) -> Tuple[int, bool]:
+        """Return the parts every step of a group is divided in, and whether to look again."""
+        each = [sim.divisions(drive_v[:, 2 * j:2 * j + 2]) for j, sim in enumerate(sims)]
+        return max(parts for parts, _ in each), any(violent for _, violent in each)
+
+    def _run_divided(self, group: _Group, sims: List[Simulator], fine: np.ndarray,
+                     done: MooringAdvance) -> None:
+        """Take a group's steps to the divided times `fine`, its ends driven there."""
+        fine_x, fine_v, _ = self._drive(group, fine)
+        for j, sim in enumerate(sims):
+            sim.blend_ends(fine, fine_x[:, 2 * j:2 * j + 2], fine_v[:, 2 * j:2 * j + 2])
+        self._run(group, (fine[-1] - group.time) / len(fine), fine_x, fine_v, done)
 
     def _run(self, group: _Group, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
              done: MooringAdvance) -> None:
