@@ -34,7 +34,9 @@ For each, CPU seconds per simulated second (one core = 100 %) of:
 
 Then the node itself (`--node`, needs `make build`): the installed mooring executable fed
 the ship pose at 100 Hz for --node-seconds of wall time, its process CPU read from
-/proc, and the outputs it delivered.
+/proc, and the outputs it delivered. Twice: with ship/mooring_wrench subscribed only (a ship
+simulator: the node builds no output nobody takes), and with every output subscribed (every
+line's topics, the world wrench and the markers: a Foxglove session showing it all).
 
     python benchmarks/arrangement_speed.py [--duration 60] [--moordyn-duration 5] [--node]
         [--integrator adaptive]
@@ -213,14 +215,19 @@ def run_moordyn(driver: MooringDriver, duration: float) -> tuple:
     return wall, init, step
 
 
-def node_run(values: dict, seconds: float) -> dict:
+def node_run(values: dict, seconds: float, every_output: bool) -> dict:
     """
     Run the installed mooring node on the lines, fed 100 Hz ship poses for `seconds`.
+
+    :param every_output: subscribe to every output, not only ship/mooring_wrench (raw: the
+        messages are not deserialised here, so this process takes less of the other core).
 
     :returns: its CPU share while fed, the outputs received and the poses sent.
     """
     import rclpy
-    from geometry_msgs.msg import PoseStamped, WrenchStamped
+    from geometry_msgs.msg import PoseArray, PoseStamped, Wrench, WrenchStamped
+    from std_msgs.msg import Float64
+    from visualization_msgs.msg import MarkerArray
     import yaml
     install = REPO / 'install' / 'rope_sim_ros'
     executable = install / 'lib' / 'rope_sim_ros' / 'mooring'
@@ -246,6 +253,16 @@ def node_run(values: dict, seconds: float) -> dict:
         received = []
         client.create_subscription(WrenchStamped, 'ship/mooring_wrench',
                                    lambda msg: received.append(time.monotonic()), 1000)
+        if every_output:
+            types = {'rope/particles': PoseArray, 'fairlead/tension': Wrench,
+                     'bollard/tension': Wrench, 'fairlead/peak_tension': Float64,
+                     'bollard/peak_tension': Float64, 'winch/length': Float64}
+            topics = [(f'{name}/{relative}', cls) for name in values['lines']
+                      for relative, cls in types.items()]
+            topics += [('ship/mooring_wrench_world', WrenchStamped),
+                       ('mooring/markers', MarkerArray)]
+            for topic, cls in topics:
+                client.create_subscription(cls, topic, lambda msg: None, 100, raw=True)
         publisher = client.create_publisher(PoseStamped, 'ship/pose', 1000)
         try:
             deadline = time.monotonic() + 120.0
@@ -325,10 +342,12 @@ def main():
                   f'{100 * wall / args.moordyn_duration:.1f} |', flush=True)
     print()
     if args.node:
-        for kind in MATERIALS:
-            result = node_run(berth(kind), args.node_seconds)
-            print(f'mooring node, {kind}: {100 * result["cpu"]:.1f} % of one core while fed '
-                  f'{RATE:g} Hz ship poses for {args.node_seconds:g} s; '
+        for kind, every_output in ((kind, every) for kind in MATERIALS for every in (0, 1)):
+            result = node_run(dict(berth(kind), integrator=args.integrator), args.node_seconds,
+                              every_output)
+            taken = 'every output' if every_output else 'ship/mooring_wrench only'
+            print(f'mooring node, {kind}, {taken} subscribed: {100 * result["cpu"]:.1f} % of '
+                  f'one core while fed {RATE:g} Hz ship poses for {args.node_seconds:g} s; '
                   f'{result["outputs"]:.1f} outputs per second received '
                   f'({result["sent"]} poses sent)', flush=True)
 

@@ -541,40 +541,55 @@ class MooringNode(Node):
     # -- outputs --------------------------------------------------------------------------
 
     def _publish(self, published: MooringPublished) -> None:
-        """Publish (and record) one output: every line's topics, then the ship's wrenches."""
+        """
+        Publish (and record) one output: every line's topics, then the ship's wrenches.
+
+        An output nobody subscribes to (and no bag records) is not built: a ship simulator
+        takes ship/mooring_wrench only, and building and publishing the 16 lines' 96 other
+        messages at 100 Hz cost twice the lines' physics. A subscriber gets the outputs from
+        the first one after its subscription is matched, as from any volatile publisher.
+        """
         out, stamp_ns = published.output, published.stamp_ns
         frame_id = self.driver.arrangement.shared.frame_id
+        wanted = {topic for topic, publisher in self._outputs.items() if self._wanted(publisher)}
         # every line's numbers at once (runner.particles_cdr and wrench_cdr line by line
         # cost a third of the node's time with 16 lines at 100 Hz); the same bytes
         sec, nanosec = split_ns(stamp_ns)
-        positions = np.concatenate(out.positions)
-        starts = np.cumsum([0] + [len(x) for x in out.positions])
-        poses = np.concatenate([positions, lines_tangent_quaternions(positions, starts)], 1)
+        if any(f'{name}/rope/particles' in wanted for name in self.names):
+            positions = np.concatenate(out.positions)
+            starts = np.cumsum([0] + [len(x) for x in out.positions])
+            poses = np.concatenate([positions, lines_tangent_quaternions(positions, starts)], 1)
         fairlead_torques = cross_rows(published.levers, out.fairlead_forces)
         bollard_torques = cross_rows(self._bollard_levers, out.bollard_forces)
         for k, name in enumerate(self.names):
-            messages = {
-                'rope/particles': cdr.pose_array(sec, nanosec, frame_id,
-                                                 poses[starts[k]:starts[k + 1]]),
-                'fairlead/tension': cdr.wrench(out.fairlead_forces[k], fairlead_torques[k]),
-                'bollard/tension': cdr.wrench(out.bollard_forces[k], bollard_torques[k]),
-                'fairlead/peak_tension': cdr.float64(out.fairlead_peaks[k]),
-                'bollard/peak_tension': cdr.float64(out.bollard_peaks[k]),
-                'winch/length': cdr.float64(out.line_lengths[k]),
+            build = {
+                'rope/particles': lambda k=k: cdr.pose_array(sec, nanosec, frame_id,
+                                                             poses[starts[k]:starts[k + 1]]),
+                'fairlead/tension': lambda k=k: cdr.wrench(out.fairlead_forces[k],
+                                                           fairlead_torques[k]),
+                'bollard/tension': lambda k=k: cdr.wrench(out.bollard_forces[k],
+                                                          bollard_torques[k]),
+                'fairlead/peak_tension': lambda k=k: cdr.float64(out.fairlead_peaks[k]),
+                'bollard/peak_tension': lambda k=k: cdr.float64(out.bollard_peaks[k]),
+                'winch/length': lambda k=k: cdr.float64(out.line_lengths[k]),
             }
             if out.payload_positions[k] is not None:
-                messages['payload/pose'] = pose_stamped_cdr(stamp_ns, frame_id,
-                                                            out.payload_positions[k])
-            for relative, data in messages.items():
+                build[PAYLOAD_OUTPUT[0]] = lambda k=k: pose_stamped_cdr(
+                    stamp_ns, frame_id, out.payload_positions[k])
+            for relative, message in build.items():
                 topic = f'{name}/{relative}'
-                self._outputs[topic].publish(data)
-                self.record(topic, data, stamp_ns)
+                if topic in wanted:
+                    data = message()
+                    self._outputs[topic].publish(data)
+                    self.record(topic, data, stamp_ns)
         world_force, world_moment = published.world_wrench()
         for publisher, topic, frame, force, moment in (
                 (self._wrench_pub, WRENCH_TOPIC, self.driver.arrangement.ship_frame_id,
                  published.force, published.moment),
                 (self._world_wrench_pub, WORLD_WRENCH_TOPIC, frame_id, world_force,
                  world_moment)):
+            if not self._wanted(publisher):
+                continue
             msg = WrenchStamped()
             msg.header.frame_id = frame
             msg.header.stamp = conversions.ns_to_stamp(stamp_ns)
@@ -584,6 +599,11 @@ class MooringNode(Node):
         self._publish_parted(out.parted)
         self._latest = published
         self._peaks = np.maximum(self._peaks, out.peaks)  # every step's, not only outputs'
+
+    def _wanted(self, publisher) -> bool:
+        """Return whether an output is taken: subscribed to, or recorded (see _publish)."""
+        return (publisher.get_subscription_count() > 0
+                or self.recorder is not None and self.recorder.recording)
 
     def _publish_parted(self, parted: np.ndarray) -> None:
         """Publish (and record) on <line>/rope/parted whether each line has parted, if new."""
@@ -614,8 +634,8 @@ class MooringNode(Node):
     def _on_markers(self) -> None:
         """Publish the lines as markers, coloured by their utilisation (mooring_display)."""
         published = self._latest
-        if published is None:
-            return
+        if published is None or not self._markers_pub.get_subscription_count():
+            return  # nobody looks: not built (16 strips of 51 points)
         out = published.output
         msg = self._line_markers(
             self.driver.arrangement.shared.frame_id, published.stamp_ns, self.names,
