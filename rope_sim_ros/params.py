@@ -210,10 +210,10 @@ SPECS: Mapping[str, Spec] = {
     'superelastic_adjustment': Spec(
         True, '', 'apply the position and velocity adjustment at max_strain', read_only=False),
     'integrator': Spec(
-        'implicit_euler', '', 'implicit_euler: stable at any step, fastest for stiff lines, '
-        'but it damps snap loads; adaptive: implicit steps, and improved_euler steps through '
-        'a snap (a segment tension changing by more than 5 % in one implicit step), so that '
-        'snap loads come out right; improved_euler: the explicit scheme of the seed paper',
+        'adaptive', '', 'adaptive: implicit steps, and improved_euler steps through a snap (a '
+        'segment tension changing by more than 5 % in one implicit step), so that snap loads '
+        'come out right; implicit_euler: stable at any step, fastest for stiff lines, but it '
+        'damps snap loads; improved_euler: the explicit scheme of the seed paper',
         choices=INTEGRATORS),
     'time_step': Spec(
         0.0, 's', 'integration step; 0 = automatic (improved_euler: 0.8 of the smaller of its '

@@ -65,9 +65,16 @@ def test_the_rope_stays_one_sample_behind_a_live_stream():
     assert driver.live(FAIRLEAD)
 
 
-def test_one_sample_behind_is_the_whole_motion_known():
-    """Fed sample by sample, the outputs are those of a Simulator given every sample first."""
-    params = line()
+@pytest.mark.parametrize('integrator, bound', [('implicit_euler', 1e-6), ('adaptive', 1e-3)])
+def test_one_sample_behind_is_the_whole_motion_known(integrator, bound):
+    """
+    Fed sample by sample, the outputs are those of a Simulator given every sample first.
+
+    To round-off: the driver pins its steps to the output grid (0.2 s), the Simulator adds
+    them up (0.19999999999999998 s). The adaptive integrator's snap watch (this surge keeps
+    it in improved Euler most of the time) can tip either way on such a difference: 8.5e-5 N.
+    """
+    params = line(integrator=integrator)
     driver = LineDriver(params, rate=50.0)
     whole = Simulator(params, output_interval=0.02, history=math.inf)
     times = np.arange(0, 101) * 0.02
@@ -83,7 +90,7 @@ def test_one_sample_behind_is_the_whole_motion_known():
         offline.append(whole.output().fairlead_force)
     assert len(live) == 100  # up to the second-newest sample
     difference = np.abs(np.subtract(live, offline)).max()
-    assert difference < 1e-6, difference
+    assert difference < bound, difference
 
 
 def test_outputs_are_pinned_to_their_grid():
