@@ -58,6 +58,7 @@ from rope_sim_ros import arrangement
 from rope_sim_ros.frames import pose_point
 from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
 from rope_sim_ros.mooring_driver import MooringDriver
+from rope_sim_ros.params import SPECS
 
 REPO = Path(__file__).resolve().parent.parent
 RATE = 100.0  # ship poses and outputs per second
@@ -310,8 +311,9 @@ def main():
     parser.add_argument('--duration', type=float, default=60.0)
     parser.add_argument('--moordyn-duration', type=float, default=5.0)
     parser.add_argument('--skip-moordyn', action='store_true')
-    parser.add_argument('--integrator', default='implicit_euler',
-                        help="every line's integrator (implicit_euler, adaptive, ...)")
+    parser.add_argument('--integrator', default=SPECS['integrator'].default,
+                        help="every line's integrator (default: the parameter's, "
+                        f"{SPECS['integrator'].default})")
     parser.add_argument('--node', action='store_true', help='also time the mooring node')
     parser.add_argument('--node-seconds', type=float, default=30.0)
     args = parser.parse_args()

@@ -184,3 +184,39 @@ def test_a_bridle_under_water_holds_its_mass_less_what_everything_displaces(inte
     lines_drag = 0.5 * 1025.0 * 1.2 * 0.04 * 0.2 ** 2 * 40.0
     assert drag == pytest.approx(knot_drag + lines_drag, rel=0.01)
     assert system.point_x[knot, 1] > 0.0
+
+
+def _two_hanging_wires():
+    """Two wires, each from a fixed point to a driven one, sagging; the second one jerked."""
+    system = System(ENVIRONMENT)
+    for k, y in enumerate((0.0, 10.0)):
+        a = system.add_point(Point('fixed', [0.0, y, 0.0]))
+        b = system.add_point(Point('driven', [19.0, y, 0.0]))
+        shape = _straight([0.0, y, 0.0], [19.0, y, 0.0], 10)
+        shape[1:-1, 2] -= 0.5 * np.sin(np.pi * np.arange(1, 10) / 10)
+        system.add_line(Line.uniform(WIRE, 20.0, 10, shape, (a, b)))
+    system.pack()
+    return system
+
+
+def test_a_line_view_steps_its_line_in_the_system_and_no_other():
+    # the adaptive integrator's improved Euler steps of one snapping line in a berth
+    whole, alone = _two_hanging_wires(), _two_hanging_wires()
+    steps, dt = 200, 1e-4
+    drive_x, drive_v = whole.drive_arrays(steps)
+    drive_v[:, 3, 0] = 2.0  # the second line's driven end pulled away at 2 m/s
+    drive_x[:, 3, 0] += 2.0 * dt * np.arange(1, steps + 1)
+    whole.step('improved_euler', dt, drive_x, drive_v, MAX_ITERATIONS)
+    view = alone.line_view(1)
+    view.run_kernel('improved_euler', dt, drive_x[:, view.ends], drive_v[:, view.ends],
+                    MAX_ITERATIONS, False, True)
+    view.store_points(alone)
+    rows = slice(11, 22)
+    assert np.abs(whole.end_forces()[1]).max() > 2.0 * np.abs(alone.end_forces()[0]).max()
+    np.testing.assert_array_equal(alone.x[rows], whole.x[rows])
+    np.testing.assert_array_equal(alone.v[rows], whole.v[rows])
+    np.testing.assert_array_equal(alone.point_x, whole.point_x)
+    np.testing.assert_array_equal(alone.line_real[1], whole.line_real[1])
+    # the first line was not stepped: where it was packed, at rest
+    np.testing.assert_array_equal(alone.x[:11], _two_hanging_wires().x[:11])
+    np.testing.assert_array_equal(alone.v[:11], 0.0)

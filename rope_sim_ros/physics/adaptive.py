@@ -135,24 +135,34 @@ def _take_fine(system, dt, step_x, step_v, k, fine, fine_steps, together, saved,
     """
     Take step k again with improved Euler for the `fine` lines, each at its own step.
 
-    From `saved` (the state before the step): one run of every line a distinct step, each
-    line's part kept from the run of its step, the other lines' from `implicit`.
+    From `saved` (the state before the step). Lines joined by free points: one run of the
+    whole System at their smallest step. Other lines: each fine line alone, on a view of its
+    rows (objects.LineView), the other lines keeping their implicit step: a berth's stiff
+    spring coming taut costs that line's improved Euler steps, not its whole group's.
     """
-    steps = [float(fine_steps[fine].min())] if together else sorted(set(fine_steps[fine]))
-    runs = {}
-    for fine_step in steps:
+    if together:
         system.load_state(saved)
-        parts = max(1, int(np.ceil(dt / fine_step - 1e-9)))
-        fine_x, fine_v = hermite(system.point_x, system.point_v, step_x, step_v, dt, parts)
-        _take(system, 'improved_euler', dt / parts, fine_x, fine_v, k, parts, max_iterations,
-              implicit_bending, compiled, (1.0, 0.5), whole, snapped)
-        if len(steps) > 1 or implicit is not None and not together:
-            runs[fine_step] = system.save_state()
-    if not runs:  # one run took every line: it stands
+        _take_parts(system, dt, step_x, step_v, k, float(fine_steps[fine].min()),
+                    max_iterations, implicit_bending, compiled, whole, snapped)
         return
-    system.load_state(implicit if implicit is not None else runs[steps[0]])
     for line in np.flatnonzero(fine):
-        system.load_line_state(runs[steps[0] if together else fine_steps[line]], line)
+        if implicit is not None:  # the others' implicit step stands; this line's goes
+            system.load_line_state(saved, line)
+        view = system.line_view(line)
+        view.point_x[:], view.point_v[:] = saved[2][view.ends], saved[3][view.ends]
+        _take_parts(view, dt, step_x[:, view.ends], step_v[:, view.ends], k,
+                    float(fine_steps[line]), max_iterations, implicit_bending, compiled,
+                    whole[line:line + 1], snapped[line:line + 1])
+        view.store_points(system)
+
+
+def _take_parts(system, dt, step_x, step_v, k, fine_step, max_iterations, implicit_bending,
+                compiled, whole, snapped):
+    """Take step k in improved Euler steps no longer than fine_step, the ends on the cubic."""
+    parts = max(1, int(np.ceil(dt / fine_step - 1e-9)))
+    fine_x, fine_v = hermite(system.point_x, system.point_v, step_x, step_v, dt, parts)
+    _take(system, 'improved_euler', dt / parts, fine_x, fine_v, k, parts, max_iterations,
+          implicit_bending, compiled, (1.0, 0.5), whole, snapped)
 
 
 def _take(system, integrator, dt, drive_x, drive_v, first, parts, max_iterations,

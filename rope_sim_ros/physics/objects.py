@@ -51,7 +51,8 @@ import numpy as np
 
 from . import adaptive, kernels, parting, winch
 from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST,
-                     BEND_STIFFNESS, BENDING, DAMPING, DIAMETER, DRAG, DRAG_AREA, DRIVEN,
+                     BEND_STIFFNESS, BENDING, DAMPING, DIAMETER, DRAG, DRAG_AREA, DRIVEN, END_A,
+                     END_B,
                      ENV_AIR_DENSITY, ENV_COLUMNS, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_DEPTH,
                      ENV_QUAY_EDGE, ENV_QUAY_NORMAL, ENV_SEABED_DAMPING, ENV_SEABED_FRICTION,
                      ENV_SEABED_LEVEL, ENV_SEABED_STIFFNESS, ENV_WATER_DENSITY,
@@ -719,6 +720,10 @@ class System:
         self.particles[rows] = particles[rows]
         self.line_real[k] = line_real[k]
 
+    def line_view(self, k: int) -> 'LineView':
+        """Return line k alone, on views of its rows (see LineView)."""
+        return LineView(self, k)
+
     def _state(self) -> tuple:
         """Return the arrays save_state copies, in its order."""
         return (self.x, self.v, self.point_x, self.point_v, self.particles, self.line_real,
@@ -967,6 +972,41 @@ class System:
             speed = np.linalg.norm(v, axis=1)
             power += float(np.sum(rows[:, DRAG] * speed ** 3))
         return power
+
+
+class LineView:
+    """
+    One line of a System whose lines all end on driven or fixed points, as a System of it.
+
+    Its particle rows and its line_real row are views of the System's: a kernel run of the
+    view steps that line in the System, and no other. Its points are copies (ends: their
+    indices in the System); put them back with store_points. The adaptive integrator takes
+    a snapping line's improved Euler steps so, at the cost of that line alone. Make it anew
+    after anything rebuilds the System's tables (refresh).
+    """
+
+    def __init__(self, system: System, k: int):
+        """View line k of `system`."""
+        first, last = system.lines_table[k, FIRST], system.lines_table[k, LAST] + 1
+        self.ends = system.lines_table[k, [END_A, END_B]].copy()
+        self.x, self.v = system.x[first:last], system.v[first:last]
+        self.accel = system.accel[first:last]
+        self.point_x = system.point_x[self.ends]
+        self.point_v = system.point_v[self.ends]
+        self.point_accel = system.point_accel[self.ends]
+        self.line_real = system.line_real[k:k + 1]
+        lines_table = system.lines_table[k:k + 1].copy()
+        lines_table[0, [FIRST, LAST]] -= first
+        lines_table[0, [END_A, END_B]] = (0, 1)
+        self._tables = (system.particles[first:last], lines_table, self.line_real,
+                        system.points_table[self.ends], system.env)
+
+    run_kernel = System.run_kernel
+
+    def store_points(self, system: System) -> None:
+        """Put the view's points (where its run left them) back into `system`."""
+        system.point_x[self.ends] = self.point_x
+        system.point_v[self.ends] = self.point_v
 
 
 def single_line(line_type: LineType, environment: Environment, length: float, segments: int,
