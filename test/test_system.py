@@ -208,8 +208,8 @@ def test_a_line_view_steps_its_line_in_the_system_and_no_other():
     drive_x[:, 3, 0] += 2.0 * dt * np.arange(1, steps + 1)
     whole.step('improved_euler', dt, drive_x, drive_v, MAX_ITERATIONS)
     view = alone.line_view(1)
-    view.run_kernel('improved_euler', dt, drive_x[:, view.ends], drive_v[:, view.ends],
-                    MAX_ITERATIONS, False, True)
+    view.run_kernel('improved_euler', dt, *view.drive(drive_x, drive_v), MAX_ITERATIONS,
+                    False, True)
     view.store_points(alone)
     rows = slice(11, 22)
     assert np.abs(whole.end_forces()[1]).max() > 2.0 * np.abs(alone.end_forces()[0]).max()

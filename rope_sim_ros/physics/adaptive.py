@@ -150,9 +150,9 @@ def _take_fine(system, dt, step_x, step_v, k, fine, fine_steps, together, saved,
             system.load_line_state(saved, line)
         view = system.line_view(line)
         view.point_x[:], view.point_v[:] = saved[2][view.ends], saved[3][view.ends]
-        _take_parts(view, dt, step_x[:, view.ends], step_v[:, view.ends], k,
-                    float(fine_steps[line]), max_iterations, implicit_bending, compiled,
-                    whole[line:line + 1], snapped[line:line + 1])
+        _take_parts(view, dt, *view.drive(step_x, step_v), k, float(fine_steps[line]),
+                    max_iterations, implicit_bending, compiled, whole[line:line + 1],
+                    snapped[line:line + 1])
         view.store_points(system)
 
 

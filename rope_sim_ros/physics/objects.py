@@ -1003,6 +1003,12 @@ class LineView:
 
     run_kernel = System.run_kernel
 
+    def drive(self, drive_x: np.ndarray, drive_v: np.ndarray) -> tuple:
+        """Return the view's points' rows of a System's drive arrays (n, Q, 3): (n, 2, 3) twice."""
+        # contiguous, as the System's own: a strided copy would be another kernel to compile
+        return (np.ascontiguousarray(drive_x[:, self.ends]),
+                np.ascontiguousarray(drive_v[:, self.ends]))
+
     def store_points(self, system: System) -> None:
         """Put the view's points (where its run left them) back into `system`."""
         system.point_x[self.ends] = self.point_x
