@@ -544,10 +544,10 @@ class MooringNode(Node):
         """
         Publish (and record) one output: every line's topics, then the ship's wrenches.
 
-        An output nobody subscribes to (and no bag records) is not built: a ship simulator
-        takes ship/mooring_wrench only, and building and publishing the 16 lines' 96 other
-        messages at 100 Hz cost twice the lines' physics. A subscriber gets the outputs from
-        the first one after its subscription is matched, as from any volatile publisher.
+        An output nobody subscribes to (and no bag records) is neither built nor published:
+        a ship simulator takes ship/mooring_wrench only, and the 16 lines' 96 other messages
+        would go to nobody 100 times a second. A subscriber gets the outputs from the first
+        one after its subscription is matched, as from any volatile publisher.
         """
         out, stamp_ns = published.output, published.stamp_ns
         frame_id = self.driver.arrangement.shared.frame_id
