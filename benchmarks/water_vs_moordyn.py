@@ -55,7 +55,7 @@ import time
 
 import numpy as np
 
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params import from_values, INTEGRATORS
 from rope_sim_ros.simulator import Simulator
 
 REPO = Path(__file__).resolve().parent.parent
@@ -191,7 +191,7 @@ def compare(duration, segment_counts):
             md_force, _, _, _ = run_moordyn(input_name, motion, DTM[n], duration)
         print(f'| {name} | MoorDyn RK2 (init {md_init:.1f} s) | {DTM[n]:.0e} | '
               f'{md_wall / duration:.4f} | {md_rtf:.1f} | 1.0 | - | - |', flush=True)
-        for integrator in ('implicit_euler', 'improved_euler'):
+        for integrator in INTEGRATORS:
             params = water_params(line, n, integrator, current)
             force, wall, dt = run_ours(params, motion, duration, shape)
             rtf = duration / wall
@@ -248,7 +248,7 @@ def main():
     parser.add_argument('--skip-moordyn', action='store_true')
     args = parser.parse_args()
     # compile every kernel before timing anything
-    for integrator in ('implicit_euler', 'improved_euler'):
+    for integrator in INTEGRATORS:
         run_ours(water_params('wire', 20, integrator, CURRENT), held, 0.05)
     if not args.skip_moordyn:
         compare(args.duration, args.segments)
