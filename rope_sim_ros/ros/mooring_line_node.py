@@ -77,7 +77,7 @@ from std_srvs.srv import Trigger
 
 from . import conversions
 from .recorder import BOOL, FLOAT64, POSE_ARRAY, POSE_STAMPED, Recorder, STRING, WRENCH
-from .spinning import spin_until_shutdown
+from .spinning import set_timer_period, spin_until_shutdown
 from .. import params
 from ..bag import BagError
 from ..line_driver import (BOLLARD, encode_event, ENDS, EVENTS_TOPIC, FAIRLEAD, LineDriver,
@@ -334,8 +334,7 @@ class MooringLineNode(Node):
         self._event('set', values=values)
         if 'publish_rate' in values:
             # the driver re-anchored the outputs; the ticks follow the rate
-            self._timer.timer_period_ns = round(
-                _tick_period(self.simulator.params.publish_rate) * 1e9)
+            set_timer_period(self._timer, _tick_period(self.simulator.params.publish_rate))
         self.get_logger().info('set ' + ', '.join(f'{k} = {v}' for k, v in values.items()))
 
     # -- inputs -------------------------------------------------------------------------
@@ -745,9 +744,8 @@ def main(args=None) -> int:
     """
     Run the node until Ctrl-C or SIGTERM, then close its bag (if recording).
 
-    rclpy.init installs handlers for SIGINT (which then raises KeyboardInterrupt) and
-    SIGTERM (which shuts the context down under spin): both end in the same clean shutdown,
-    exit code 0.
+    Ctrl-C and SIGTERM end the spin (spin_until_shutdown) or the start-up alike: the same
+    clean shutdown, exit code 0.
 
     :returns: 0, or 2 when a parameter is not allowed or record_path cannot be used.
     """

@@ -71,7 +71,7 @@ from .mooring_line_node import (check_pose_qos, describe, MooringLineNode, POSE_
                                 POSE_RELIABILITY, QOS_OVERRIDES_ALLOWED, signals_ignored,
                                 StartupError, warm_up)
 from .recorder import Recorder
-from .spinning import spin_until_shutdown
+from .spinning import set_timer_period, spin_until_shutdown
 from .. import arrangement
 from ..arrangement import (ARRANGEMENT_SPECS, LINE_SPECS, LINES, LINES_DESCRIPTION,
                            OWN_SPECS, SHARED)
@@ -318,7 +318,7 @@ class MooringNode(Node):
             return
         for p in parameters:
             if p.name == 'marker_rate':
-                self._markers_timer.timer_period_ns = round(1e9 / float(p.value))
+                set_timer_period(self._markers_timer, 1.0 / float(p.value))
         for line, values in self._changes(parameters).items():
             try:
                 self.driver.update(line, values)
@@ -327,8 +327,7 @@ class MooringNode(Node):
                 continue
             self._event('set', line=line, values=values)
             if 'publish_rate' in values:
-                self._timer.timer_period_ns = round(
-                    self._tick_period(self.driver.rate) * 1e9)
+                set_timer_period(self._timer, self._tick_period(self.driver.rate))
             self.get_logger().info(f'set {line + "." if line else ""}' + ', '.join(
                 f'{k} = {v}' for k, v in values.items()))
 
