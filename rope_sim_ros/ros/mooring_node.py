@@ -47,10 +47,10 @@ objects at 100 Hz cost more than the lines' physics.
 import functools
 import gc
 import math
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from geometry_msgs.msg import PoseArray, PoseStamped, Vector3, Wrench, WrenchStamped
+from geometry_msgs.msg import PoseArray, PoseStamped, Wrench, WrenchStamped
 import numpy as np
 from rcl_interfaces.msg import ParameterDescriptor, ParameterType, SetParametersResult
 import rclpy
@@ -119,11 +119,6 @@ def spec_of(name: str):
     return ARRANGEMENT_SPECS.get(name) or SPECS.get(name) or OWN_SPECS.get(name)
 
 
-def _vector3(v) -> Vector3:
-    x, y, z = (float(c) for c in v)
-    return Vector3(x=x, y=y, z=z)
-
-
 def _plain(value: Any) -> Any:
     """Return a parameter value as the checks expect it (arrays as lists)."""
     if hasattr(value, 'tolist'):
@@ -186,12 +181,16 @@ class MooringNode(Node):
         self._line_markers = LineMarkers()
 
         self._outputs: Dict[str, Any] = {}
+        # each output's line topics: (line index, relative name)
+        self._line_topics: Dict[str, Tuple[int, str]] = {}
         self._subscribers: Dict[str, int] = {}  # per output topic, as matched (see _publisher)
         for k, name in enumerate(self.names):
             topics = dict(LINE_OUTPUTS)
             if mooring.sims[k].payload:
                 topics[PAYLOAD_OUTPUT[0]] = PAYLOAD_OUTPUT[1]
             for relative, type_name in topics.items():
+                if relative != PARTED_TOPIC:  # published when it changes (_publish_parted)
+                    self._line_topics[f'{name}/{relative}'] = (k, relative)
                 self._outputs[f'{name}/{relative}'] = self._publisher(
                     MESSAGE_CLASSES[type_name], f'{name}/{relative}',
                     PARTED_QOS if relative == PARTED_TOPIC else 10)
@@ -555,51 +554,45 @@ class MooringNode(Node):
         """
         out, stamp_ns = published.output, published.stamp_ns
         frame_id = self.driver.arrangement.shared.frame_id
-        wanted = {topic for topic in self._outputs if self._wanted(topic)}
+        wanted = [topic for topic in self._line_topics if self._wanted(topic)]
         # every line's numbers at once (runner.particles_cdr and wrench_cdr line by line
         # cost a third of the node's time with 16 lines at 100 Hz); the same bytes
         sec, nanosec = split_ns(stamp_ns)
-        if any(f'{name}/rope/particles' in wanted for name in self.names):
+        kinds = {self._line_topics[topic][1] for topic in wanted}
+        if 'rope/particles' in kinds:
             positions = np.concatenate(out.positions)
             starts = np.cumsum([0] + [len(x) for x in out.positions])
             poses = np.concatenate([positions, lines_tangent_quaternions(positions, starts)], 1)
-        fairlead_torques = cross_rows(published.levers, out.fairlead_forces)
-        bollard_torques = cross_rows(self._bollard_levers, out.bollard_forces)
-        for k, name in enumerate(self.names):
-            build = {
-                'rope/particles': lambda k=k: cdr.pose_array(sec, nanosec, frame_id,
-                                                             poses[starts[k]:starts[k + 1]]),
-                'fairlead/tension': lambda k=k: cdr.wrench(out.fairlead_forces[k],
-                                                           fairlead_torques[k]),
-                'bollard/tension': lambda k=k: cdr.wrench(out.bollard_forces[k],
-                                                          bollard_torques[k]),
-                'fairlead/peak_tension': lambda k=k: cdr.float64(out.fairlead_peaks[k]),
-                'bollard/peak_tension': lambda k=k: cdr.float64(out.bollard_peaks[k]),
-                'winch/length': lambda k=k: cdr.float64(out.line_lengths[k]),
-            }
-            if out.payload_positions[k] is not None:
-                build[PAYLOAD_OUTPUT[0]] = lambda k=k: pose_stamped_cdr(
-                    stamp_ns, frame_id, out.payload_positions[k])
-            for relative, message in build.items():
-                topic = f'{name}/{relative}'
-                if topic in wanted:
-                    data = message()
-                    self._outputs[topic].publish(data)
-                    self.record(topic, data, stamp_ns)
-        world_force, world_moment = published.world_wrench()
-        for publisher, topic, frame, force, moment in (
-                (self._wrench_pub, WRENCH_TOPIC, self.driver.arrangement.ship_frame_id,
-                 published.force, published.moment),
-                (self._world_wrench_pub, WORLD_WRENCH_TOPIC, frame_id, world_force,
-                 world_moment)):
-            if not self._wanted(topic):
-                continue
-            msg = WrenchStamped()
-            msg.header.frame_id = frame
-            msg.header.stamp = conversions.ns_to_stamp(stamp_ns)
-            msg.wrench = Wrench(force=_vector3(force), torque=_vector3(moment))
-            publisher.publish(msg)
-            self.record(topic, msg)
+        if 'fairlead/tension' in kinds:
+            fairlead_torques = cross_rows(published.levers, out.fairlead_forces)
+        if 'bollard/tension' in kinds:
+            bollard_torques = cross_rows(self._bollard_levers, out.bollard_forces)
+        build = {
+            'rope/particles': lambda k: cdr.pose_array(sec, nanosec, frame_id,
+                                                       poses[starts[k]:starts[k + 1]]),
+            'fairlead/tension': lambda k: cdr.wrench(out.fairlead_forces[k],
+                                                     fairlead_torques[k]),
+            'bollard/tension': lambda k: cdr.wrench(out.bollard_forces[k], bollard_torques[k]),
+            'fairlead/peak_tension': lambda k: cdr.float64(out.fairlead_peaks[k]),
+            'bollard/peak_tension': lambda k: cdr.float64(out.bollard_peaks[k]),
+            'winch/length': lambda k: cdr.float64(out.line_lengths[k]),
+            PAYLOAD_OUTPUT[0]: lambda k: pose_stamped_cdr(stamp_ns, frame_id,
+                                                          out.payload_positions[k]),
+        }
+        for topic in wanted:
+            k, relative = self._line_topics[topic]
+            data = build[relative](k)
+            self._outputs[topic].publish(data)
+            self.record(topic, data, stamp_ns)
+        ship_frame_id = self.driver.arrangement.ship_frame_id
+        for publisher, topic, frame, wrench in (
+                (self._wrench_pub, WRENCH_TOPIC, ship_frame_id,
+                 lambda: (published.force, published.moment)),
+                (self._world_wrench_pub, WORLD_WRENCH_TOPIC, frame_id, published.world_wrench)):
+            if self._wanted(topic):
+                data = cdr.wrench_stamped(sec, nanosec, frame, *wrench())
+                publisher.publish(data)
+                self.record(topic, data, stamp_ns)
         self._publish_parted(out.parted)
         self._latest = published
         self._peaks = np.maximum(self._peaks, out.peaks)  # every step's, not only outputs'
