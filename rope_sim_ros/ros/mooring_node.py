@@ -134,11 +134,11 @@ class MooringNode(Node):
     LIVE_INPUT = MooringLineNode.LIVE_INPUT
     MAX_LAG = MooringLineNode.MAX_LAG
     OUTPUTS_PER_CALL = MooringLineNode.OUTPUTS_PER_CALL
-    # The timer ticks at publish_rate but no faster than this [Hz]. Every wake-up of the
-    # executor walks all of the node's entities (17 subscriptions and their handlers with
-    # 16 lines): at 100 Hz poses and 100 Hz ticks that walk cost more than the ticks did,
-    # which count quiet ticks and advance only when no pose stream is live; then a tick
-    # publishes the few outputs due since the last one.
+    # The timer ticks at publish_rate but no faster than this [Hz]. A tick only counts
+    # quiet ticks and advances when no pose stream is live (the pose callbacks publish the
+    # outputs), and each wake-up costs (on rclpy's Python executor, which a test or a
+    # composing program may spin this node with, a walk of all of its 16 lines' entities);
+    # above this rate a tick publishes the few outputs due since the last one.
     MAX_TICK_RATE = 50.0
     STAMP_AHEAD_LIMIT = MooringLineNode.STAMP_AHEAD_LIMIT
     STAMP_BEHIND_LIMIT = MooringLineNode.STAMP_BEHIND_LIMIT
@@ -203,7 +203,8 @@ class MooringNode(Node):
         for name in self.names:
             self._pose_subs[name] = self._pose_subscription(
                 f'{name}/bollard/pose', functools.partial(self._on_bollard, name))
-        # without event handlers: the executor walks every handler at every wake-up
+        # without event handlers: rclpy's Python executor walks every handler at every
+        # wake-up (on the events executor of spin_until_shutdown they cost nothing idle)
         self._winch_subs = [self.create_subscription(
             Float64, f'{name}/{WINCH_COMMAND}', functools.partial(self._on_winch_command, name),
             10, event_callbacks=SubscriptionEventCallbacks(use_default_callbacks=False))
@@ -344,9 +345,10 @@ class MooringNode(Node):
         overrides = QoSOverridingOptions(
             (QoSPolicyKind.RELIABILITY, QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH),
             callback=check_pose_qos)
-        # Only the ship's stream keeps rclpy's default incompatible-QoS handlers: the
-        # executor walks every handler at every wake-up (16 lines' bollard streams tripled
-        # its walk), and one warning for a best-effort ship pose publisher tells the story.
+        # Only the ship's stream keeps rclpy's default incompatible-QoS handlers: rclpy's
+        # Python executor walks every handler at every wake-up (16 lines' bollard streams
+        # tripled its walk), and one warning for a best-effort ship pose publisher tells the
+        # story.
         events = SubscriptionEventCallbacks(
             message_lost=functools.partial(self._on_lost, topic),
             use_default_callbacks=topic == SHIP_POSE)
