@@ -333,7 +333,7 @@ class Mooring:
         self._ship.append((t, np.array(position, dtype=float), q))
         self.forget_ship()
         teleported = []
-        for k, (sim, point) in enumerate(zip(self.sims, points)):
+        for k, (sim, point) in enumerate(zip(self.sims, points.tolist())):
             if sim.push_fairlead(t, point) == 'teleport' and self.started:
                 teleported.append(k)  # restarted in its place in the shared System
         return teleported
