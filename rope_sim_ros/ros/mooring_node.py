@@ -54,8 +54,7 @@ from geometry_msgs.msg import PoseArray, PoseStamped, Wrench, WrenchStamped
 import numpy as np
 from rcl_interfaces.msg import ParameterDescriptor, ParameterType, SetParametersResult
 import rclpy
-from rclpy.event_handler import (PublisherEventCallbacks, QoSMessageLostInfo,
-                                 QoSPublisherMatchedInfo, SubscriptionEventCallbacks)
+from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
 from rclpy.exceptions import ParameterException
 from rclpy.node import Node
 from rclpy.parameter import Parameter
@@ -70,6 +69,7 @@ from .mooring_display import line_diagnostics, LineMarkers
 from .mooring_line_node import (check_pose_qos, describe, MooringLineNode, POSE_QUEUE_DEPTH,
                                 POSE_RELIABILITY, QOS_OVERRIDES_ALLOWED, signals_ignored,
                                 StartupError, warm_up)
+from .outputs import OutputPublishers
 from .recorder import Recorder
 from .spinning import set_timer_period, spin_until_shutdown
 from .. import arrangement
@@ -183,7 +183,7 @@ class MooringNode(Node):
         self._outputs: Dict[str, Any] = {}
         # each output's line topics: (line index, relative name)
         self._line_topics: Dict[str, Tuple[int, str]] = {}
-        self._subscribers: Dict[str, int] = {}  # per output topic, as matched (see _publisher)
+        self._taken_outputs = OutputPublishers(self)
         for k, name in enumerate(self.names):
             topics = dict(LINE_OUTPUTS)
             if mooring.sims[k].payload:
@@ -222,20 +222,13 @@ class MooringNode(Node):
 
     def _publisher(self, cls, topic: str, qos):
         """
-        Create a publisher that keeps count of its subscribers (see _wanted).
+        Create an output's publisher, its subscribers counted (see _wanted).
 
-        Its one event handler is the matched one. rclpy's default incompatible-QoS handler
-        is left out: our outputs are reliable and volatile, which every subscriber's QoS
-        takes, so there is no incompatibility to report.
+        Without rclpy's default incompatible-QoS handler: our outputs are reliable and
+        volatile, which every subscriber's QoS takes, so there is no incompatibility to
+        report, and rclpy's Python executor would walk 98 of them at every wake-up.
         """
-        self._subscribers[topic] = 0
-
-        def matched(info: QoSPublisherMatchedInfo) -> None:
-            self._subscribers[topic] = info.current_count
-
-        return self.create_publisher(
-            cls, topic, qos, event_callbacks=PublisherEventCallbacks(
-                matched=matched, use_default_callbacks=False))
+        return self._taken_outputs.create(cls, topic, qos, default_events=False)
 
     # -- parameters -----------------------------------------------------------------------
 
@@ -603,10 +596,9 @@ class MooringNode(Node):
         """
         Return whether an output is taken: subscribed to, or recorded (see _publish).
 
-        The subscribers are counted by the publishers' matched events: asking each of the
-        16 lines' 96 publishers for its count at every output took 2 % of a core at 100 Hz.
+        The subscribers are counted by the publishers' matched events (OutputPublishers).
         """
-        return (self._subscribers[topic] > 0
+        return (self._taken_outputs.subscribed(topic)
                 or self.recorder is not None and self.recorder.recording)
 
     def _publish_parted(self, parted: np.ndarray) -> None:
@@ -638,7 +630,7 @@ class MooringNode(Node):
     def _on_markers(self) -> None:
         """Publish the lines as markers, coloured by their utilisation (mooring_display)."""
         published = self._latest
-        if published is None or not self._subscribers[MARKERS_TOPIC]:
+        if published is None or not self._taken_outputs.subscribed(MARKERS_TOPIC):
             return  # nobody looks: not built (16 strips of 51 points)
         out = published.output
         msg = self._line_markers(
