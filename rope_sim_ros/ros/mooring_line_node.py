@@ -599,9 +599,8 @@ class MooringLineNode(Node):
         build['fairlead/peak_tension'] = lambda: cdr.float64(out.fairlead_peak)
         build['bollard/peak_tension'] = lambda: cdr.float64(out.bollard_peak)
         build['winch/length'] = lambda: cdr.float64(out.line_length)
-        recording = self.recorder is not None and self.recorder.recording
         for topic, message in build.items():
-            if recording or self._taken_outputs.subscribed(topic):
+            if self._taken_outputs.taken(topic, self.recorder):
                 data = message()
                 self._outputs[topic].publish(data)
                 # a message without a header is recorded at its log time, as received

@@ -222,7 +222,7 @@ class MooringNode(Node):
 
     def _publisher(self, cls, topic: str, qos):
         """
-        Create an output's publisher, its subscribers counted (see _wanted).
+        Create an output's publisher, its subscribers counted (OutputPublishers.taken).
 
         Without rclpy's default incompatible-QoS handler: our outputs are reliable and
         volatile, which every subscriber's QoS takes, so there is no incompatibility to
@@ -549,11 +549,12 @@ class MooringNode(Node):
         """
         out, stamp_ns = published.output, published.stamp_ns
         frame_id = self.driver.arrangement.shared.frame_id
-        wanted = [topic for topic in self._line_topics if self._wanted(topic)]
+        taken = self._taken_outputs.taken
+        taken_topics = [topic for topic in self._line_topics if taken(topic, self.recorder)]
         # every line's numbers at once (runner.particles_cdr and wrench_cdr line by line
         # cost a third of the node's time with 16 lines at 100 Hz); the same bytes
         sec, nanosec = split_ns(stamp_ns)
-        kinds = {self._line_topics[topic][1] for topic in wanted}
+        kinds = {self._line_topics[topic][1] for topic in taken_topics}
         if 'rope/particles' in kinds:
             positions = np.concatenate(out.positions)
             starts = np.cumsum([0] + [len(x) for x in out.positions])
@@ -574,7 +575,7 @@ class MooringNode(Node):
             PAYLOAD_OUTPUT[0]: lambda k: pose_stamped_cdr(stamp_ns, frame_id,
                                                           out.payload_positions[k]),
         }
-        for topic in wanted:
+        for topic in taken_topics:
             k, relative = self._line_topics[topic]
             data = build[relative](k)
             self._outputs[topic].publish(data)
@@ -584,22 +585,13 @@ class MooringNode(Node):
                 (self._wrench_pub, WRENCH_TOPIC, ship_frame_id,
                  lambda: (published.force, published.moment)),
                 (self._world_wrench_pub, WORLD_WRENCH_TOPIC, frame_id, published.world_wrench)):
-            if self._wanted(topic):
+            if taken(topic, self.recorder):
                 data = cdr.wrench_stamped(sec, nanosec, frame, *wrench())
                 publisher.publish(data)
                 self.record(topic, data, stamp_ns)
         self._publish_parted(out.parted)
         self._latest = published
         self._peaks = np.maximum(self._peaks, out.peaks)  # every step's, not only outputs'
-
-    def _wanted(self, topic: str) -> bool:
-        """
-        Return whether an output is taken: subscribed to, or recorded (see _publish).
-
-        The subscribers are counted by the publishers' matched events (OutputPublishers).
-        """
-        return (self._taken_outputs.subscribed(topic)
-                or self.recorder is not None and self.recorder.recording)
 
     def _publish_parted(self, parted: np.ndarray) -> None:
         """Publish (and record) on <line>/rope/parted whether each line has parted, if new."""

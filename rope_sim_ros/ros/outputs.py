@@ -15,10 +15,12 @@
 
 """Output publishers that know whether anyone takes them (the nodes build nothing for nobody)."""
 
-from typing import Dict
+from typing import Dict, Optional
 
 from rclpy.event_handler import PublisherEventCallbacks, QoSPublisherMatchedInfo
 from rclpy.node import Node
+
+from .recorder import Recorder
 
 
 class OutputPublishers:
@@ -59,3 +61,7 @@ class OutputPublishers:
     def subscribed(self, topic: str) -> bool:
         """Tell whether `topic` has a subscriber now (as its matched events said)."""
         return self._subscribers[topic] > 0
+
+    def taken(self, topic: str, recorder: Optional[Recorder]) -> bool:
+        """Tell whether an output of `topic` is to be built: subscribed to, or recorded."""
+        return recorder is not None and recorder.recording or self.subscribed(topic)
