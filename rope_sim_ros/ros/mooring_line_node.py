@@ -50,12 +50,10 @@ after SIGKILL `rope_sim recover` completes it.
 """
 
 import array
-import contextlib
 import functools
 import gc
 import math
 import os
-import signal
 from typing import Any, Dict, List, Optional
 import warnings
 
@@ -78,7 +76,7 @@ from std_srvs.srv import Trigger
 from . import conversions
 from .outputs import OutputPublishers
 from .recorder import BOOL, FLOAT64, POSE_ARRAY, POSE_STAMPED, Recorder, STRING, WRENCH
-from .spinning import set_timer_period, spin_until_shutdown
+from .spinning import set_timer_period, signals_ignored, spin_until_shutdown
 from .. import params
 from ..bag import BagError, cdr
 from ..line_driver import (BOLLARD, encode_event, ENDS, EVENTS_TOPIC, FAIRLEAD, LineDriver,
@@ -783,22 +781,6 @@ def main(args=None) -> int:
             node.destroy_node()
         rclpy.try_shutdown()
     return 0
-
-
-@contextlib.contextmanager
-def signals_ignored():
-    """Ignore SIGINT and SIGTERM inside the block (main thread only); SIGKILL still works."""
-    saved = {}
-    try:
-        for number in (signal.SIGINT, signal.SIGTERM):
-            saved[number] = signal.signal(number, signal.SIG_IGN)
-    except ValueError:  # not the main thread: leave signals alone
-        pass
-    try:
-        yield
-    finally:
-        for number, handler in saved.items():
-            signal.signal(number, handler if handler is not None else signal.SIG_DFL)
 
 
 if __name__ == '__main__':

@@ -67,11 +67,11 @@ from visualization_msgs.msg import MarkerArray
 from . import conversions
 from .mooring_display import line_diagnostics, LineMarkers
 from .mooring_line_node import (check_pose_qos, describe, MooringLineNode, POSE_QUEUE_DEPTH,
-                                POSE_RELIABILITY, QOS_OVERRIDES_ALLOWED, signals_ignored,
-                                StartupError, warm_up)
+                                POSE_RELIABILITY, QOS_OVERRIDES_ALLOWED, StartupError,
+                                warm_up)
 from .outputs import OutputPublishers
 from .recorder import Recorder
-from .spinning import set_timer_period, spin_until_shutdown
+from .spinning import set_timer_period, signals_ignored, spin_until_shutdown
 from .. import arrangement
 from ..arrangement import (ARRANGEMENT_SPECS, LINE_SPECS, LINES, LINES_DESCRIPTION,
                            OWN_SPECS, SHARED)

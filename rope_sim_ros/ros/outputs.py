@@ -34,14 +34,13 @@ class OutputPublishers:
     """
 
     def __init__(self, node: Node):
-        """Create the publishers of `node`."""
+        """Count the subscribers of the output publishers created here for `node`."""
         self._node = node
-        self._subscribers: Dict[str, int] = {}
-        self.publishers: Dict[str, object] = {}
+        self._subscribers: Dict[str, int] = {}  # by topic, as the matched events said
 
     def create(self, cls, topic: str, qos, default_events: bool = True):
         """
-        Create the publisher of `topic` (relative name, its key here) and count its subscribers.
+        Create and return the publisher of `topic` (relative name) and count its subscribers.
 
         :param default_events: keep rclpy's default incompatible-QoS handler; rclpy's Python
             executor walks every handler at every wake-up, which a node with many publishers
@@ -52,11 +51,9 @@ class OutputPublishers:
         def matched(info: QoSPublisherMatchedInfo) -> None:
             self._subscribers[topic] = info.current_count
 
-        publisher = self._node.create_publisher(
+        return self._node.create_publisher(
             cls, topic, qos, event_callbacks=PublisherEventCallbacks(
                 matched=matched, use_default_callbacks=default_events))
-        self.publishers[topic] = publisher
-        return publisher
 
     def subscribed(self, topic: str) -> bool:
         """Tell whether `topic` has a subscriber now (as its matched events said)."""

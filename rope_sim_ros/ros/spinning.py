@@ -12,7 +12,7 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Spin a node until Ctrl-C or SIGTERM, both ending quietly (the nodes' shared main loop)."""
+"""Spin a node until Ctrl-C or SIGTERM, both ending quietly: the nodes' main loop and signals."""
 
 import contextlib
 import signal
@@ -78,25 +78,44 @@ def _signals_stop(stop: List[int]):
     """
     Inside the block, SIGINT and SIGTERM append their number to `stop` and do nothing else.
 
-    Afterwards the handlers are as before, rclpy's included. Outside the main thread,
-    signals are left alone.
+    Afterwards the handlers are as before, rclpy's included.
     """
     rclpy_options = get_current_signal_handlers_options()
-    saved = {}
+    taken = False
     try:
-        for number in STOPPING_SIGNALS:
-            saved[number] = signal.signal(number, lambda signum, frame: stop.append(signum))
-    except ValueError:  # not the main thread
-        pass
-    try:
-        yield
+        with _stopping_signals(lambda signum, frame: stop.append(signum)) as taken:
+            yield
     finally:
-        for number, handler in saved.items():
-            signal.signal(number, handler if handler is not None else signal.SIG_DFL)
-        if saved and rclpy_options != SignalHandlerOptions.NO:
+        if taken and rclpy_options != SignalHandlerOptions.NO:
             # rclpy's handlers go back on top, chaining to the ones just restored
             uninstall_signal_handlers()
             install_signal_handlers(rclpy_options)
+
+
+def signals_ignored():
+    """Ignore SIGINT and SIGTERM inside the block (main thread only); SIGKILL still works."""
+    return _stopping_signals(signal.SIG_IGN)
+
+
+@contextlib.contextmanager
+def _stopping_signals(handler):
+    """
+    Give SIGINT and SIGTERM to `handler` inside the block; yield whether they were taken.
+
+    Outside the main thread signals are left alone (False). Afterwards the Python handlers
+    are as before.
+    """
+    saved = {}
+    try:
+        for number in STOPPING_SIGNALS:
+            saved[number] = signal.signal(number, handler)
+    except ValueError:  # not the main thread
+        pass
+    try:
+        yield bool(saved)
+    finally:
+        for number, previous in saved.items():
+            signal.signal(number, previous if previous is not None else signal.SIG_DFL)
 
 
 def set_timer_period(timer: Timer, period: float) -> None:
