@@ -33,7 +33,7 @@ trajectory under the rope) back onto it, with position and velocity continuous.
 """
 
 import math
-from typing import NamedTuple
+from typing import NamedTuple, Optional
 
 import numba
 import numpy as np
@@ -44,10 +44,15 @@ class TrajectoryError(ValueError):
 
 
 class EndTrajectory:
-    """A bounded buffer of (t, position) samples of one end."""
+    """
+    A bounded buffer of (t, position) samples of one end, or of several points moving as one.
+
+    With `width` K each sample holds K points, (K, 3): a ship's fairleads, all sampled in one
+    call, each point the very numbers an EndTrajectory of that point alone gives.
+    """
 
     def __init__(self, coast_time: float = 1.0, keep: float = 5.0,
-                 method: str = 'linear'):
+                 method: str = 'linear', width: Optional[int] = None):
         """
         Create an empty trajectory.
 
@@ -55,16 +60,23 @@ class EndTrajectory:
             sample.
         :param keep: how much history [s] to keep behind the newest sample.
         :param method: 'linear' or 'cubic'.
+        :param width: None: a sample is one point (3,); K: it is K points (K, 3).
         """
         self.coast_time = coast_time
         self.method = method
         self.keep = keep
+        self.width = width
         # samples live in [_first, _count) of arrays that grow by doubling: a push at 1 kHz
         # must not copy the whole history
         self._times = np.empty(64)
-        self._points = np.empty((64, 3))
+        self._points = np.empty((64,) + self._shape)
         self._first = 0
         self._count = 0
+        self.version = 0  # counts the changes (pushes and clears): a copy can tell it holds
+
+    @property
+    def _shape(self) -> tuple:
+        return (3,) if self.width is None else (self.width, 3)
 
     @property
     def _t(self) -> np.ndarray:
@@ -97,12 +109,13 @@ class EndTrajectory:
 
     @property
     def last_position(self):
-        """Newest sample position, or None."""
-        return self._points[self._count - 1].copy() if len(self) else None
+        """Newest sample position as a list (K of them with width K), or None."""
+        return self._points[self._count - 1].tolist() if len(self) else None
 
     def clear(self) -> None:
         """Forget every sample."""
         self._first = self._count = 0
+        self.version += 1
 
     def push(self, t: float, position) -> None:
         """
@@ -110,9 +123,18 @@ class EndTrajectory:
 
         :raises TrajectoryError: non-finite time or position, or t not after the newest sample.
         """
-        x, y, z = (float(c) for c in position)  # plain floats: this runs at 1 kHz
-        if not all(map(math.isfinite, (t, x, y, z))):
-            raise TrajectoryError(f'non-finite sample at t={t}: {[x, y, z]}')
+        if self.width is None:
+            x, y, z = position  # plain floats: this runs at 1 kHz
+            point = x, y, z = float(x), float(y), float(z)
+            finite = math.isfinite(x) and math.isfinite(y) and math.isfinite(z)
+        else:
+            point = np.asarray(position, dtype=float)
+            if point.shape != self._shape:
+                raise TrajectoryError(f'a sample of {self.width} points has shape '
+                                      f'{self._shape}, not {point.shape}')
+            finite = bool(np.isfinite(point).all())
+        if not (finite and math.isfinite(t)):
+            raise TrajectoryError(f'non-finite sample at t={t}: {np.asarray(point).tolist()}')
         if self._count > self._first and t <= self._times[self._count - 1]:
             raise TrajectoryError(
                 f'sample at t={t:.6f} s is not after the newest one ({self.last_time:.6f} s)')
@@ -122,14 +144,15 @@ class EndTrajectory:
         if self._count == len(self._times):
             self._make_room()
         self._times[self._count] = t
-        self._points[self._count] = (x, y, z)
+        self._points[self._count] = point
         self._count += 1
+        self.version += 1
 
     def _make_room(self) -> None:
         """Move the live samples to the front, doubling the arrays if they are half full."""
         live = self._count - self._first
         size = len(self._times) * (2 if 2 * live >= len(self._times) else 1)
-        times, points = np.empty(size), np.empty((size, 3))
+        times, points = np.empty(size), np.empty((size,) + self._shape)
         times[:live] = self._times[self._first:self._count]
         points[:live] = self._points[self._first:self._count]
         self._times, self._points = times, points
@@ -137,7 +160,7 @@ class EndTrajectory:
 
     def sample(self, times: np.ndarray) -> tuple:
         """
-        Positions and velocities at `times`, shapes (n, 3) each.
+        Positions and velocities at `times`, shapes (n, 3) each ((n, K, 3) of K points).
 
         Before the first sample the end rests there; between samples it follows the chosen
         interpolation; after the last one it coasts to a stop, then holds.
@@ -155,8 +178,8 @@ def _tangent(t, p, k):
 
 @numba.njit(cache=True)
 def _sample(t, p, times, coast_time, cubic):
-    positions = np.empty((len(times), 3))
-    velocities = np.zeros((len(times), 3))
+    positions = np.empty((len(times),) + p.shape[1:])
+    velocities = np.zeros((len(times),) + p.shape[1:])
     last = len(t) - 1
     for n in range(len(times)):
         tau = min(max(times[n], t[0]), t[last] + coast_time)

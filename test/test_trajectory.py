@@ -107,3 +107,40 @@ def test_history_is_bounded():
     for t in np.arange(0.0, 10.0, 0.1):
         trajectory.push(float(t), [t, 0.0, 0.0])
     assert len(trajectory) <= 12
+
+
+@pytest.mark.parametrize('method', ['linear', 'cubic'])
+def test_points_sampled_together_are_each_sampled_alone(method):
+    # A trajectory of K points (a ship's fairleads) gives each point the very numbers of a
+    # trajectory of that point alone: between samples, before the first, coasting past the
+    # last, and after old samples are forgotten.
+    rng = np.random.default_rng(3)
+    together = EndTrajectory(keep=0.5, method=method, width=4)
+    alone = [EndTrajectory(keep=0.5, method=method) for _ in range(4)]
+    for t in np.arange(0.0, 2.0, 0.02):
+        points = rng.normal(size=(4, 3))
+        together.push(float(t), points)
+        for trajectory, point in zip(alone, points.tolist()):
+            trajectory.push(float(t), point)
+    assert len(together) == len(alone[0]) < 30
+    times = np.linspace(1.0, 3.5, 301)
+    x, v = together.sample(times)
+    assert x.shape == v.shape == (301, 4, 3)
+    for k, trajectory in enumerate(alone):
+        xk, vk = trajectory.sample(times)
+        assert (x[:, k] == xk).all() and (v[:, k] == vk).all()
+    assert np.abs(v[-1]).max() == 0.0 and np.abs(v[:150]).max() > 1.0  # coasted to a stop
+
+
+def test_a_sample_of_many_points_is_checked_whole():
+    trajectory = EndTrajectory(width=2)
+    trajectory.push(0.0, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    version = trajectory.version
+    with pytest.raises(TrajectoryError, match=r'shape \(2, 3\), not \(3,\)'):
+        trajectory.push(1.0, [1.0, 2.0, 3.0])
+    with pytest.raises(TrajectoryError, match='non-finite'):
+        trajectory.push(1.0, [[1.0, 2.0, 3.0], [4.0, math.inf, 6.0]])
+    assert len(trajectory) == 1 and trajectory.version == version  # nothing changed
+    assert trajectory.last_position == [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]
+    trajectory.clear()
+    assert len(trajectory) == 0 and trajectory.version == version + 1
