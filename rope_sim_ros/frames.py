@@ -24,6 +24,7 @@ time stamps are integer nanoseconds.
 import math
 from typing import NamedTuple, Sequence, Tuple
 
+import numba
 import numpy as np
 
 NANOSECONDS = 1_000_000_000
@@ -85,6 +86,19 @@ def pose_point(position: Sequence[float], orientation: Sequence[float], offset) 
     :param offset: the point in the pose's body frame [m], shape (3,).
     :raises PoseError: non-finite position or orientation, or a zero quaternion.
     """
+    position, q, norm = _checked_pose(position, orientation)
+    ux, uy, uz, w = (c / norm for c in q)
+    vx, vy, vz = (float(c) for c in offset)
+    # v + 2 w (u × v) + 2 u × (u × v)
+    cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    lever = np.array([vx + 2.0 * (w * cx + uy * cz - uz * cy),
+                      vy + 2.0 * (w * cy + uz * cx - ux * cz),
+                      vz + 2.0 * (w * cz + ux * cy - uy * cx)])
+    return PosePoint(np.add(position, lever), lever, norm)
+
+
+def _checked_pose(position: Sequence[float], orientation: Sequence[float]) -> tuple:
+    """Return the position and orientation as float tuples and |q| (PoseError: see pose_point)."""
     px, py, pz = position
     position = (float(px), float(py), float(pz))
     if not all(map(math.isfinite, position)):
@@ -96,14 +110,7 @@ def pose_point(position: Sequence[float], orientation: Sequence[float], offset) 
     norm = math.sqrt(sum(c * c for c in q))
     if norm < MIN_QUATERNION_NORM:
         raise PoseError(f'zero quaternion {list(q)}')
-    ux, uy, uz, w = (c / norm for c in q)
-    vx, vy, vz = (float(c) for c in offset)
-    # v + 2 w (u × v) + 2 u × (u × v)
-    cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-    lever = np.array([vx + 2.0 * (w * cx + uy * cz - uz * cy),
-                      vy + 2.0 * (w * cy + uz * cx - ux * cz),
-                      vz + 2.0 * (w * cz + ux * cy - uy * cx)])
-    return PosePoint(np.add(position, lever), lever, norm)
+    return position, q, norm
 
 
 def pose_points(position: Sequence[float], orientation: Sequence[float],
@@ -111,21 +118,27 @@ def pose_points(position: Sequence[float], orientation: Sequence[float],
     """
     Return the points pose ⊕ offset of many offsets (n, 3) at once.
 
-    pose_point's arithmetic, the same operations in the same order on numpy columns, so
-    each point is the very float pose_point gives (a ship's fairleads, one pose each).
+    pose_point's arithmetic, the same operations in the same order, compiled: each point is
+    the very float pose_point gives (a ship's fairleads, at every pose).
 
     :raises PoseError: as pose_point.
     """
-    x0, y0, z0 = pose_point(position, orientation, (0.0, 0.0, 0.0)).point  # the checks
-    q = tuple(float(c) for c in orientation)
-    norm = math.sqrt(sum(c * c for c in q))
+    (x, y, z), q, norm = _checked_pose(position, orientation)
     ux, uy, uz, w = (c / norm for c in q)
-    v = np.asarray(offsets, dtype=float).reshape(-1, 3)
-    vx, vy, vz = v[:, 0], v[:, 1], v[:, 2]
-    cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-    return np.column_stack([x0 + (vx + 2.0 * (w * cx + uy * cz - uz * cy)),
-                            y0 + (vy + 2.0 * (w * cy + uz * cx - ux * cz)),
-                            z0 + (vz + 2.0 * (w * cz + ux * cy - uy * cx))])
+    offsets = np.ascontiguousarray(offsets, dtype=float).reshape(-1, 3)
+    return _pose_points(x, y, z, ux, uy, uz, w, offsets)
+
+
+@numba.njit(cache=True)
+def _pose_points(x, y, z, ux, uy, uz, w, offsets):
+    points = np.empty_like(offsets)
+    for i in range(len(offsets)):
+        vx, vy, vz = offsets[i, 0], offsets[i, 1], offsets[i, 2]
+        cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+        points[i, 0] = x + (vx + 2.0 * (w * cx + uy * cz - uz * cy))
+        points[i, 1] = y + (vy + 2.0 * (w * cy + uz * cx - ux * cz))
+        points[i, 2] = z + (vz + 2.0 * (w * cz + ux * cy - uy * cx))
+    return points
 
 
 def rotation_matrix(q: Sequence[float]) -> np.ndarray:

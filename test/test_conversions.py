@@ -96,6 +96,24 @@ def test_frames_and_messages_give_the_same_point():
         assert np.allclose(plain.point, position + plain.lever)
 
 
+def test_many_points_are_each_the_point_of_one():
+    # pose_points (compiled, a ship's fairleads at every pose) gives the very floats of
+    # pose_point, offset by offset: an arrangement's lines and the lines alone agree
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        position, orientation = rng.normal(scale=50.0, size=3), rng.normal(size=4)
+        offsets = rng.normal(scale=100.0, size=(16, 3))
+        points = frames.pose_points(position, orientation, offsets)
+        assert points.shape == (16, 3)
+        for point, offset in zip(points, offsets):
+            alone = frames.pose_point(position, orientation, offset).point
+            assert point.tolist() == alone.tolist()
+    for position, orientation, reason in (((0, math.nan, 0), (0, 0, 0, 1), 'non-finite position'),
+                                          ((0, 0, 0), (0, 0, 0, 0), 'zero quaternion')):
+        with pytest.raises(frames.PoseError, match=reason):
+            frames.pose_points(position, orientation, [[1.0, 0.0, 0.0]])
+
+
 def test_stamp_ns_and_split_ns():
     assert frames.stamp_ns(12, 5) == 12_000_000_005
     assert frames.split_ns(12_000_000_005) == (12, 5)
