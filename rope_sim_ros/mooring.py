@@ -52,13 +52,13 @@ from .arrangement import ArrangementParams, LineSetup
 from .frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
 from .params import ParameterError
 from .physics.catenary import CatenaryError, solve_catenary
-from .physics.integrators import implicit_bending
+from .physics.integrators import drive_lines, implicit_bending, lines_motion_spreads
 from .physics.objects import System
 from .physics.rope import RopeProperties
 from .physics.superelastic import MAX_ITERATIONS
 from .simulator import (divide_run, load_materials, Parting, share_system, Simulator,
                         take_peaks)
-from .trajectory import TrajectoryError
+from .trajectory import EndTrajectory, TrajectoryError
 
 ROOT3 = math.sqrt(3.0)
 # Bisection steps of length_for_tension (2^-60 of the bracket: far below a micrometre).
@@ -258,6 +258,12 @@ class Mooring:
         # ship samples (t, position, unit quaternion): the newest at or before an output
         # gives its orientation (as LineDriver.lever does for the levers)
         self._ship: deque = deque()
+        # every fairlead in one trajectory, sampled for a whole group in one call; line k's
+        # own trajectory holds the same samples while _mirrored[k] is (it, its version)
+        first = self.sims[0].fairlead
+        self._fairleads = EndTrajectory(first.coast_time, first.keep, first.method,
+                                        width=len(self.sims))
+        self._mirrored = [self._mirror(sim) for sim in self.sims]
         self._group()
 
     # -- lines ----------------------------------------------------------------------------
@@ -281,6 +287,14 @@ class Mooring:
     def kernel_calls(self) -> int:
         """Return how many kernel calls step every line once: one per step group."""
         return len(self.groups)
+
+    def _mirror(self, sim: Simulator) -> Optional[tuple]:
+        """Return what _mirrored keeps of a line whose fairlead samples equal _fairleads'."""
+        mine, shared = sim.fairlead, self._fairleads
+        settings = (mine.coast_time, mine.keep, mine.method)
+        if settings != (shared.coast_time, shared.keep, shared.method):
+            return None
+        return mine, mine.version
 
     def _simulator(self, line: LineSetup, params) -> Simulator:
         try:
@@ -330,12 +344,22 @@ class Mooring:
         if self._ship and t <= self._ship[-1][0]:
             raise TrajectoryError(f'ship pose at t={t:.6f} s is not after the newest one '
                                   f'({self._ship[-1][0]:.6f} s)')
+        self._fairleads.push(t, points)
         self._ship.append((t, np.array(position, dtype=float), q))
         self.forget_ship()
         teleported = []
         for k, (sim, point) in enumerate(zip(self.sims, points.tolist())):
+            version = sim.fairlead.version
+            mirrored = self._mirrored[k] == (sim.fairlead, version)
             if sim.push_fairlead(t, point) == 'teleport' and self.started:
                 teleported.append(k)  # restarted in its place in the shared System
+            # still the same samples if this push was the trajectory's only change
+            mirrored = mirrored and sim.fairlead.version == version + 1
+            self._mirrored[k] = (sim.fairlead, sim.fairlead.version) if mirrored else None
+        if len(teleported) == len(self.sims):  # every line holds this sample alone
+            self._fairleads.clear()
+            self._fairleads.push(t, points)
+            self._mirrored = [self._mirror(sim) for sim in self.sims]
         return teleported
 
     def push_bollard(self, k: int, t: float, point) -> str:
@@ -491,15 +515,35 @@ class Mooring:
         self._step(group, times, drive_x, drive_v, done)
 
     def _drive(self, group: _Group, times: np.ndarray) -> tuple:
-        """Return a group's driven points at `times` (n, Q, 3) twice and end distances (n, L)."""
+        """
+        Return a group's driven points at `times` (n, Q, 3) twice and end distances (n, L).
+
+        Simulator.drive of each line. A line whose bollard stands still and whose fairlead
+        samples are _fairleads' gets the same numbers from one sampling of every fairlead.
+        """
         n, count = len(times), len(group.members)
         drive_x = np.empty((n, 2 * count, 3))
         drive_v = np.empty((n, 2 * count, 3))
         distances = np.empty((n, count))
+        shared, bollards, reach = [], [], []  # (j, k) of those lines, their bollards, reach
         for j, k in enumerate(group.members):
-            ends, velocities, distances[:, j] = self.sims[k].drive(times)
+            sim = self.sims[k]
+            fixed = sim.fixed_bollard
+            if fixed is not None and self._mirrored[k] == (sim.fairlead, sim.fairlead.version):
+                shared.append((j, k))
+                bollards.append(fixed)
+                reach.append(sim.reach)
+                continue
+            ends, velocities, distances[:, j] = sim.drive(times)
             drive_x[:, 2 * j:2 * j + 2] = ends
             drive_v[:, 2 * j:2 * j + 2] = velocities
+        if shared:
+            shared = np.array(shared)
+            beyond = drive_lines(drive_x, drive_v, distances, *self._fairleads.sample(times),
+                                 shared, np.array(bollards, dtype=float), np.array(reach))
+            for j, k in shared[beyond]:
+                self.sims[k].hold_beyond_reach(drive_x[:, 2 * j:2 * j + 2],
+                                               drive_v[:, 2 * j:2 * j + 2], distances[:, j])
         return drive_x, drive_v, distances
 
     def _step(self, group: _Group, times: np.ndarray, drive_x: np.ndarray,
@@ -508,14 +552,14 @@ class Mooring:
         sims = [self.sims[k] for k in group.members]
         for j, sim in enumerate(sims):  # ends brought back onto their tracks (views)
             sim.blend_ends(times, drive_x[:, 2 * j:2 * j + 2], drive_v[:, 2 * j:2 * j + 2])
-        parts, violent = self._divisions(sims, drive_v)
+        parts, violent = self._divisions(group, sims, drive_v)
         if parts == 1:
             self._run(group, group.step, drive_x, drive_v, done)
         elif not violent:  # only explicit steps' bounds: divide the whole run alike
             self._run_divided(group, sims, divide_run(group.time, times, parts), done)
         else:
             for t in times:  # a violent stretch somewhere: look again before every step
-                parts = self._divisions(sims, drive_v)[0]
+                parts = self._divisions(group, sims, drive_v)[0]
                 self._run_divided(group, sims, divide_run(group.time, [t], parts), done)
                 self._set_group_time(group, float(t))
         self._set_group_time(group, float(times[-1]))
@@ -523,9 +567,12 @@ class Mooring:
         self._check(group, speeds, done.restarted)
 
     @staticmethod
-    def _divisions(sims: List[Simulator], drive_v: np.ndarray) -> Tuple[int, bool]:
+    def _divisions(group: _Group, sims: List[Simulator],
+                   drive_v: np.ndarray) -> Tuple[int, bool]:
         """Return the parts every step of a group is divided in, and whether to look again."""
-        each = [sim.divisions(drive_v[:, 2 * j:2 * j + 2]) for j, sim in enumerate(sims)]
+        spreads = lines_motion_spreads(group.system.v, group.starts, drive_v)
+        each = [sim.divisions_for(spread, speed)
+                for sim, (spread, _, speed) in zip(sims, spreads.tolist())]
         return max(parts for parts, _ in each), any(violent for _, violent in each)
 
     def _run_divided(self, group: _Group, sims: List[Simulator], fine: np.ndarray,
@@ -542,8 +589,9 @@ class Mooring:
         integrator = self.sims[group.members[0]].params.integrator
         fine = 0.0
         if integrator == 'adaptive':  # each line's own improved Euler step
-            fine = [self.sims[k].fine_step(drive_v[:, 2 * j:2 * j + 2])
-                    for j, k in enumerate(group.members)]
+            speeds = lines_motion_spreads(group.system.v, group.starts, drive_v)[:, 2]
+            fine = [self.sims[k].fine_step_for(speed)
+                    for k, speed in zip(group.members, speeds.tolist())]
         parted = group.system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS,
                                    group.bending, fine_step=fine)
         for k in group.members:
@@ -571,7 +619,12 @@ class Mooring:
         :param end_speeds: each line's largest end speed over the steps just taken [m/s].
         """
         system = group.system
-        if not system.largest_load()[0]:  # which lines? (the kernel stops at the first)
+        finite, largest = system.largest_load()
+        bounds = np.array([self.sims[k].load_bound(end_speeds[j])
+                           for j, k in enumerate(group.members)])
+        if finite and largest <= bounds.min():  # the common case: no line near its bound
+            return
+        if not finite:  # which lines? (the kernel stops at the first)
             rows = np.isfinite(system.x).all(axis=1) & np.isfinite(system.v).all(axis=1)
             finite = np.logical_and.reduceat(rows, group.starts[:-1])
             finite &= (np.isfinite(system.point_x).all(axis=1)
@@ -580,8 +633,6 @@ class Mooring:
                 restarted[group.members[j]] = 'non-finite state'
                 self.sims[group.members[j]].restart(group.time)
         largest = system.line_loads()  # from the loads largest_load computed, once per state
-        bounds = np.array([self.sims[k].load_bound(end_speeds[j])
-                           for j, k in enumerate(group.members)])
         for j in np.flatnonzero(~(largest <= bounds)):  # also NaN
             restarted[group.members[j]] = 'unphysical state'
             self.sims[group.members[j]].restart(group.time)
@@ -641,11 +692,11 @@ class Mooring:
             system = group.system
             forces[group.members], strains[group.members] = system.loads()
             peaks[group.members] = take_peaks(system)
+            x = system.x.copy()  # one copy; each line's particles are a view of it
             for j, k in enumerate(group.members):
-                line = system.lines[j]
-                positions[k] = line.x.copy()
+                positions[k] = x[group.starts[j]:group.starts[j + 1]]
                 if self.sims[k].payload:
-                    payloads[k] = system.point_x[line.ends[0]].copy()
+                    payloads[k] = system.point_x[system.lines[j].ends[0]].copy()
         tensions = np.linalg.norm(forces, axis=2)
         parted = np.array([sim.parting is not None for sim in self.sims])
         lengths = np.array([sim.length for sim in self.sims])

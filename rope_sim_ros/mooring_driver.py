@@ -284,7 +284,7 @@ class MooringDriver:
         offsets = mooring.offsets
         force, moment = mooring_wrench(out.fairlead_forces, offsets, orientation)
         # one sum is finite only if every number is (an overflow to inf is refused too)
-        total = (sum(float(p.sum()) for p in out.positions) + float(out.fairlead_forces.sum())
+        total = (float(np.concatenate(out.positions).sum()) + float(out.fairlead_forces.sum())
                  + float(out.bollard_forces.sum()) + float(force.sum()) + float(moment.sum())
                  + float(out.fairlead_peaks.sum()) + float(out.bollard_peaks.sum())
                  + float(out.line_lengths.sum()))

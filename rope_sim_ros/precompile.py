@@ -126,6 +126,22 @@ def exercise(values: dict) -> None:
     sim.output()
 
 
+def exercise_mooring() -> None:
+    """Run a two-line arrangement: the kernels that drive a group of lines at once."""
+    from .arrangement import from_values
+    from .mooring import Mooring
+
+    line = {'length': 30.0, 'segments': 4, 'bollard_position': [0.0, 0.0, 0.0]}
+    mooring = Mooring(from_values({
+        'lines': ['a', 'b'], 'a': dict(line, fairlead_offset=[29.0, 0.0, 0.0]),
+        'b': dict(line, fairlead_offset=[29.0, 1.0, 0.0])}))
+    for t in (0.0, 0.1):
+        mooring.push_ship(t, [0.01 * t, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0])
+    mooring.start(0.0)
+    mooring.advance_to(3.0 * mooring.time_step)
+    mooring.output()
+
+
 def dispatchers() -> Dict[str, object]:
     """Return the numba dispatchers of the loaded rope_sim_ros modules by qualified name."""
     from numba.core.dispatcher import Dispatcher
@@ -211,6 +227,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     removed = refresh_in_tree_cache(PACKAGE_DIR, fingerprint)
     for values in CONFIGURATIONS:
         exercise(values)
+    exercise_mooring()
     found = dispatchers()
     compiled = sum(sum(d.stats.cache_misses.values()) for d in found.values())
     loaded = sum(sum(d.stats.cache_hits.values()) for d in found.values())

@@ -545,11 +545,12 @@ class Simulator:
         last = end.last_position if len(end) else rest
         settled = end.settled_until
         end.push(t, position)
-        self._off_track |= self.started and self.time > settled
+        started = self.system is not None
+        self._off_track |= started and self.time > settled
         self.last_jump = 0.0 if last is None else math.dist(position, last)
         if end is self.bollard and self.payload:
             return ''
-        if self.started and self.last_jump > self.params.teleport_distance:
+        if started and self.last_jump > self.params.teleport_distance:
             end.clear()
             end.push(t, position)
             self.restart()  # the end rests at its only sample until then
@@ -581,13 +582,21 @@ class Simulator:
         ends = np.empty((len(times), 2, 3))
         velocities = np.zeros((len(times), 2, 3))
         ends[:, 1], velocities[:, 1] = self.fairlead.sample(times)
+        fixed = self.fixed_bollard
         if self.payload:
             ends[:, 0], velocities[:, 0] = ends[:, 1], velocities[:, 1]
-        elif len(self.bollard):
+        elif fixed is None:
             ends[:, 0], velocities[:, 0] = self.bollard.sample(times)
         else:
-            ends[:, 0] = self.params.bollard_position
+            ends[:, 0] = fixed
         return ends, velocities
+
+    @property
+    def fixed_bollard(self) -> Optional[Sequence[float]]:
+        """Return where the bollard stands while it has no samples (and no payload), or None."""
+        if self.payload or len(self.bollard):
+            return None
+        return self.params.bollard_position
 
     def drive(self, times: np.ndarray) -> tuple:
         """
@@ -629,6 +638,12 @@ class Simulator:
         :returns: the distance [m] between the ends of each sample before holding.
         """
         distance = end_distances(ends)
+        self.hold_beyond_reach(ends, velocities, distance)
+        return distance
+
+    def hold_beyond_reach(self, ends: np.ndarray, velocities: np.ndarray,
+                          distance: np.ndarray) -> None:
+        """Hold the fairlead at the reach where `distance` (the ends' apart) is beyond it."""
         reach = self.reach
         if distance.max() > reach:
             beyond = distance > reach
@@ -639,7 +654,6 @@ class Simulator:
             sideways = relative - np.einsum('ij,ij->i', relative, u)[:, None] * u
             ends[beyond, 1] = ends[beyond, 0] + reach * u
             velocities[beyond, 1] = velocities[beyond, 0] + scale[:, None] * sideways
-        return distance
 
     # -- time ---------------------------------------------------------------------------
 
@@ -813,12 +827,16 @@ class Simulator:
         speeds are their largest over the run, and a winch changes the length by a small
         fraction of a segment in it (0.5 m/s over 20 ms: 1 cm of a 0.8 m segment).
         """
-        p = self.line_props
         spread, _, speed = motion_spread(self.rope.v, velocities)
+        return self.divisions_for(spread, speed)
+
+    def divisions_for(self, spread: float, speed: float) -> Tuple[int, bool]:
+        """Return divisions() from the step's motion_spread: its spread and its speed bound."""
+        p = self.line_props
         motion = spread * self.time_step / (MAX_STEP_MOTION * p.segment_length)
         parts = motion
         if self.params.integrator == 'improved_euler':
-            parts = max(parts, self.time_step / self._explicit_step(speed))
+            parts = max(parts, self.time_step / self.fine_step_for(speed))
         if not parts > 1.0:  # also NaN: the state check restarts a non-finite rope
             return 1, False
         return math.ceil(min(parts, MAX_DIVISIONS)), motion > 1.0
@@ -832,9 +850,9 @@ class Simulator:
 
         :param velocities: the ends' velocities over the coming steps (n, 2, 3).
         """
-        return self._explicit_step(motion_spread(self.rope.v, velocities)[2])
+        return self.fine_step_for(motion_spread(self.rope.v, velocities)[2])
 
-    def _explicit_step(self, speed: float) -> float:
+    def fine_step_for(self, speed: float) -> float:
         """Return improved Euler's step at the line's length now and the particles' speed."""
         p = self.line_props
         if self._drag[0] is not p:  # once per props: drag_rate is linear in the speed

@@ -382,6 +382,38 @@ def test_a_line_beyond_its_reach_is_held_and_restarted_as_alone():
         assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
 
 
+def test_every_fairlead_follows_its_own_samples_through_jumps():
+    # A 0.06 rad yaw jump at 1.5 s moves the four head and stern fairleads 5.6 to 5.7 m, past
+    # teleport_distance (5 m), the others 2.4 to 4.2 m; an 8 m sway jump at 2.5 s moves all.
+    # The lines share one sampling of their fairleads while their samples are the ship's; a
+    # line that restarted at its jump has only the samples since, and from then on its rope
+    # ends where they put it, not where the ship's samples before the jump would.
+    def jumps(t):
+        position, orientation = ship_pose(t)
+        yaw = 0.06 if t >= 1.5 else 0.0
+        x, y, z, w = orientation
+        c, s = math.cos(yaw / 2), math.sin(yaw / 2)  # the yaw first, about the world z
+        orientation = [c * x - s * y, c * y + s * x, c * z + s * w, c * w - s * z]
+        return [position[0], position[1] + (8.0 if t >= 2.5 else 0.0), position[2]], orientation
+
+    driver = MooringDriver(arrangement.from_values(berth_values()), rate=RATE)
+    sims = driver.mooring.sims
+    events, checked = {}, 0
+    for i in range(round(3.0 * RATE) + 1):
+        t = i / RATE
+        event = driver.push_ship(T0 + round(t * 1e9), *jumps(t))
+        if 'teleport' in event:
+            events[t] = [driver.mooring.names[k] for k in event['teleport']]
+        for published in driver.advance(math.inf, max_lag=math.inf).outputs:
+            out = published.output
+            for k, sim in enumerate(sims):
+                ends = sim.ends_at([out.t])[0][0]  # to round-off: divided steps' times
+                assert np.abs(out.positions[k][[0, -1]] - ends).max() < 1e-9, (out.t, k)
+            checked += 1
+    assert events == {1.5: ['head_1', 'head_2', 'stern_1', 'stern_2'], 2.5: list(BERTH)}
+    assert checked == 150
+
+
 # ------------------------------------------------------------------ winches and parting
 
 

@@ -315,6 +315,22 @@ def motion_spread(v, end_velocities):
 
 
 @numba.njit(cache=True)
+def lines_motion_spreads(v, starts, end_velocities):
+    """
+    Return motion_spread of every line of a System at once, (L, 3).
+
+    :param v: the System's particle velocities; line j's are rows starts[j] to starts[j + 1].
+    :param end_velocities: the velocities of the driven points (n, 2 L, 3): line j's ends
+        are points 2 j and 2 j + 1.
+    """
+    out = np.empty((len(starts) - 1, 3))
+    for j in range(len(starts) - 1):
+        out[j, 0], out[j, 1], out[j, 2] = motion_spread(
+            v[starts[j]:starts[j + 1]], end_velocities[:, 2 * j:2 * j + 2])
+    return out
+
+
+@numba.njit(cache=True)
 def end_distances(ends):
     """Return the distance between the two ends of each sample, ends (n, 2, 3) -> (n,) [m]."""
     out = np.empty(ends.shape[0])
@@ -323,6 +339,33 @@ def end_distances(ends):
                          + (ends[k, 1, 1] - ends[k, 0, 1]) ** 2
                          + (ends[k, 1, 2] - ends[k, 0, 2]) ** 2)
     return out
+
+
+@numba.njit(cache=True)
+def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bollards, reach):
+    """
+    Drive lines whose bollards stand still and whose fairleads were sampled together.
+
+    Writes what Simulator.drive gives (before holding within reach) into a System's drive
+    arrays drive_x, drive_v (n, 2 L, 3) and end distances (n, L).
+
+    :param shared: (j, k) of each such line: its line in the System (points 2 j, 2 j + 1),
+        its column of fairlead_x, fairlead_v (n, K, 3); its bollard (3,) is in bollards.
+    :param reach: each one's reach [m].
+    :returns: which of them are beyond their reach at some step (to be held there).
+    """
+    beyond = np.zeros(len(shared), dtype=np.bool_)
+    for i in range(len(shared)):
+        j, k = shared[i, 0], shared[i, 1]
+        for n in range(drive_x.shape[0]):
+            drive_x[n, 2 * j] = bollards[i]
+            drive_v[n, 2 * j] = 0.0
+            drive_x[n, 2 * j + 1] = fairlead_x[n, k]
+            drive_v[n, 2 * j + 1] = fairlead_v[n, k]
+        apart = end_distances(drive_x[:, 2 * j:2 * j + 2])
+        distances[:, j] = apart
+        beyond[i] = apart.max() > reach[i]
+    return beyond
 
 
 # Bringing a start shape to rest (relax): pseudo-steps until no particle moves more than
