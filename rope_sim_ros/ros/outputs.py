@@ -15,7 +15,7 @@
 
 """Output publishers that know whether anyone takes them (the nodes build nothing for nobody)."""
 
-from typing import Dict, Optional
+from typing import Dict, Iterable, List, Optional
 
 from rclpy.event_handler import PublisherEventCallbacks, QoSPublisherMatchedInfo
 from rclpy.node import Node
@@ -37,6 +37,8 @@ class OutputPublishers:
         """Count the subscribers of the output publishers created here for `node`."""
         self._node = node
         self._subscribers: Dict[str, int] = {}  # by topic, as the matched events said
+        self._matches = 0  # matched events so far: the counts changed when this did
+        self._among: Optional[tuple] = None  # taken_among's last (topics, key, answer)
 
     def create(self, cls, topic: str, qos, default_events: bool = True):
         """
@@ -50,6 +52,7 @@ class OutputPublishers:
 
         def matched(info: QoSPublisherMatchedInfo) -> None:
             self._subscribers[topic] = info.current_count
+            self._matches += 1
 
         return self._node.create_publisher(
             cls, topic, qos, event_callbacks=PublisherEventCallbacks(
@@ -62,3 +65,16 @@ class OutputPublishers:
     def taken(self, topic: str, recorder: Optional[Recorder]) -> bool:
         """Tell whether an output of `topic` is to be built: subscribed to, or recorded."""
         return recorder is not None and recorder.recording or self.subscribed(topic)
+
+    def taken_among(self, topics: Iterable[str], recorder: Optional[Recorder]) -> List[str]:
+        """
+        Return the topics of `topics` that are taken now, in their order (see taken).
+
+        The answer is kept until a subscriber comes or goes or the recording starts or
+        stops: the 16-line mooring node asked for its 96 line topics at every output.
+        """
+        key = (recorder is not None and recorder.recording, self._matches)
+        if self._among is None or self._among[0] is not topics or self._among[1] != key:
+            self._among = (topics, key, [topic for topic in topics
+                                         if self.taken(topic, recorder)])
+        return self._among[2]
