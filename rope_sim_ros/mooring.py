@@ -21,16 +21,21 @@ within the line's reach, the start at rest, a teleport, the step division, an en
 back onto its track, its winch, its parting, its peak hold, the state check's bound. Lines
 with equal steps share one System (simulator.share_system: line j between point 2 j, its
 bollard, and point 2 j + 1, its fairlead), and the Mooring steps it through the
-Simulators' public pieces (drive, reach_steps, blend_ends, divisions, follow_run,
-load_bound): the kernels step each line whose ends are fixed or driven on its own, so a
-line here steps exactly as its single-line Simulator does at that step (a test finds eight
-lines equal to eight single-line runs to round-off). A Simulator that starts its rope
-again (a restart, a teleport, a restore) puts it in its place in the shared System itself.
+Simulators' public pieces (drive, fixed_bollard, hold_beyond_reach, reach_steps,
+blend_ends, divisions_for, fine_step_for, follow_run, load_bound): the kernels step each
+line whose ends are fixed or driven on its own, so a line here steps exactly as its
+single-line Simulator does at that step (a test finds eight lines equal to eight
+single-line runs to round-off). One exception: a step that one line's violent motion
+divides is divided for every line of its group. A Simulator that starts its rope again (a
+restart, a teleport, a restore) puts it in its place in the shared System itself.
 
 The ship pose drives every fairlead: fairlead k is the pose ⊕ its fairlead_offset (body
 frame), pushed to its Simulator as that line's fairlead sample, so it is interpolated as
-the single-line node interpolates it. Bollards are fixed at bollard_position or follow
-their own samples (ship-to-ship mooring).
+the single-line node interpolates it. The Mooring keeps the same samples of every fairlead
+in one trajectory too: while a line's own samples are those (a teleport gives it its own)
+and its bollard stands still, its ends come from one sampling of all of them, the very
+numbers its Simulator gives, without each line's Python. Bollards are fixed at
+bollard_position or follow their own samples (ship-to-ship mooring).
 
 The total load on the ship (mooring_wrench) is the sum of the fairlead forces and of their
 moments about the ship's origin: in the ship's body frame, F = R^T sum F_k and
