@@ -51,20 +51,18 @@ import contextlib
 import math
 import os
 from pathlib import Path
-import subprocess
 import sys
 import tempfile
 import time
 
+import installed_node
 import numpy as np
-
 from rope_sim_ros import arrangement
 from rope_sim_ros.frames import pose_point
 from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
 from rope_sim_ros.mooring_driver import MooringDriver
 from rope_sim_ros.params import SPECS
 
-REPO = Path(__file__).resolve().parent.parent
 RATE = 100.0  # ship poses and outputs per second
 SEGMENTS = 50
 SHIP_Y = -28.5  # centreline off the quay face (beam 55 m, fenders 1 m)
@@ -247,25 +245,11 @@ def node_run(values: dict, seconds: float, every_output: bool) -> dict:
     from std_msgs.msg import Float64
     from visualization_msgs.msg import MarkerArray
     import yaml
-    install = REPO / 'install' / 'rope_sim_ros'
-    executable = install / 'lib' / 'rope_sim_ros' / 'mooring'
-    if not executable.is_file():
-        raise SystemExit(f'{executable} not found: run `make build` first')
-    env = dict(os.environ)
-    env.setdefault('ROS_DOMAIN_ID', str(os.getpid() % 101 + 1))
-    env['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
-    env['AMENT_PREFIX_PATH'] = os.pathsep.join([str(install), sys.prefix])
-    site = install / 'lib' / f'python{sys.version_info[0]}.{sys.version_info[1]}' / \
-        'site-packages'
-    env['PYTHONPATH'] = str(site)
-    os.environ.update({k: env[k] for k in ('ROS_DOMAIN_ID', 'ROS_AUTOMATIC_DISCOVERY_RANGE')})
     with tempfile.TemporaryDirectory() as folder:
         params = Path(folder) / 'berth16.yaml'
         params.write_text(yaml.safe_dump(
             {'mooring': {'ros__parameters': {**values, 'publish_rate': RATE}}}))
-        node = subprocess.Popen([str(executable), '--ros-args', '--params-file', str(params)],
-                                env=env, stdin=subprocess.DEVNULL,
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        node = installed_node.start('mooring', ['--ros-args', '--params-file', str(params)])
         rclpy.init()
         client = rclpy.create_node('arrangement_speed')
         received = []
@@ -283,44 +267,21 @@ def node_run(values: dict, seconds: float, every_output: bool) -> dict:
                 client.create_subscription(cls, topic, lambda msg: None, 100, raw=True)
         publisher = client.create_publisher(PoseStamped, 'ship/pose', 1000)
         try:
-            deadline = time.monotonic() + 120.0
-            while publisher.get_subscription_count() == 0 or not client.count_publishers(
-                    'ship/mooring_wrench'):
-                if time.monotonic() > deadline or node.poll() is not None:
-                    raise SystemExit('the mooring node did not come up')
-                rclpy.spin_once(client, timeout_sec=0.1)
-            sent, cpu_start, start = 0, None, time.monotonic()
-            while time.monotonic() - start < seconds + 1.0:
-                t = sent / RATE
-                if time.monotonic() - start >= t:
-                    if sent == RATE:  # one second in: the start is behind us
-                        cpu_start, window = _cpu_seconds(node.pid), time.monotonic()
-                        first = len(received)
-                    position, orientation = ship_pose(t)
-                    msg = PoseStamped()
-                    msg.header.frame_id = 'world'
-                    msg.header.stamp = client.get_clock().now().to_msg()
-                    msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = position
-                    (msg.pose.orientation.x, msg.pose.orientation.y, msg.pose.orientation.z,
-                     msg.pose.orientation.w) = orientation
-                    publisher.publish(msg)
-                    sent += 1
-                rclpy.spin_once(client, timeout_sec=0.001)
-            cpu = _cpu_seconds(node.pid) - cpu_start
-            window = time.monotonic() - window
-            in_window = len(received) - first
+            return installed_node.feed(node, client, publisher, 'ship/mooring_wrench',
+                                       seconds, RATE, _place_ship, received)
         finally:
             client.destroy_node()
             rclpy.try_shutdown()
             node.send_signal(2)
             node.wait(30)
-    return {'cpu': cpu / window, 'outputs': in_window / window, 'sent': sent}
 
 
-def _cpu_seconds(pid: int) -> float:
-    """Return a process's user + system CPU seconds (/proc/<pid>/stat)."""
-    fields = Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+def _place_ship(pose, t: float) -> None:
+    """Set a geometry_msgs/Pose to the ship's pose at t [s]."""
+    position, orientation = ship_pose(t)
+    pose.position.x, pose.position.y, pose.position.z = position
+    (pose.orientation.x, pose.orientation.y, pose.orientation.z,
+     pose.orientation.w) = orientation
 
 
 def main():

@@ -301,6 +301,11 @@ class Mooring:
             return None
         return mine, mine.version
 
+    def _mirrors(self, k: int) -> bool:
+        """Tell whether line k's fairlead samples are _fairleads' (none changed since)."""
+        fairlead = self.sims[k].fairlead
+        return self._mirrored[k] == (fairlead, fairlead.version)
+
     def _simulator(self, line: LineSetup, params) -> Simulator:
         try:
             return Simulator(params, self._materials, output_interval=self._output_interval,
@@ -355,7 +360,7 @@ class Mooring:
         teleported = []
         for k, (sim, point) in enumerate(zip(self.sims, points.tolist())):
             version = sim.fairlead.version
-            mirrored = self._mirrored[k] == (sim.fairlead, version)
+            mirrored = self._mirrors(k)
             if sim.push_fairlead(t, point) == 'teleport' and self.started:
                 teleported.append(k)  # restarted in its place in the shared System
             # still the same samples if this push was the trajectory's only change
@@ -534,7 +539,7 @@ class Mooring:
         for j, k in enumerate(group.members):
             sim = self.sims[k]
             fixed = sim.fixed_bollard
-            if fixed is not None and self._mirrored[k] == (sim.fairlead, sim.fairlead.version):
+            if fixed is not None and self._mirrors(k):
                 shared.append((j, k))
                 bollards.append(fixed)
                 reach.append(sim.reach)
