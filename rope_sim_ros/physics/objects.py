@@ -764,9 +764,8 @@ class System:
         :param lines: which lines (an index array or a slice; all by default): the others
             keep holding theirs.
         """
-        peaks = self.line_real[lines][:, [PEAK_A, PEAK_B]]
-        self.line_real[lines, PEAK_A] = 0.0
-        self.line_real[lines, PEAK_B] = 0.0
+        peaks = self.line_real[lines, PEAK_A:PEAK_B + 1].copy()  # (PEAK_B is PEAK_A + 1)
+        self.line_real[lines, PEAK_A:PEAK_B + 1] = 0.0
         return peaks
 
     def load_line(self, k: int, source: 'System', j: int = 0) -> None:
