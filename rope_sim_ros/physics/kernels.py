@@ -964,12 +964,17 @@ def _predict(x, v, accel, dt, ahead_x, ahead_v, first, stop):
             v[i, p] += ahead_v * accel[i, p]
 
 
-@numba.njit(cache=True, inline='always')
+@numba.njit(cache=True)
 def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
                               line_real, points, env, max_iterations, implicit_bending,
                               inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal, lower,
                               inverse, multiplier, sub, tangent, newmark, accel):
-    """Take implicit_euler_run's steps when no point is free (its scratch arrays passed in)."""
+    """
+    Take implicit_euler_run's steps when no point is free (its scratch arrays passed in).
+
+    Compiled on its own, not inlined into implicit_euler_run: inlined (once for each matrix
+    kind) it took a third of the two minutes numba spent compiling that kernel, for no speed.
+    """
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
     for k in range(drive_x.shape[0]):
@@ -1039,19 +1044,11 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     inverse = np.empty((widest, 3, 3))
     multiplier = np.empty((widest, 3, 3))
     if n_free == 0:  # every line end fixed or driven: each line is a system of its own
-        # (two call sites, so that the compiler specialises each on the matrix kind)
-        if implicit_bending:
-            _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
-                                      lines, line_real, points, env, max_iterations, True,
-                                      inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
-                                      lower, inverse, multiplier, sub, tangent,
-                                      (gamma, beta), accel)
-        else:
-            _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
-                                      lines, line_real, points, env, max_iterations, False,
-                                      inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal,
-                                      lower, inverse, multiplier, sub, tangent,
-                                      (gamma, beta), accel)
+        _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
+                                  lines, line_real, points, env, max_iterations,
+                                  implicit_bending, inv_mass, rest, f, block, rhs, rhs_flat,
+                                  band, diagonal, lower, inverse, multiplier, sub, tangent,
+                                  (gamma, beta), accel)
         return
     solution = np.zeros_like(x)  # interior accelerations, by particle row
     # free points: the Schur system, its right-hand side, and per line the coupling B and
