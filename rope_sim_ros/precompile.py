@@ -17,9 +17,9 @@ Compile the numba kernels once, ahead of the first start, into numba's cache.
 
 numba compiles a kernel on its first call and, with ``cache=True``, keeps the machine code in
 ``__pycache__`` next to the source file, keyed by a hash of that file's content and the CPU.
-Compiling every kernel the node and the offline runner use takes 76 s on a 2-core machine
-(7.7 s before the water and ground terms), and a node's first tension came 44 s after its
-start on a loaded one even then. setup.py runs
+Compiling every kernel the node and the offline runner use takes about 90 s on a 2-core
+machine, 3 minutes with other work on it (7.7 s before the water and ground terms, when a
+node's first tension still came 44 s after its start on a loaded machine). setup.py runs
 this module right after installing (``colcon build``, with or without ``--symlink-install``),
 so the cache lands beside the installed sources and every start, whatever HOME is, only
 loads it (0.4 s).
@@ -64,7 +64,7 @@ CONFIGURATIONS = (
 )
 
 START_MESSAGE = ('preparing the physics kernels: numba is compiling them (its cache holds none '
-                 'for this install yet), about 10 s, a minute on a loaded machine; later starts '
+                 'for this install yet), one to three minutes on two cores; later starts '
                  'load them from the cache (python3 -m rope_sim_ros.precompile prepares them '
                  'ahead)')
 
