@@ -39,7 +39,7 @@ simulator: the node builds no output nobody takes), and with every output subscr
 line's topics, the world wrench and the markers: a Foxglove session showing it all).
 
     python benchmarks/arrangement_speed.py [--duration 60] [--moordyn-duration 5] [--node]
-        [--integrator adaptive] [--paced]
+        [--integrator adaptive] [--paced] [--repeat 1]
 
 --paced takes the poses at their times on the wall clock, as a live node does, instead of
 back to back. On a shared VM a process that sleeps between outputs finds its caches cold at
@@ -284,6 +284,13 @@ def _place_ship(pose, t: float) -> None:
      pose.orientation.w) = orientation
 
 
+def _cells(shares: list) -> str:
+    """Return a row's CPU s / sim s and % of one core cells: the median (and the range)."""
+    median = float(np.median(shares))
+    spread = f' ({100 * min(shares):.1f}-{100 * max(shares):.1f})' if len(shares) > 1 else ''
+    return f'{median:.4f} | {100 * median:.1f}{spread}'
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--duration', type=float, default=60.0)
@@ -295,6 +302,9 @@ def main():
     parser.add_argument('--paced', action='store_true',
                         help='take the poses at 100 Hz of wall time, as a live node does '
                         '(the process sleeps between them), not back to back')
+    parser.add_argument('--repeat', type=int, default=1,
+                        help='run each driver row this many times and print the median, with '
+                        'the range (on a shared machine one run can move by 10-20 %%)')
     parser.add_argument('--node', action='store_true', help='also time the mooring node')
     parser.add_argument('--node-seconds', type=float, default=30.0)
     args = parser.parse_args()
@@ -307,18 +317,22 @@ def main():
           '% of one core |')
     print('|---|---|---|---|---|---|')
     for kind in MATERIALS:
-        cpu, driver, outputs = run_mooring(dict(berth(kind), integrator=args.integrator),
-                                           args.duration, args.paced)
+        shares = []
+        for _ in range(args.repeat):
+            cpu, driver, outputs = run_mooring(dict(berth(kind), integrator=args.integrator),
+                                               args.duration, args.paced)
+            # the start's and one per period, the last pose's held back (one pose behind)
+            assert outputs == int(round(args.duration * RATE)), outputs
+            shares.append(cpu / args.duration)
         mooring = driver.mooring
         steps = ', '.join(f'{1e3 * group.step:.2f}' for group in mooring.groups)
-        # the start's and one per period, the last pose's held back (one pose behind)
-        assert outputs == int(round(args.duration * RATE)), outputs
         paced = ', paced' if args.paced else ''
         print(f'| {kind} | mooring (one driver){paced} | {steps} | {mooring.kernel_calls} | '
-              f'{cpu / args.duration:.4f} | {100 * cpu / args.duration:.1f} |', flush=True)
-        cpu = run_separate(driver.arrangement, args.duration, args.paced)
-        print(f'| {kind} | 16 single-line drivers{paced} | {steps} | 16 | '
-              f'{cpu / args.duration:.4f} | {100 * cpu / args.duration:.1f} |', flush=True)
+              f'{_cells(shares)} |', flush=True)
+        shares = [run_separate(driver.arrangement, args.duration, args.paced) / args.duration
+                  for _ in range(args.repeat)]
+        print(f'| {kind} | 16 single-line drivers{paced} | {steps} | 16 | {_cells(shares)} |',
+              flush=True)
         if not args.skip_moordyn:
             wall, init, step = run_moordyn(driver, args.moordyn_duration)
             print(f'| {kind} | MoorDyn 2.7.2 RK2, {args.moordyn_duration:g} s (init '
@@ -327,13 +341,14 @@ def main():
     print()
     if args.node:
         for kind, every_output in ((kind, every) for kind in MATERIALS for every in (0, 1)):
-            result = node_run(dict(berth(kind), integrator=args.integrator), args.node_seconds,
-                              every_output)
+            results = [node_run(dict(berth(kind), integrator=args.integrator),
+                                args.node_seconds, every_output) for _ in range(args.repeat)]
             taken = 'every output' if every_output else 'ship/mooring_wrench only'
-            print(f'mooring node, {kind}, {taken} subscribed: {100 * result["cpu"]:.1f} % of '
-                  f'one core while fed {RATE:g} Hz ship poses for {args.node_seconds:g} s; '
-                  f'{result["outputs"]:.1f} outputs per second received '
-                  f'({result["sent"]} poses sent)', flush=True)
+            share = _cells([result['cpu'] for result in results]).split(' | ')[1]
+            print(f'mooring node, {kind}, {taken} subscribed: {share} % of one core while '
+                  f'fed {RATE:g} Hz ship poses for {args.node_seconds:g} s; at least '
+                  f'{min(result["outputs"] for result in results):.1f} outputs per second '
+                  f'received ({results[0]["sent"]} poses sent a run)', flush=True)
 
 
 if __name__ == '__main__':
