@@ -65,7 +65,6 @@ from .simulator import (divide_run, load_materials, Parting, share_system, Simul
                         take_peaks)
 from .trajectory import EndTrajectory, TrajectoryError
 
-ROOT3 = math.sqrt(3.0)
 # Bisection steps of length_for_tension (2^-60 of the bracket: far below a micrometre).
 LENGTH_BISECTIONS = 60
 
@@ -493,9 +492,8 @@ class Mooring:
 
     def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
         """Take the steps of one group to `times` (Simulator.advance_to's rules)."""
-        drive_x, drive_v, distances = self._drive(group, times)
+        drive_x, drive_v, distances, reach = self._drive(group, times)
         sims = [self.sims[k] for k in group.members]
-        reach = np.array([sim.reach for sim in sims])
         beyond = distances > reach
         if not (beyond.any() or any(sim.held for sim in sims)):  # the common case
             self._step(group, times, drive_x, drive_v, done)
@@ -526,23 +524,24 @@ class Mooring:
 
     def _drive(self, group: _Group, times: np.ndarray) -> tuple:
         """
-        Return a group's driven points at `times` (n, Q, 3) twice and end distances (n, L).
+        Return a group's driven points at `times` (n, Q, 3) twice, distances (n, L), reach (L,).
 
-        Simulator.drive of each line. A line whose bollard stands still and whose fairlead
-        samples are _fairleads' gets the same numbers from one sampling of every fairlead.
+        Simulator.drive of each line, and its reach (Simulator.reach). A line whose bollard
+        stands still and whose fairlead samples are _fairleads' gets the same numbers from one
+        sampling of every fairlead.
         """
         n, count = len(times), len(group.members)
         drive_x = np.empty((n, 2 * count, 3))
         drive_v = np.empty((n, 2 * count, 3))
         distances = np.empty((n, count))
-        shared, bollards, reach = [], [], []  # (j, k) of those lines, their bollards, reach
+        reach = np.array([self.sims[k].reach for k in group.members])
+        shared, bollards = [], []  # (j, k) of those lines, their bollards
         for j, k in enumerate(group.members):
             sim = self.sims[k]
             fixed = sim.fixed_bollard
             if fixed is not None and self._mirrors(k):
                 shared.append((j, k))
                 bollards.append(fixed)
-                reach.append(sim.reach)
                 continue
             ends, velocities, distances[:, j] = sim.drive(times)
             drive_x[:, 2 * j:2 * j + 2] = ends
@@ -550,11 +549,11 @@ class Mooring:
         if shared:
             shared = np.array(shared)
             beyond = drive_lines(drive_x, drive_v, distances, *self._fairleads.sample(times),
-                                 shared, np.array(bollards, dtype=float), np.array(reach))
+                                 shared, np.array(bollards, dtype=float), reach[shared[:, 0]])
             for j, k in shared[beyond]:
                 self.sims[k].hold_beyond_reach(drive_x[:, 2 * j:2 * j + 2],
                                                drive_v[:, 2 * j:2 * j + 2], distances[:, j])
-        return drive_x, drive_v, distances
+        return drive_x, drive_v, distances, reach
 
     def _step(self, group: _Group, times: np.ndarray, drive_x: np.ndarray,
               drive_v: np.ndarray, done: MooringAdvance) -> None:
@@ -562,9 +561,9 @@ class Mooring:
         sims = [self.sims[k] for k in group.members]
         for j, sim in enumerate(sims):  # ends brought back onto their tracks (views)
             sim.blend_ends(times, drive_x[:, 2 * j:2 * j + 2], drive_v[:, 2 * j:2 * j + 2])
-        parts, violent = self._divisions(group, sims, drive_v)
+        parts, violent, spreads = self._divisions(group, sims, drive_v)
         if parts == 1:
-            self._run(group, group.step, drive_x, drive_v, done)
+            self._run(group, group.step, drive_x, drive_v, done, spreads[:, 2])
         elif not violent:  # only explicit steps' bounds: divide the whole run alike
             self._run_divided(group, sims, divide_run(group.time, times, parts), done)
         else:
@@ -573,33 +572,42 @@ class Mooring:
                 self._run_divided(group, sims, divide_run(group.time, [t], parts), done)
                 self._set_group_time(group, float(t))
         self._set_group_time(group, float(times[-1]))
-        speeds = ROOT3 * np.abs(drive_v).max(axis=(0, 2)).reshape(-1, 2).max(axis=1)
-        self._check(group, speeds, done.restarted)
+        self._check(group, spreads[:, 1], done.restarted)  # the ends' speeds
 
     @staticmethod
     def _divisions(group: _Group, sims: List[Simulator],
-                   drive_v: np.ndarray) -> Tuple[int, bool]:
-        """Return the parts every step of a group is divided in, and whether to look again."""
+                   drive_v: np.ndarray) -> Tuple[int, bool, np.ndarray]:
+        """
+        Return the parts every step of a group is divided in, whether to look again, spreads.
+
+        spreads: the lines' integrators.lines_motion_spreads (L, 3) for these steps.
+        """
         spreads = lines_motion_spreads(group.system.v, group.starts, drive_v)
         each = [sim.divisions_for(spread, speed)
                 for sim, (spread, _, speed) in zip(sims, spreads.tolist())]
-        return max(parts for parts, _ in each), any(violent for _, violent in each)
+        return max(parts for parts, _ in each), any(violent for _, violent in each), spreads
 
     def _run_divided(self, group: _Group, sims: List[Simulator], fine: np.ndarray,
                      done: MooringAdvance) -> None:
         """Take a group's steps to the divided times `fine`, its ends driven there."""
-        fine_x, fine_v, _ = self._drive(group, fine)
+        fine_x, fine_v, _, _ = self._drive(group, fine)
         for j, sim in enumerate(sims):
             sim.blend_ends(fine, fine_x[:, 2 * j:2 * j + 2], fine_v[:, 2 * j:2 * j + 2])
         self._run(group, (fine[-1] - group.time) / len(fine), fine_x, fine_v, done)
 
     def _run(self, group: _Group, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
-             done: MooringAdvance) -> None:
-        """Take len(drive_x) substeps of dt of a group's lines: one kernel call."""
+             done: MooringAdvance, speeds: Optional[np.ndarray] = None) -> None:
+        """
+        Take len(drive_x) substeps of dt of a group's lines: one kernel call.
+
+        :param speeds: the lines' speed bounds for these steps (lines_motion_spreads' last
+            column), if the caller has them.
+        """
         integrator = self.sims[group.members[0]].params.integrator
         fine = 0.0
         if integrator == 'adaptive':  # each line's own improved Euler step
-            speeds = lines_motion_spreads(group.system.v, group.starts, drive_v)[:, 2]
+            if speeds is None:
+                speeds = lines_motion_spreads(group.system.v, group.starts, drive_v)[:, 2]
             fine = [self.sims[k].fine_step_for(speed)
                     for k, speed in zip(group.members, speeds.tolist())]
         parted = group.system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS,
