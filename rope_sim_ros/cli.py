@@ -165,7 +165,7 @@ def _progress(quiet: bool):
 
 
 def _compiling_notice(quiet: bool):
-    """Say on stderr when numba compiles the kernels (where the build left none: ~10 s)."""
+    """Say on stderr when numba compiles the kernels (where the build left none: 1-3 min)."""
     from .precompile import announce_compilation
     return announce_compilation(
         None if quiet else lambda message: print(f'{PROG}: {message}', file=sys.stderr))

@@ -151,7 +151,7 @@ def rotation_matrix(q: Sequence[float]) -> np.ndarray:
 
 
 def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Return the cross products of the rows of a and b (n, 3): 1 us (np.cross: 10 us)."""
+    """Return the cross products of the rows of a and b (n, 3), compiled (np.cross: 10 us)."""
     return _cross_rows(np.ascontiguousarray(a, dtype=float),
                        np.ascontiguousarray(b, dtype=float))
 

@@ -92,7 +92,7 @@ def announce_compilation(say: Optional[Callable[[str], None]]) -> Iterator[_Comp
     Within the block, say once that the kernels are being compiled, if numba compiles any.
 
     Loading kernels from numba's cache says nothing; compiling says so when it starts (it may
-    take a minute under load) and when the block ends.
+    take three minutes under load) and when the block ends.
 
     :param say: called with each message (a logger's info, a print to stderr), or None.
     :returns: (as the context) the listener; its ``started`` is NaN while nothing compiled.
@@ -127,9 +127,9 @@ def exercise(values: dict) -> None:
 
 
 def exercise_mooring() -> None:
-    """Run a two-line arrangement: the kernels that drive a group of lines at once."""
+    """Run a two-line arrangement: the kernels that drive a group of lines at once, its wrench."""
     from .arrangement import from_values
-    from .mooring import Mooring
+    from .mooring import Mooring, mooring_wrench
 
     line = {'length': 30.0, 'segments': 4, 'bollard_position': [0.0, 0.0, 0.0]}
     mooring = Mooring(from_values({
@@ -139,7 +139,8 @@ def exercise_mooring() -> None:
         mooring.push_ship(t, [0.01 * t, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0])
     mooring.start(0.0)
     mooring.advance_to(3.0 * mooring.time_step)
-    mooring.output()
+    out = mooring.output()
+    mooring_wrench(out.fairlead_forces, mooring.offsets, [0.0, 0.0, 0.0, 1.0])
 
 
 def dispatchers() -> Dict[str, object]:

@@ -716,8 +716,8 @@ def warm_up(line: params.LineParams, say=None) -> None:
     Run a few steps of a throw-away line, so the compiled kernels load before spinning.
 
     The build leaves them compiled in numba's cache (0.4 s to load); where it could not
-    (read-only install, pip install), numba compiles them here, ~10 s to a minute: say(message)
-    tells when that starts and ends.
+    (read-only install, pip install), numba compiles them here, one to three minutes:
+    say(message) tells when that starts and ends.
     """
     from ..precompile import announce_compilation
     with announce_compilation(say):
