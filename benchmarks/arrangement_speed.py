@@ -284,11 +284,15 @@ def _place_ship(pose, t: float) -> None:
      pose.orientation.w) = orientation
 
 
-def _cells(shares: list) -> str:
-    """Return a row's CPU s / sim s and % of one core cells: the median (and the range)."""
-    median = float(np.median(shares))
+def _percent(shares: list) -> str:
+    """Return runs' CPU shares of one core in % as the median (and the range of several)."""
     spread = f' ({100 * min(shares):.1f}-{100 * max(shares):.1f})' if len(shares) > 1 else ''
-    return f'{median:.4f} | {100 * median:.1f}{spread}'
+    return f'{100 * float(np.median(shares)):.1f}{spread}'
+
+
+def _cells(shares: list) -> str:
+    """Return a row's CPU s / sim s and % of one core cells."""
+    return f'{float(np.median(shares)):.4f} | {_percent(shares)}'
 
 
 def main():
@@ -344,7 +348,7 @@ def main():
             results = [node_run(dict(berth(kind), integrator=args.integrator),
                                 args.node_seconds, every_output) for _ in range(args.repeat)]
             taken = 'every output' if every_output else 'ship/mooring_wrench only'
-            share = _cells([result['cpu'] for result in results]).split(' | ')[1]
+            share = _percent([result['cpu'] for result in results])
             print(f'mooring node, {kind}, {taken} subscribed: {share} % of one core while '
                   f'fed {RATE:g} Hz ship poses for {args.node_seconds:g} s; at least '
                   f'{min(result["outputs"] for result in results):.1f} outputs per second '

@@ -545,7 +545,7 @@ class Simulator:
         last = end.last_position if len(end) else rest
         settled = end.settled_until
         end.push(t, position)
-        started = self.system is not None
+        started = self.started
         self._off_track |= started and self.time > settled
         self.last_jump = 0.0 if last is None else math.dist(position, last)
         if end is self.bollard and self.payload:
