@@ -325,8 +325,9 @@ class Mooring:
         """Group the lines again after a step changed; rebuild the Systems if started."""
         started = self.started
         self._group()
-        if started:
+        if started:  # new groups carry on from the state time (a new group has none)
             self._build()
+            self._set_time(self.time)
 
     @property
     def offsets(self) -> np.ndarray:

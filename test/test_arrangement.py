@@ -483,3 +483,22 @@ def test_a_winch_command_changes_only_its_lines_length():
     # heaved in 0.9 m on a 47 m line: it pulls harder than the same line without a command
     still = run_arrangement(values)[1]
     assert together[-1].output.fairlead_tensions[k] > 2.0 * still[-1].output.fairlead_tensions[k]
+
+
+@pytest.mark.parametrize('rate', [25.0, 100.0, 1000.0])
+def test_a_publish_rate_set_at_run_time_keeps_every_line_going(rate):
+    """A legal publish_rate set while the lines run: the next outputs come at the new rate."""
+    driver = MooringDriver(arrangement.from_values(berth_values()), rate=RATE, history=math.inf)
+    stamps = []
+    for i in range(round(2.0 * RATE) + 1):
+        t = i / RATE
+        if i == RATE:  # 1 s in, as a user's `ros2 param set` would
+            driver.update(None, {'publish_rate': rate})
+        position, orientation = ship_pose(t)
+        driver.push_ship(T0 + round(t * 1e9), position, orientation)
+        stamps += [p.stamp_ns for p in driver.advance(math.inf, max_lag=math.inf).outputs]
+    after = np.diff([s for s in stamps if s > T0 + 1.1e9]) / 1e9
+    assert len(after) > 0.8 * 0.8 * rate
+    assert np.allclose(after, 1.0 / rate, atol=1e-9)
+    assert all(np.isfinite(p.output.fairlead_forces).all()
+               for p in driver.advance(math.inf, max_lag=math.inf).outputs)

@@ -423,6 +423,22 @@ def test_a_line_that_parts_shows_to_every_subscriber(mooring):
     assert abs(body[2, 0]) < 0.05 * before_pull  # what the hanging piece still pulls
 
 
+def test_a_publish_rate_set_at_run_time_is_followed(mooring):
+    # a legal rate set while the lines run: the node goes on at that rate (it used to die
+    # 10-30 ms later: every line's group lost its state time)
+    node, client = mooring
+    set_parameter(client, 'publish_rate', 100.0)
+    count = len(client.wrenches)
+    client.drive(16.0, 1.0)
+    assert node.process.poll() is None, node.text()
+    stamps = [w.header.stamp.sec + 1e-9 * w.header.stamp.nanosec
+              for _, w in client.wrenches[count:]]
+    gaps = np.diff(stamps)
+    assert len(stamps) >= 90, len(stamps)
+    assert np.allclose(gaps, 0.01, atol=1e-6), gaps
+    assert all(math.isfinite(w.wrench.force.x) for _, w in client.wrenches[count:])
+
+
 def test_parted_line_looks_parted_to_a_subscriber():
     # A parted line (the flag the Mooring's outputs carry) as the display builds it, through
     # serialisation: grey dashes, an ERROR status.
