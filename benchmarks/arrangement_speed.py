@@ -58,8 +58,8 @@ import time
 import installed_node
 import numpy as np
 from rope_sim_ros import arrangement
-from rope_sim_ros.frames import pose_point
 from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
+from rope_sim_ros.model.frames import pose_point
 from rope_sim_ros.mooring_driver import MooringDriver
 from rope_sim_ros.params import SPECS
 

@@ -40,8 +40,8 @@ import time
 
 import numpy as np
 
+from rope_sim_ros.model.materials import MaterialLibrary
 from rope_sim_ros.params import from_values
-from rope_sim_ros.physics.materials import MaterialLibrary
 from rope_sim_ros.simulator import Simulator
 
 DATA = Path(__file__).resolve().parent.parent / 'test' / 'data' / 'winch'

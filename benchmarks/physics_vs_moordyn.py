@@ -56,8 +56,8 @@ import time
 
 import numpy as np
 
+from rope_sim_ros.model.rope import critical_axial_damping
 from rope_sim_ros.params import from_values, INTEGRATORS, MATERIALS
-from rope_sim_ros.physics.rope import critical_axial_damping
 from rope_sim_ros.simulator import load_materials, Simulator
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])

@@ -42,9 +42,9 @@ from . import arrangement
 from .arrangement_plot import stored_arrangement
 from .bag import BagError, read_messages
 from .bag.cdr import decode_pose_stamped, decode_wrench
-from .frames import lines_tangent_quaternions, pose_point, split_ns
 from .line_driver import PARTED_TOPIC
 from .line_status import Rating
+from .model.frames import lines_tangent_quaternions, pose_point, split_ns
 from .mooring_driver import MooringDriver, MooringPublished, SHIP
 from .motion import MotionError
 from .params import ParameterError, read_params_file

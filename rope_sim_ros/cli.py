@@ -32,8 +32,8 @@ import yaml
 
 from . import cli_arrangement as _arrangement
 from .bag import BagError
+from .model.materials import MaterialError
 from .params import ParameterError, SPECS
-from .physics.materials import MaterialError
 from .trajectory import TrajectoryError
 
 PROG = 'rope_sim'

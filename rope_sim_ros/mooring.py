@@ -54,15 +54,16 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .arrangement import ArrangementParams, LineSetup
-from .frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
+from .model.frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
+from .model.objects import System
+from .model.rope import RopeProperties
+from .model.statics.catenary import CatenaryError, solve_catenary
+from .model.superelastic import MAX_ITERATIONS
 from .params import ParameterError
-from .physics.catenary import CatenaryError, solve_catenary
-from .physics.integrators import drive_lines, implicit_bending, lines_motion_spreads
-from .physics.objects import System
-from .physics.rope import RopeProperties
-from .physics.superelastic import MAX_ITERATIONS
 from .simulator import (divide_run, load_materials, Parting, share_system, Simulator,
                         take_peaks)
+from .stepping.rules import drive_lines, implicit_bending, lines_motion_spreads
+from .stepping.step import step
 from .trajectory import EndTrajectory, TrajectoryError
 
 # Bisection steps of length_for_tension (2^-60 of the bracket: far below a micrometre).
@@ -611,8 +612,8 @@ class Mooring:
                 speeds = lines_motion_spreads(group.system.v, group.starts, drive_v)[:, 2]
             fine = [self.sims[k].fine_step_for(speed)
                     for k, speed in zip(group.members, speeds.tolist())]
-        parted = group.system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS,
-                                   group.bending, fine_step=fine)
+        parted = step(group.system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS,
+                      group.bending, fine_step=fine)
         for k in group.members:
             self.sims[k].follow_run(dt, parted)
         for j, _ in parted:

@@ -174,7 +174,7 @@ SPECS: Mapping[str, Spec] = {
     'payload_added_mass_coefficient': Spec(
         0.5, '', "payload added mass in units of the displaced fluid's mass, MoorDyn's point "
         'Ca (0.5: a sphere)', 0.0, 100.0),
-    # The winch at the fairlead (physics/winch.py) and parting (physics/parting.py)
+    # The winch at the fairlead (model/winch.py) and parting (model/parting.py)
     'winch_mode': Spec(
         'none', '', "the fairlead's winch: none (the line keeps its length), speed (pays out "
         '(+) or heaves in at the speed commanded on winch/command), brake (holds; renders '

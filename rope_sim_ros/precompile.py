@@ -45,6 +45,7 @@ PACKAGE_DIR = Path(__file__).resolve().parent
 # Beside the cache: which sources it was compiled from (see refresh_in_tree_cache).
 FINGERPRINT_NAME = 'numba-kernels.sha256'
 CACHE_SUFFIXES = ('.nbi', '.nbc')  # numba's index and data files
+COMPILED_ROOMS = frozenset({'model', 'stepping'})
 USES_NUMBA = re.compile(rb'^\s*(?:import|from)\s+numba\b', re.MULTILINE)
 
 # Every kernel specialisation comes from one run of each integrator: all the other parameters
@@ -158,9 +159,15 @@ def dispatchers() -> Dict[str, object]:
 
 
 def compiled_sources(package_dir: Path) -> List[Path]:
-    """Return the files compiled code can come from: physics/, modules importing numba."""
+    """
+    Return the files compiled code can come from: model/, stepping/, modules importing numba.
+
+    The kernels compile in the constants of modules that import no numba themselves
+    (model/layout.py's columns): every file of the two rooms the kernels are made of counts.
+    """
     return [path for path in sorted(package_dir.rglob('*.py'))
-            if path.parent.name == 'physics' or USES_NUMBA.search(path.read_bytes())]
+            if COMPILED_ROOMS.intersection(path.relative_to(package_dir).parts[:-1])
+            or USES_NUMBA.search(path.read_bytes())]
 
 
 def sources_fingerprint(package_dir: Path) -> str:

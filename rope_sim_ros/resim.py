@@ -41,9 +41,9 @@ import numpy as np
 from .bag import bag_info, BagError, read_messages
 from .bag.cdr import decode_pose_array, decode_pose_stamped, decode_string
 from .bag.metadata import load_metadata, METADATA_FILE
-from .frames import pose_point, PoseError, stamp_ns
 from .line_driver import (BOLLARD, decode_event, EVENTS_TOPIC, FAIRLEAD, LineDriver,
                           parameters_from_yaml, PARAMETERS_KEY)
+from .model.frames import pose_point, PoseError, stamp_ns
 from .params import LineParams, ParameterError
 from .runner import (BagSink, BOLLARD_POSE, check_line, DEFAULT_RATE, EndSamples,
                      FAIRLEAD_POSE, PARTICLES, POSE_TYPE, RunSummary, simulate, Tally,

@@ -33,8 +33,8 @@ from typing import Any, Callable, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from .bag import cdr
-from .frames import split_ns, tangent_quaternions
 from .line_driver import BOLLARD, FAIRLEAD, LineDriver, PARAMETERS_KEY, parameters_yaml, Published
+from .model.frames import split_ns, tangent_quaternions
 from .params import LineParams, load_params, read_params_file
 from .simulator import default_config_dir
 

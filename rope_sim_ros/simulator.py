@@ -33,15 +33,17 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .model.forces import fluid
+from .model.materials import MaterialLibrary, MaterialProperties
+from .model.objects import Line, Point, System, Winch
+from .model.rope import critical_axial_damping, RopeProperties, tension_bound
+from .model.statics.start import start_shape
+from .model.superelastic import MAX_ITERATIONS
 from .params import LineParams, ParameterError
-from .physics.forces import fluid
-from .physics.integrators import (automatic_time_step, drag_rate, end_distances,
-                                  implicit_bending, motion_spread, relax, stability_limit,
-                                  start_shape)
-from .physics.materials import MaterialLibrary, MaterialProperties
-from .physics.objects import Line, Point, System, Winch
-from .physics.rope import critical_axial_damping, RopeProperties, tension_bound
-from .physics.superelastic import MAX_ITERATIONS
+from .stepping.relax import relax
+from .stepping.rules import (automatic_time_step, drag_rate, end_distances, implicit_bending,
+                             motion_spread, stability_limit)
+from .stepping.step import step
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 
 CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
@@ -925,8 +927,8 @@ class Simulator:
     def _run(self, dt: float, ends: np.ndarray, velocities: np.ndarray) -> None:
         """Take len(ends) substeps of dt: ends, velocities (n, 2, 3) drive points 0 and 1."""
         fine = self.fine_step(velocities) if self.params.integrator == 'adaptive' else 0.0
-        parted = self.system.step(self.params.integrator, dt, ends, velocities, MAX_ITERATIONS,
-                                  implicit_bending(self.props, dt), self.compiled, fine)
+        parted = step(self.system, self.params.integrator, dt, ends, velocities, MAX_ITERATIONS,
+                      implicit_bending(self.props, dt), self.compiled, fine)
         self.follow_run(dt, parted)
 
     def follow_run(self, dt: float, parted: list) -> None:
@@ -938,9 +940,9 @@ class Simulator:
         :param parted: System.step's (line index, step of the run) of the lines that parted.
         """
         self.length = self.system.unstretched_length(self.index)
-        for k, step in parted:
+        for k, at in parted:
             if k == self.index:
-                self.parting = Parting(self.time + (step + 1) * dt, self.rope.parted,
+                self.parting = Parting(self.time + (at + 1) * dt, self.rope.parted,
                                        self.break_load)
 
     def skip_to(self, t: float) -> None:

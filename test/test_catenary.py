@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 import pytest
-from rope_sim_ros.physics.catenary import (
+from rope_sim_ros.model.statics.catenary import (
     catenary_points, catenary_profile, CatenaryError, chain_equilibrium, initial_shape,
     loaded_chain_equilibrium, node_weights, seabed_profile, solve_catenary,
     solve_seabed_catenary, wetted_fraction)

@@ -24,15 +24,16 @@ import math
 import numpy as np
 import pytest
 
-from rope_sim_ros.physics.forces.contact import (add_contact, add_contact_block,
-                                                 FRICTION_DAMPING)
-from rope_sim_ros.physics.layout import (ENV_AIR_DENSITY, ENV_COLUMNS, ENV_GRAVITY,
-                                         ENV_QUAY_DEPTH, ENV_QUAY_EDGE, ENV_QUAY_NORMAL,
-                                         ENV_SEABED_DAMPING, ENV_SEABED_FRICTION,
-                                         ENV_SEABED_LEVEL, ENV_SEABED_STIFFNESS,
-                                         ENV_WATER_DENSITY, ENV_WATER_LEVEL)
-from rope_sim_ros.physics.objects import Environment, Line, LineType, Point, System
-from rope_sim_ros.physics.superelastic import MAX_ITERATIONS
+from rope_sim_ros.model.forces.contact import (add_contact, add_contact_block,
+                                               FRICTION_DAMPING)
+from rope_sim_ros.model.layout import (ENV_AIR_DENSITY, ENV_COLUMNS, ENV_GRAVITY,
+                                       ENV_QUAY_DEPTH, ENV_QUAY_EDGE, ENV_QUAY_NORMAL,
+                                       ENV_SEABED_DAMPING, ENV_SEABED_FRICTION,
+                                       ENV_SEABED_LEVEL, ENV_SEABED_STIFFNESS,
+                                       ENV_WATER_DENSITY, ENV_WATER_LEVEL)
+from rope_sim_ros.model.objects import Environment, Line, LineType, Point, System
+from rope_sim_ros.model.superelastic import MAX_ITERATIONS
+from rope_sim_ros.stepping.step import step
 
 G = 9.81
 K_B = 3.0e6  # MoorDyn's kBot [Pa/m]
@@ -349,7 +350,7 @@ def test_a_chain_at_rest_on_the_seabed_stays_at_rest(integrator):
     dt = 1e-4 if integrator == 'improved_euler' else 1e-3
     drive_x, drive_v = system.drive_arrays(1000)
     for _ in range(int(round(10.0 / (1000 * dt)))):
-        system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
+        step(system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
     assert np.abs(system.x - start).max() < 1e-6
     assert np.abs(system.point_x - start[[0, -1]]).max() < 1e-6
     # the seabed carries the submerged weight: nothing is left for the (free) ends
@@ -381,7 +382,7 @@ def test_a_chain_dragged_along_the_seabed_feels_mu_times_its_weight(integrator):
         drive_v[:, 0, 0] = -speed * np.minimum(t / ramp, 1.0)
         drive_x[:, 0, 2] = z_a
         drive_x[:, 1] = system.point_x[1]
-        system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
+        step(system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
         if k >= 200:  # the last second
             forces.append(system.end_forces()[0])
     forces = np.array(forces)
@@ -425,7 +426,7 @@ def test_a_line_over_the_quay_edge_stays_out_of_the_block(integrator):
     drive_x, drive_v = system.drive_arrays(per)
     deepest = 0.0
     for _ in range(500):  # 5 s
-        system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
+        step(system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
         x = system.x
         inside = (x[:, 0] < 0.0) & (x[:, 2] < 0.0)
         if inside.any():

@@ -27,12 +27,13 @@ import math
 import numpy as np
 import pytest
 
-from rope_sim_ros.physics import kernels
-from rope_sim_ros.physics.catenary import chain_equilibrium
-from rope_sim_ros.physics.forces import fluid
-from rope_sim_ros.physics.objects import (Environment, Line, LineType, Point, single_line,
-                                          System)
-from rope_sim_ros.physics.superelastic import MAX_ITERATIONS
+from rope_sim_ros.model.forces import assembly
+from rope_sim_ros.model.forces import fluid
+from rope_sim_ros.model.objects import (Environment, Line, LineType, Point, single_line,
+                                        System)
+from rope_sim_ros.model.statics.catenary import chain_equilibrium
+from rope_sim_ros.model.superelastic import MAX_ITERATIONS
+from rope_sim_ros.stepping.step import step
 
 G = 9.81
 RHO = 1025.0
@@ -53,7 +54,7 @@ def _settle(system, iterations=80):
     for _ in range(iterations):
         system.v[:] = 0.0
         system.point_v[:] = 0.0
-        system.step('implicit_euler', 1.0, drive_x, drive_v, MAX_ITERATIONS)
+        step(system, 'implicit_euler', 1.0, drive_x, drive_v, MAX_ITERATIONS)
     system.v[:] = 0.0
     system.point_v[:] = 0.0
 
@@ -88,8 +89,8 @@ def test_the_submerged_lengths_add_up_to_the_wetted_length():
                          Point('fixed', [0.0, 0.0, -3.0]), Point('fixed', [0.0, 0.0, 5.0]))
     sub = np.zeros(17)
     tangent = np.zeros((17, 3))
-    kernels.line_passes.py_func(system.x, system.particles, system.lines_table,
-                                system.line_real, system.env, sub, tangent)
+    assembly.line_passes.py_func(system.x, system.particles, system.lines_table,
+                                 system.line_real, system.env, sub, tangent)
     assert sub.sum() == pytest.approx(40.0 * 3.0 / 8.0, rel=1e-12)
     assert tangent == pytest.approx(np.tile([0.0, 0.0, 1.0], (17, 1)), abs=1e-15)
     assert sub[0] == pytest.approx(1.25) and sub[-1] == 0.0
@@ -248,13 +249,13 @@ def test_added_mass_slows_a_hanging_payloads_heave_by_the_mass_ratio(integrator,
         # pulled 5 cm down, the line stretched evenly with it
         system.point_x[1, 2] -= 0.05
         system.lines[0].x[:, 2] += np.linspace(0.0, -0.05, 11)
-        kernels.set_ends(system.x, system.v, system.lines_table, system.point_x,
-                         system.point_v)
+        assembly.set_ends(system.x, system.v, system.lines_table, system.point_x,
+                          system.point_v)
         steps = int(round(0.005 / dt))
         drive_x, drive_v = system.drive_arrays(steps)
         t, z = [], []
         for k in range(1000):
-            system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
+            step(system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
             t.append((k + 1) * 0.005)
             z.append(system.point_x[1, 2] - rest)
         t, z = np.array(t), np.array(z)
@@ -301,8 +302,8 @@ def test_a_line_lowered_through_the_surface_gains_its_buoyancy_without_a_jump():
         drive_v[:, e, 2] = -rate
     vertical = []
     for k in range(0, n, every):
-        system.step('implicit_euler', dt, drive_x[k:k + every], drive_v[k:k + every],
-                    MAX_ITERATIONS)
+        step(system, 'implicit_euler', dt, drive_x[k:k + every], drive_v[k:k + every],
+             MAX_ITERATIONS)
         forces = system.end_forces()[0]
         vertical.append(forces[0, 2] + forces[1, 2])
     vertical = np.array(vertical)
@@ -343,8 +344,8 @@ def _heave_run(integrator, dt, payload):
     drive_v[:, 1, 2] = 1.5 * omega * np.cos(omega * t) * ramp  # the ramp's own rate is small
     force = []
     for k in range(0, n, every):
-        system.step(integrator, dt, drive_x[k:k + every], drive_v[k:k + every],
-                    MAX_ITERATIONS)
+        step(system, integrator, dt, drive_x[k:k + every], drive_v[k:k + every],
+             MAX_ITERATIONS)
         force.append(np.linalg.norm(system.end_forces()[0, 1]))
     return np.array(force)
 
@@ -364,10 +365,10 @@ def test_set_current_changes_the_drag_in_place():
     start = chain_equilibrium(A, B, 40.0, 20, 51.1292, 1.0e8, GRAVITY).positions
     system = single_line(WIRE, environment, 40.0, 20, start, Point('fixed', A),
                          Point('fixed', B))
-    tables = system._tables
+    tables = system.tables
     before, _ = system.loads()
     system.set_current([0.0, 1.0, 0.0])
-    assert system._tables is tables  # nothing rebuilt
+    assert system.tables is tables  # nothing rebuilt
     after, _ = system.loads()
     # at rest in a current of 1 m/s across the line, each end particle (1 m of it) feels
     # its drag at once

@@ -53,6 +53,8 @@ PACKAGE_DIR = REPO_ROOT / PACKAGE
 # subpackage -> layer; the modules directly in rope_sim_ros/ are OFFLINE
 SUBPACKAGE_LAYERS = {
     'physics': 'physics',
+    'model': 'physics',
+    'stepping': 'physics',
     'bag': 'bag',
     'ros2bag': 'ros2bag',
     'ros': 'ros',
@@ -241,8 +243,8 @@ def test_detector_catches_forbidden_imports():
          'import importlib\nimportlib.import_module("numba")'),
         ('bag', 'rope_sim_ros.bag', 'from . import cdr\nfrom .errors import BagError\n'
          'from mcap.writer import Writer\nimport yaml'),
-        ('offline', 'rope_sim_ros', 'from .bag import cdr\nfrom .frames import pose_point\n'
-         'from .physics.rope import Rope\nfrom . import simulator'),
+        ('offline', 'rope_sim_ros', 'from .bag import cdr\nfrom .model.frames import pose_point\n'
+         'from .model.rope import Rope\nfrom . import simulator'),
         ('ros2bag', 'rope_sim_ros.ros2bag', 'from ..bag import schema\nimport rclpy'),
         ('ros', 'rope_sim_ros.ros', 'from .. import frames, runner\nfrom ..ros2bag import '
          'RosBagWriter\nfrom ..bag import cdr\nimport rclpy\nfrom . import conversions'),

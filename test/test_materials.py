@@ -16,8 +16,8 @@
 
 import pytest
 
+from rope_sim_ros.model.materials import MaterialError
 from rope_sim_ros.params import from_values, MATERIALS
-from rope_sim_ros.physics.materials import MaterialError
 from rope_sim_ros.simulator import load_materials, Simulator
 
 D = 0.064

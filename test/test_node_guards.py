@@ -34,7 +34,7 @@ import numpy as np
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rope_sim_ros import params
-from rope_sim_ros.physics import catenary
+from rope_sim_ros.model.statics import catenary
 from rope_sim_ros.ros import executables
 from rope_sim_ros.simulator import Simulator
 

@@ -39,7 +39,7 @@ from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros import params
-from rope_sim_ros.physics import catenary
+from rope_sim_ros.model.statics import catenary
 from rope_sim_ros.simulator import Simulator
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger

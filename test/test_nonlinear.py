@@ -27,18 +27,19 @@ import numpy as np
 from physics_cases import nrmse, reference_params
 import pytest
 
+from rope_sim_ros.model.forces import assembly
+from rope_sim_ros.model.forces.springs import spring_block_at
+from rope_sim_ros.model.layout import INV_MASS, PARTED, REST, UNSTRETCHED
+from rope_sim_ros.model.materials import MaterialError, MaterialLibrary
+from rope_sim_ros.model.objects import Environment, LineType, Point, single_line, Winch
+from rope_sim_ros.model.parting import check_segments
+from rope_sim_ros.model.rope import RopeProperties, tension_bound
+from rope_sim_ros.model.statics import catenary
+from rope_sim_ros.model.tension_curve import TensionCurve
+from rope_sim_ros.model.winch import quasi_static_stiffness, render
 from rope_sim_ros.params import check, from_values, ParameterError
-from rope_sim_ros.physics import catenary, kernels
-from rope_sim_ros.physics.forces.springs import spring_block_at
-from rope_sim_ros.physics.integrators import automatic_time_step, stability_limit
-from rope_sim_ros.physics.layout import INV_MASS, PARTED, REST, UNSTRETCHED
-from rope_sim_ros.physics.materials import MaterialError, MaterialLibrary
-from rope_sim_ros.physics.objects import Environment, LineType, Point, single_line, Winch
-from rope_sim_ros.physics.parting import check_segments
-from rope_sim_ros.physics.rope import RopeProperties, tension_bound
-from rope_sim_ros.physics.tension_curve import TensionCurve
-from rope_sim_ros.physics.winch import quasi_static_stiffness, render
 from rope_sim_ros.simulator import load_materials, Simulator
+from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit
 
 DATA = Path(__file__).resolve().parent / 'data' / 'winch'
 DIAMETER = 0.064
@@ -173,8 +174,8 @@ def test_segment_tensions_follow_the_table():
     """Each segment pulls the interpolated table at its strain; none at strain <= 0."""
     system = _straight_line(STRAINS)
     forces = np.empty_like(system.x)
-    kernels.line_forces(system.x, system.v, forces, system.particles, system.lines_table,
-                        system.line_real)
+    assembly.line_forces(system.x, system.v, forces, system.particles, system.lines_table,
+                         system.line_real)
     # particle i feels +T_i from segment i and -T_(i-1) from the one before: T_i sums them
     tensions = np.cumsum(forces[:-1, 0])
     expected = [_expected_tension(e) for e in STRAINS]
@@ -212,8 +213,8 @@ def _one_segment(x):
 def _force_on_first(system, x):
     """Return the force of the line's springs on its particle 0, its particles at x."""
     out = np.empty_like(x)
-    kernels.line_forces(x, np.zeros_like(x), out, system.particles, system.lines_table,
-                        system.line_real)
+    assembly.line_forces(x, np.zeros_like(x), out, system.particles, system.lines_table,
+                         system.line_real)
     return out[0].copy()
 
 

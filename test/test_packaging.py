@@ -50,9 +50,9 @@ SHARE_FILES = (
 # also gives the tensions) and the end trajectories. Any other kernel they call must not
 # compile either.
 ENTRY_KERNELS = tuple('rope_sim_ros.' + name for name in (
-    'physics.kernels.implicit_euler_run', 'physics.kernels.improved_euler_run',
-    'physics.kernels.largest_load', 'trajectory._sample', 'physics.adaptive._clear_watch',
-    'physics.adaptive._read_watch'))
+    'stepping.kernels.implicit_euler_run', 'stepping.kernels.improved_euler_run',
+    'model.forces.assembly.largest_load', 'trajectory._sample', 'stepping.adaptive._clear_watch',
+    'stepping.adaptive._read_watch'))
 
 # Runs the runner (every integrator) and the node's warm-up from the installed package, then
 # prints numba's statistics of every dispatcher: what came from the cache, what compiled.
@@ -145,7 +145,7 @@ def test_ament_index_marker(colcon_install):
 def test_python_package_installed(colcon_install):
     site_packages = colcon_install / 'lib' / 'python{}.{}'.format(
         *sys.version_info[:2]) / 'site-packages'
-    for module in ('__init__.py', 'physics/__init__.py'):
+    for module in ('__init__.py', 'model/__init__.py', 'stepping/__init__.py'):
         path = site_packages / PACKAGE / module
         assert path.is_file(), '{} missing; installed: {}'.format(
             path, _listing(site_packages))
@@ -199,9 +199,9 @@ def test_install_tree_holds_the_kernel_cache(colcon_install):
 
 def test_stale_kernel_cache_is_removed_when_a_compiled_source_changes(tmp_path):
     package = tmp_path / 'pkg'
-    cache = package / 'physics' / '__pycache__'
+    cache = package / 'stepping' / '__pycache__'
     cache.mkdir(parents=True)
-    (package / 'physics' / 'kernels.py').write_text('import numba\n')
+    (package / 'stepping' / 'kernels.py').write_text('import numba\n')
     (package / 'trajectory.py').write_text('import numba\n')
     (package / 'cli.py').write_text('import sys\n')
     files = [cache / 'kernels.run-10.py311.nbi', cache / 'kernels.run-10.py311.1.nbc']

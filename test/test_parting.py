@@ -26,10 +26,11 @@ import math
 import numpy as np
 from physics_cases import reference_params
 import pytest
+from rope_sim_ros.model.objects import Environment, Line, LineType, Point, System
 from rope_sim_ros.motion import OUT_COLUMNS, read_motion
-from rope_sim_ros.physics.objects import Environment, Line, LineType, Point, System
 from rope_sim_ros.runner import run_motion
 from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.stepping.step import step
 
 EA, MASS, L0, EPS = 5.0e7, 2.6, 40.0, 0.01
 WAVE = math.sqrt(EA / MASS)  # 4385.29 m/s
@@ -61,7 +62,7 @@ def test_the_free_end_flies_back_at_strain_times_wave_speed(segments, bound):
     drive_x, drive_v = system.drive_arrays(1)
     times, ends, parted = [], [], []
     for k in range(int(round(2.0 * L0 / WAVE / dt))):
-        parted += system.step('implicit_euler', dt, drive_x, drive_v, 200)
+        parted += step(system, 'implicit_euler', dt, drive_x, drive_v, 200)
         times.append((k + 1) * dt)
         ends.append(system.x[1, 0])
     assert parted == [(0, 0)] and system.lines[0].parted == 0  # once, at the first step

@@ -25,8 +25,8 @@ import numpy as np
 from physics_cases import nrmse, read_rows
 import pytest
 
+from rope_sim_ros.model.rope import tension_bound
 from rope_sim_ros.params import from_values
-from rope_sim_ros.physics.rope import tension_bound
 from rope_sim_ros.simulator import Simulator
 
 G = 9.81

@@ -20,7 +20,7 @@ from physics_cases import (
     static_row)
 import pytest
 
-from rope_sim_ros.physics.catenary import catenary_points
+from rope_sim_ros.model.statics.catenary import catenary_points
 
 
 @pytest.mark.parametrize('integrator', ['improved_euler', 'implicit_euler'])

@@ -19,10 +19,10 @@ import math
 import numpy as np
 import pytest
 
+from rope_sim_ros.model.layout import PARTED_STEP, PEAK_B
 from rope_sim_ros.params import from_values
-from rope_sim_ros.physics import adaptive
-from rope_sim_ros.physics.layout import PARTED_STEP, PEAK_B
 from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.stepping import adaptive
 
 JERK = ((0.0, 38.0), (0.5, 38.0), (0.7, 39.5), (3.0, 39.5))  # (t [s], fairlead x [m])
 

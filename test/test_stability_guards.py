@@ -28,10 +28,10 @@ import sys
 import numpy as np
 from physics_cases import reference_params
 import pytest
+from rope_sim_ros.model.rope import tension_bound
 from rope_sim_ros.params import from_values, ParameterError
-from rope_sim_ros.physics.integrators import automatic_time_step, stability_limit
-from rope_sim_ros.physics.rope import tension_bound
 from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 START = np.array([36.0, 0.0, 8.0])

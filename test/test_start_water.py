@@ -27,12 +27,14 @@ import math
 import numpy as np
 import pytest
 
-from rope_sim_ros.physics.catenary import chain_equilibrium
-from rope_sim_ros.physics.integrators import (automatic_time_step, contact_rates, relax,
-                                              stability_limit, start_shape)
-from rope_sim_ros.physics.objects import Environment, LineType, Point, single_line
-from rope_sim_ros.physics.rope import RopeProperties
-from rope_sim_ros.physics.superelastic import MAX_ITERATIONS
+from rope_sim_ros.model.objects import Environment, LineType, Point, single_line
+from rope_sim_ros.model.rope import RopeProperties
+from rope_sim_ros.model.statics.catenary import chain_equilibrium
+from rope_sim_ros.model.statics.start import start_shape
+from rope_sim_ros.model.superelastic import MAX_ITERATIONS
+from rope_sim_ros.stepping.relax import relax
+from rope_sim_ros.stepping.rules import automatic_time_step, contact_rates, stability_limit
+from rope_sim_ros.stepping.step import step
 
 G = 9.81
 
@@ -75,7 +77,7 @@ def _hold(system, integrator, dt, duration):
     drive_x, drive_v = system.drive_arrays(50)
     forces = []
     for _ in range(int(round(duration / dt)) // 50):
-        system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
+        step(system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
         forces.append(system.end_forces()[0])
     return np.array(forces)
 
@@ -256,10 +258,10 @@ def test_contact_damping_limits_the_explicit_step():
     assert automatic_time_step(free) > 2.0 / damping
     shape = system.x.copy()
     shape[1:-1, 2] += 1e-6 * np.sin(np.arange(1, 10))  # what rounding would grow from
-    for step, still in ((automatic_time_step(props), True), (automatic_time_step(free), False)):
+    for dt, still in ((automatic_time_step(props), True), (automatic_time_step(free), False)):
         system.x[:] = shape
         system.v[:] = 0.0
-        _hold(system, 'improved_euler', step, 1.0)
+        _hold(system, 'improved_euler', dt, 1.0)
         assert np.all(np.isfinite(system.x))
         assert (np.abs(system.v).max() < 1e-6) == still, np.abs(system.v).max()
 

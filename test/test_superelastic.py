@@ -19,8 +19,8 @@ import math
 import numpy as np
 import pytest
 
+from rope_sim_ros.model.superelastic import adjust, MAX_ITERATIONS
 from rope_sim_ros.params import from_values
-from rope_sim_ros.physics.superelastic import adjust, MAX_ITERATIONS
 from rope_sim_ros.simulator import Simulator
 
 MAX_STRAIN = 0.25

@@ -17,10 +17,12 @@
 import numpy as np
 import pytest
 
-from rope_sim_ros.physics.integrators import automatic_time_step
-from rope_sim_ros.physics.objects import Environment, Line, LineType, Point, System
-from rope_sim_ros.physics.rope import RopeProperties
-from rope_sim_ros.physics.superelastic import MAX_ITERATIONS
+from rope_sim_ros.model.objects import Environment, Line, LineType, Point, System
+from rope_sim_ros.model.rope import RopeProperties
+from rope_sim_ros.model.superelastic import MAX_ITERATIONS
+from rope_sim_ros.stepping.kernels import run_kernel
+from rope_sim_ros.stepping.rules import automatic_time_step
+from rope_sim_ros.stepping.step import step
 
 G = 9.81
 WIRE = LineType(mass_per_length=6.5, axial_stiffness=1.0e8, axial_damping=8000.0)
@@ -41,7 +43,7 @@ def _run(system, integrator, dt, duration):
     steps = int(round(duration / dt))
     drive_x, drive_v = system.drive_arrays(100)
     for _ in range(steps // 100):
-        system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
+        step(system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
 
 
 def _settle(system):
@@ -50,7 +52,7 @@ def _settle(system):
     for _ in range(60):
         system.v[:] = 0.0
         system.point_v[:] = 0.0
-        system.step('implicit_euler', 1.0, drive_x, drive_v, MAX_ITERATIONS)
+        step(system, 'implicit_euler', 1.0, drive_x, drive_v, MAX_ITERATIONS)
     system.v[:] = 0.0
     system.point_v[:] = 0.0
 
@@ -141,7 +143,7 @@ def test_explicit_and_implicit_agree_on_a_swinging_bridle():
         path = []
         for _ in range(400):
             drive_x, drive_v = system.drive_arrays(int(round(0.01 / dt)))
-            system.step(integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
+            step(system, integrator, dt, drive_x, drive_v, MAX_ITERATIONS)
             path.append(system.point_x[knot].copy())
         paths[integrator] = np.array(path)
     swing = np.abs(paths['improved_euler'][:, 1]).max()
@@ -206,10 +208,10 @@ def test_a_line_view_steps_its_line_in_the_system_and_no_other():
     drive_x, drive_v = whole.drive_arrays(steps)
     drive_v[:, 3, 0] = 2.0  # the second line's driven end pulled away at 2 m/s
     drive_x[:, 3, 0] += 2.0 * dt * np.arange(1, steps + 1)
-    whole.step('improved_euler', dt, drive_x, drive_v, MAX_ITERATIONS)
+    step(whole, 'improved_euler', dt, drive_x, drive_v, MAX_ITERATIONS)
     view = alone.line_view(1)
-    view.run_kernel('improved_euler', dt, *view.drive(drive_x, drive_v), MAX_ITERATIONS,
-                    False, True)
+    run_kernel(view, 'improved_euler', dt, *view.drive(drive_x, drive_v), MAX_ITERATIONS,
+               False, True)
     view.store_points(alone)
     rows = slice(11, 22)
     assert np.abs(whole.end_forces()[1]).max() > 2.0 * np.abs(alone.end_forces()[0]).max()

@@ -25,9 +25,9 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Pose, PoseArray, Vector3, Wrench
 import numpy as np
 
-from .. import frames
-from ..frames import all_finite, MIN_QUATERNION_NORM, NANOSECONDS, PoseError, PosePoint, rotate
-from ..frames import tangent_quaternions
+from ..model import frames
+from ..model.frames import (all_finite, MIN_QUATERNION_NORM, NANOSECONDS, PoseError, PosePoint,
+                            rotate, tangent_quaternions)
 
 __all__ = [
     'MIN_QUATERNION_NORM', 'NANOSECONDS', 'PoseError', 'PosePoint', 'all_finite', 'ns_to_stamp',

@@ -76,9 +76,9 @@ from .. import arrangement
 from ..arrangement import (ARRANGEMENT_SPECS, LINE_SPECS, LINES, LINES_DESCRIPTION,
                            OWN_SPECS, SHARED)
 from ..bag import BagError, cdr
-from ..frames import cross_rows, lines_tangent_quaternions, split_ns
 from ..line_driver import encode_event, PARTED_TOPIC
 from ..line_status import Rating
+from ..model.frames import cross_rows, lines_tangent_quaternions, split_ns
 from ..mooring_driver import MooringDriver, MooringPublished, SHIP
 from ..params import ParameterError, SPECS
 from ..runner import pose_stamped_cdr

@@ -49,7 +49,7 @@ EA = 1.0e8
 LENGTH = 50.0
 SEGMENTS = 20
 # 1 % of critical damping on the first axial mode of the line alone, as
-# rope_sim_ros.physics.rope.critical_axial_damping computes it.
+# rope_sim_ros.model.rope.critical_axial_damping computes it.
 BA = 2.0 * 0.01 * LENGTH * math.sqrt(EA * MASS_PER_LENGTH) / math.pi
 PAYLOAD_MASS = 5000.0
 

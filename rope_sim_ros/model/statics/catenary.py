@@ -42,8 +42,8 @@ from typing import Optional
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .forces import fluid
-from .tension_curve import TensionCurve
+from ..forces import fluid
+from ..tension_curve import TensionCurve
 
 # Residual of the closure equations relative to the line's length at which Newton stops.
 _TOLERANCE = 1e-12

@@ -12,4 +12,4 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""Pure-numpy rope physics: no ROS here (a test fails if rclpy is imported)."""
+"""Stepping the model through time: the integrators, their step rules, bringing it to rest."""

@@ -27,7 +27,8 @@ The objects of a mooring system, each owning its state, as MoorDyn has them.
 - Line: a LineType, N segments with a rest length each (its winch changes them), the N+1
   particles' positions and velocities, the two points its ends sit on, its break load and,
   once it has parted (parting.py), which segment parted.
-- System: any number of lines and points, stepped together by one integrator (kernels.py).
+- System: any number of lines and points, stepped together by one integrator
+  (stepping/step.py).
 
 A line's end particle coincides with its point: the point sets it, and the line returns to
 the point its end force (springs and dampers, plus the weight, buoyancy, drag and contact of
@@ -49,7 +50,8 @@ from typing import List, Sequence
 
 import numpy as np
 
-from . import adaptive, kernels, parting, winch
+from . import parting, winch
+from .forces import assembly
 from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST,
                      BEND_STIFFNESS, BENDING, DAMPING, DIAMETER, DRAG, DRAG_AREA, DRIVEN, END_A,
                      END_B, ENV_AIR_DENSITY, ENV_COLUMNS, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_DEPTH,
@@ -460,7 +462,7 @@ class System:
         self._starts = starts
         self._packed = True
         self.refresh()
-        kernels.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)
+        assembly.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)
 
     def refresh(self) -> None:
         """
@@ -476,8 +478,8 @@ class System:
         if kept is not None:
             self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]] = kept
         # what every step passes after the state, built once: a step runs at kHz
-        self._tables = (self.particles, self.lines_table, self.line_real, self.points_table,
-                        self.env)
+        self.tables = (self.particles, self.lines_table, self.line_real, self.points_table,
+                       self.env)
         # the accelerations of the last implicit step (P, 3), (Q, 3), and the step count at
         # which they are the state's (-1: they are not); each line's improved Euler time left
         # in the adaptive integrator [s]
@@ -543,8 +545,8 @@ class System:
             # standard gravity, so that a line without gravity has one too), or a share of
             # its MBL
             self.line_real[k, SNAP_FLOOR] = max(
-                adaptive.SNAP_FLOOR * masses.sum() * STANDARD_GRAVITY,
-                adaptive.SNAP_FLOOR_MBL * t.mbl if math.isfinite(t.mbl) else 0.0)
+                parting.SNAP_FLOOR_WEIGHT * masses.sum() * STANDARD_GRAVITY,
+                parting.SNAP_FLOOR_MBL * t.mbl if math.isfinite(t.mbl) else 0.0)
             self.line_real[k, AXIAL_STIFFNESS] = t.axial_stiffness
             if t.curve is not None:
                 t.curve.fill(self.line_real[k])
@@ -649,48 +651,17 @@ class System:
         drive_x = np.repeat(self.point_x[None], steps, axis=0)
         return drive_x, np.zeros_like(drive_x)
 
-    def step(self, integrator: str, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,
-             max_iterations: int, implicit_bending: bool = False,
-             compiled: bool = True, fine_step: float = 0.0) -> list:
+    def took_steps(self, history_kept: bool) -> list:
         """
-        Take len(drive_x) steps of dt with the driven points at drive_x, drive_v (n, Q, 3).
+        Take in a run of steps the integrators took (stepping/step.py): the Lines follow.
 
-        :param integrator: 'improved_euler', 'implicit_euler' or 'adaptive' (adaptive.py).
-        :param compiled: False runs the same kernels' Python code (``.py_func``), for tests.
-        :param fine_step: adaptive only: the largest stable improved Euler step now [s], one
-            for every line or each line's (L,).
-        :returns: (line index, step of the run) of every line that parted in these steps
-            (a fraction where the adaptive integrator's improved Euler steps parted it).
+        :param history_kept: the accelerations the run leaves are the state's (the
+            adaptive integrator's Newmark steps start from them).
+        :returns: (line index, step of the run) of every line that parted in the run.
         """
-        if integrator == 'adaptive':
-            adaptive.run(self, dt, drive_x, drive_v, fine_step, max_iterations,
-                         implicit_bending, compiled)
-        else:
-            self.run_kernel(integrator, dt, drive_x, drive_v, max_iterations,
-                            implicit_bending, compiled)
         self.steps += 1
-        # the accelerations the adaptive step leaves are the state's (HISTORY says whose)
-        self._accel_at = self.steps if integrator == 'adaptive' else -1
+        self._accel_at = self.steps if history_kept else -1
         return self._follow_line_changes()
-
-    def run_kernel(self, integrator: str, dt: float, drive_x: np.ndarray,
-                   drive_v: np.ndarray, max_iterations: int, implicit_bending: bool,
-                   compiled: bool, newmark: tuple = (1.0, 0.5)) -> None:
-        """
-        Take len(drive_x) steps of one integrator's kernel; the Lines are not told.
-
-        :param newmark: implicit_euler's (gamma, beta): (1, 1/2) is implicit Euler; others
-            start each line from its accelerations of the step before where its HISTORY
-            column says they are.
-        """
-        if integrator == 'implicit_euler':
-            run = kernels.implicit_euler_run
-            last = (max_iterations, implicit_bending, newmark[0], newmark[1], self.accel,
-                    self.point_accel)
-        else:
-            run, last = kernels.improved_euler_run, (max_iterations,)
-        (run if compiled else run.py_func)(self.x, self.v, self.point_x, self.point_v, drive_x,
-                                           drive_v, dt, *self._tables, *last)
 
     @property
     def history_kept(self) -> bool:
@@ -816,8 +787,8 @@ class System:
     def end_forces(self) -> np.ndarray:
         """Force of each line on the points of its ends, (L, 2, 3) [N] (see kernels)."""
         out = np.empty((len(self.lines), 2, 3))
-        kernels.end_forces(self.x, self.v, self.particles, self.lines_table, self.line_real,
-                           self.env, out)
+        assembly.end_forces(self.x, self.v, self.particles, self.lines_table, self.line_real,
+                            self.env, out)
         return out
 
     def largest_load(self) -> tuple:
@@ -827,7 +798,7 @@ class System:
         The end forces and strains it computes on the way are what loads() returns until the
         next step.
         """
-        finite, largest = kernels.largest_load(
+        finite, largest = assembly.largest_load(
             self.x, self.v, self.point_x, self.point_v, self.particles, self.lines_table,
             self.line_real, self.env, self._forces, self._strains)
         self._loads_at = self.steps if finite else -1
@@ -843,10 +814,10 @@ class System:
         if self._loads_at != self.steps:
             self.largest_load()
             if self._loads_at != self.steps:  # not finite: computed for what it is
-                kernels.end_forces(self.x, self.v, self.particles, self.lines_table,
-                                   self.line_real, self.env, self._forces)
+                assembly.end_forces(self.x, self.v, self.particles, self.lines_table,
+                                    self.line_real, self.env, self._forces)
                 for k, line in enumerate(self.lines):
-                    self._strains[k] = kernels.max_strain(line.x, line.rest)
+                    self._strains[k] = assembly.max_strain(line.x, line.rest)
         return self._forces.copy(), self._strains.copy()
 
     def energy(self) -> tuple:
@@ -920,8 +891,8 @@ class System:
         power = 0.0
         sub = np.zeros(len(self.x))
         tangent = np.zeros_like(self.x)
-        kernels.line_passes(self.x, self.particles, self.lines_table, self.line_real, self.env,
-                            sub, tangent)
+        assembly.line_passes(self.x, self.particles, self.lines_table, self.line_real, self.env,
+                             sub, tangent)
         env = self.environment
         relative = self.v - np.where(sub[:, None] > 0.0, np.asarray(env.current), 0.0)
         for k in range(len(self.lines)):
@@ -995,10 +966,8 @@ class LineView:
         lines_table = system.lines_table[k:k + 1].copy()
         lines_table[0, [FIRST, LAST]] -= first
         lines_table[0, [END_A, END_B]] = (0, 1)
-        self._tables = (system.particles[first:last], lines_table, self.line_real,
-                        system.points_table[self.ends], system.env)
-
-    run_kernel = System.run_kernel
+        self.tables = (system.particles[first:last], lines_table, self.line_real,
+                       system.points_table[self.ends], system.env)
 
     def drive(self, drive_x: np.ndarray, drive_v: np.ndarray) -> tuple:
         """Return the view's points' rows of a System's drive arrays (n, Q, 3): (n, 2, 3) twice."""

@@ -40,6 +40,10 @@ from .layout import (AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_STIFFNESS, BENDI
                      TENSION_BEFORE, TENSION_CHANGE)
 from .winch import elastic_tension, stretch
 
+# The snap watch's tension scale (check_segments) is never below SNAP_FLOOR_WEIGHT times the
+# line's weight nor SNAP_FLOOR_MBL of its MBL (stepping/adaptive.py says why).
+SNAP_FLOOR_WEIGHT = 1.0
+SNAP_FLOOR_MBL = 0.005
 PARTED_REST = 1e300  # [m]: the rest length of a parted segment, never stretched
 
 

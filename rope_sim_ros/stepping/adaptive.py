@@ -37,12 +37,12 @@ is taken again from its start with improved Euler at its stable step, and improv
 goes on for HOLD_TIME; then implicit steps try again. Taken again, not corrected: the implicit
 step's damped wave never reaches an output, and the peak is the explicit one.
 
-The scale is the line's largest segment tension in the step, and never less than SNAP_FLOOR
-times its weight nor SNAP_FLOOR_MBL of its MBL: on a slack line every change is a large part
-of a small tension (a stiff HMPE spring fallen slack to 0.9 kN as its ship surged went to
-improved Euler at most steps). The MBL's share keeps such changes, which break nothing, out;
-at 1 % of the MBL the jerked line of test_snap_loads was seen late (3.8 % low), at 0.5 % not
-(0.2 %).
+The scale is the line's largest segment tension in the step, and never less than
+model/parting.py's SNAP_FLOOR_WEIGHT times its weight nor SNAP_FLOOR_MBL of its MBL: on a
+slack line every change is a large part of a small tension (a stiff HMPE spring fallen slack
+to 0.9 kN as its ship surged went to improved Euler at most steps). The MBL's share keeps
+such changes, which break nothing, out; at 1 % of the MBL the jerked line of test_snap_loads
+was seen late (3.8 % low), at 0.5 % not (0.2 %).
 
 Why a change per step: an implicit step damps a motion that changes the tension by a
 fraction r of the scale per step by the order of r times its amplitude, so a change below
@@ -56,11 +56,10 @@ sample interval of its trajectory.
 import numba
 import numpy as np
 
-from .layout import HISTORY, PARTED, PARTED_STEP, SLACK_IMPACT, TENSION_CHANGE
+from .kernels import run_kernel
+from ..model.layout import HISTORY, PARTED, PARTED_STEP, SLACK_IMPACT, TENSION_CHANGE
 
 SNAP_TOLERANCE = 0.05
-SNAP_FLOOR = 1.0
-SNAP_FLOOR_MBL = 0.005
 HOLD_TIME = 0.1  # [s]
 GAMMA = 0.55
 NEWMARK = (GAMMA, 0.25 * (GAMMA + 0.5) ** 2)
@@ -174,8 +173,8 @@ def _take(system, integrator, dt, drive_x, drive_v, first, parts, max_iterations
     any line snapped.
     """
     _clear_watch(system.line_real, whole)
-    system.run_kernel(integrator, dt, drive_x, drive_v, max_iterations, implicit_bending,
-                      compiled, newmark)
+    run_kernel(system, integrator, dt, drive_x, drive_v, max_iterations, implicit_bending,
+               compiled, newmark)
     return _read_watch(system.line_real, whole, first, parts, snapped)
 
 
