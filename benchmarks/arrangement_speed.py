@@ -57,11 +57,11 @@ import time
 
 import installed_node
 import numpy as np
-from rope_sim_ros import arrangement
 from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
 from rope_sim_ros.model.frames import pose_point
 from rope_sim_ros.mooring_driver import MooringDriver
-from rope_sim_ros.params import SPECS
+from rope_sim_ros.params import arrangement
+from rope_sim_ros.params.table import SPECS
 
 RATE = 100.0  # ship poses and outputs per second
 SEGMENTS = 50
@@ -81,7 +81,7 @@ MBL_FRACTION = 0.10
 
 def berth(kind: str) -> dict:
     """Return the sixteen lines' parameter values (see the module docstring)."""
-    from rope_sim_ros.simulator import load_materials
+    from rope_sim_ros.params.materials import load_materials
     library = load_materials()
     lines = {}
     for group, x, dx, count in GROUPS:

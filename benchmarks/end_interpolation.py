@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])

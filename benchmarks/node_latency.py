@@ -53,7 +53,7 @@ from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rclpy.qos import QoSProfile  # noqa: E402
 from rclpy.signals import SignalHandlerOptions  # noqa: E402
 from rope_sim_ros.demo import overlay_environment  # noqa: E402
-from rope_sim_ros.params import load_params  # noqa: E402
+from rope_sim_ros.params.table import load_params  # noqa: E402
 from rope_sim_ros.simulator import Simulator  # noqa: E402
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])

@@ -41,7 +41,7 @@ import time
 import numpy as np
 
 from rope_sim_ros.model.materials import MaterialLibrary
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 
 DATA = Path(__file__).resolve().parent.parent / 'test' / 'data' / 'winch'

@@ -57,8 +57,9 @@ import time
 import numpy as np
 
 from rope_sim_ros.model.rope import critical_axial_damping
-from rope_sim_ros.params import from_values, INTEGRATORS, MATERIALS
-from rope_sim_ros.simulator import load_materials, Simulator
+from rope_sim_ros.params.materials import load_materials
+from rope_sim_ros.params.table import from_values, INTEGRATORS, MATERIALS
+from rope_sim_ros.simulator import Simulator
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])
 CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)

@@ -55,7 +55,7 @@ import time
 
 import numpy as np
 
-from rope_sim_ros.params import from_values, INTEGRATORS
+from rope_sim_ros.params.table import from_values, INTEGRATORS
 from rope_sim_ros.simulator import Simulator
 
 REPO = Path(__file__).resolve().parent.parent

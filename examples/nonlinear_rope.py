@@ -38,7 +38,7 @@ from matplotlib.figure import Figure
 import numpy as np
 
 from rope_sim_ros.model.tension_curve import TensionCurve
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 
 RISE = 8.0

@@ -39,7 +39,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 import numpy as np
 
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 
 WATER_LEVEL = 0.0

@@ -34,13 +34,13 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from . import arrangement
 from .bag import BagError, read_messages
 from .bag.cdr import decode_pose_array, decode_pose_stamped, decode_wrench, \
     decode_wrench_stamped
 from .bag.metadata import load_metadata, METADATA_FILE
 from .line_status import COLOURS, NEAR_BREAK_FRACTION, Rating
-from .simulator import load_materials
+from .params import arrangement
+from .params.materials import load_materials
 
 SHIP_POSE = '/ship/pose'
 WRENCH = '/ship/mooring_wrench'

@@ -38,7 +38,6 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import arrangement
 from .arrangement_plot import stored_arrangement
 from .bag import BagError, read_messages
 from .bag.cdr import decode_pose_stamped, decode_wrench
@@ -47,9 +46,11 @@ from .line_status import Rating
 from .model.frames import lines_tangent_quaternions, pose_point, split_ns
 from .mooring_driver import MooringDriver, MooringPublished, SHIP
 from .motion import MotionError
-from .params import ParameterError, read_params_file
+from .params import arrangement
+from .params.files import read_params_file
+from .params.materials import load_materials
+from .params.table import ParameterError
 from .runner import pose_stamped_cdr, wrench_cdr
-from .simulator import load_materials
 
 SHIP_POSE = '/ship/pose'
 WRENCH = '/ship/mooring_wrench'

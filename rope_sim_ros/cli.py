@@ -33,7 +33,7 @@ import yaml
 from . import cli_arrangement as _arrangement
 from .bag import BagError
 from .model.materials import MaterialError
-from .params import ParameterError, SPECS
+from .params.table import ParameterError, SPECS
 from .trajectory import TrajectoryError
 
 PROG = 'rope_sim'

@@ -38,8 +38,8 @@ import subprocess
 import sys
 import time
 
-from .arrangement import read_arrangement_file
-from .params import ParameterError
+from .params.arrangement import read_arrangement_file
+from .params.table import ParameterError
 from .passing_ship import END, START
 
 REPO = Path(__file__).resolve().parent.parent

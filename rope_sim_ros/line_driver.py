@@ -54,7 +54,7 @@ from typing import Any, Dict, List, NamedTuple, Optional
 import numpy as np
 import yaml
 
-from .params import LineParams, NODE_NAME, ParameterError
+from .params.table import LineParams, NODE_NAME, ParameterError
 from .simulator import Advance, Output, Simulator
 
 FAIRLEAD = 'fairlead'

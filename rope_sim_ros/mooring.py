@@ -53,15 +53,15 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .arrangement import ArrangementParams, LineSetup
 from .model.frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
 from .model.objects import System
 from .model.rope import RopeProperties
 from .model.statics.catenary import CatenaryError, solve_catenary
 from .model.superelastic import MAX_ITERATIONS
-from .params import ParameterError
-from .simulator import (divide_run, load_materials, Parting, share_system, Simulator,
-                        take_peaks)
+from .params.arrangement import ArrangementParams, LineSetup
+from .params.materials import load_materials
+from .params.table import ParameterError
+from .simulator import divide_run, Parting, share_system, Simulator, take_peaks
 from .stepping.rules import drive_lines, implicit_bending, lines_motion_spreads
 from .stepping.step import step
 from .trajectory import EndTrajectory, TrajectoryError

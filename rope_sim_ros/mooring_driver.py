@@ -39,11 +39,11 @@ from typing import Any, Dict, List, NamedTuple, Optional
 
 import numpy as np
 
-from .arrangement import ArrangementParams
 from .line_driver import MAX_LAG, PIN_TOLERANCE
 from .model.frames import rotation_matrix
 from .mooring import Mooring, mooring_wrench, MooringAdvance, MooringOutput, to_world
-from .params import ParameterError
+from .params.arrangement import ArrangementParams
+from .params.table import ParameterError
 
 SHIP = 'ship'
 

@@ -28,9 +28,9 @@ import numpy as np
 
 from .bag import bag_info, BagError, BagInfo, read_messages
 from .bag.cdr import decode_pose_array, decode_wrench
-from .params import LineParams
+from .params.materials import load_materials
+from .params.table import LineParams
 from .runner import BOLLARD_TENSION, FAIRLEAD_TENSION, PARTICLES, topic_name
-from .simulator import load_materials
 
 ENDS = ('fairlead', 'bollard')
 _TENSION_TOPICS = {'fairlead': FAIRLEAD_TENSION, 'bollard': BOLLARD_TENSION}

@@ -113,7 +113,7 @@ def announce_compilation(say: Optional[Callable[[str], None]]) -> Iterator[_Comp
 def exercise(values: dict) -> None:
     """Run a short line with these parameter values through every compiled path it has."""
     import numpy as np
-    from .params import LineParams
+    from .params.table import LineParams
     from .simulator import Simulator
 
     line = LineParams().with_values(values)
@@ -129,7 +129,7 @@ def exercise(values: dict) -> None:
 
 def exercise_mooring() -> None:
     """Run a two-line arrangement: the kernels that drive a group of lines at once, its wrench."""
-    from .arrangement import from_values
+    from .params.arrangement import from_values
     from .mooring import Mooring, mooring_wrench
 
     line = {'length': 30.0, 'segments': 4, 'bollard_position': [0.0, 0.0, 0.0]}

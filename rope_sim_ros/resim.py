@@ -44,7 +44,7 @@ from .bag.metadata import load_metadata, METADATA_FILE
 from .line_driver import (BOLLARD, decode_event, EVENTS_TOPIC, FAIRLEAD, LineDriver,
                           parameters_from_yaml, PARAMETERS_KEY)
 from .model.frames import pose_point, PoseError, stamp_ns
-from .params import LineParams, ParameterError
+from .params.table import LineParams, ParameterError
 from .runner import (BagSink, BOLLARD_POSE, check_line, DEFAULT_RATE, EndSamples,
                      FAIRLEAD_POSE, PARTICLES, POSE_TYPE, RunSummary, simulate, Tally,
                      topic_name)

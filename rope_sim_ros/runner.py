@@ -35,8 +35,9 @@ import numpy as np
 from .bag import cdr
 from .line_driver import BOLLARD, FAIRLEAD, LineDriver, PARAMETERS_KEY, parameters_yaml, Published
 from .model.frames import split_ns, tangent_quaternions
-from .params import LineParams, load_params, read_params_file
-from .simulator import default_config_dir
+from .params.files import load_params, read_params_file
+from .params.materials import default_config_dir
+from .params.table import LineParams
 
 DEFAULT_RATE = 100.0
 PARAMS_FILE = 'mooring_line.yaml'

@@ -26,9 +26,6 @@ Data flows one way: end samples -> trajectories -> fixed substeps -> system stat
 
 from dataclasses import dataclass, replace
 import math
-import os
-from pathlib import Path
-import sys
 from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -39,14 +36,14 @@ from .model.objects import Line, Point, System, Winch
 from .model.rope import critical_axial_damping, RopeProperties, tension_bound
 from .model.statics.start import start_shape
 from .model.superelastic import MAX_ITERATIONS
-from .params import LineParams, ParameterError
+from .params.materials import load_materials
+from .params.table import LineParams, ParameterError
 from .stepping.relax import relax
 from .stepping.rules import (automatic_time_step, drag_rate, end_distances, implicit_bending,
                              motion_spread, stability_limit)
 from .stepping.step import step
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 
-CONFIG_DIR = Path(__file__).resolve().parent.parent / 'config'
 # An end found further than END_TOLERANCE [m] off its trajectory (late samples changed the
 # trajectory under the rope) is brought back onto it over END_BLEND_TIME [s] (an EndBlend).
 END_TOLERANCE = 1e-6
@@ -64,26 +61,6 @@ MIN_LENGTH_FRACTION = 0.1
 MAX_LENGTH_FRACTION = 4.0
 
 
-def default_config_dir() -> Path:
-    """
-    Find config/: the source tree's, else the installed share/rope_sim_ros/config.
-
-    An installed package lives in <prefix>/lib/pythonX.Y/site-packages/rope_sim_ros, so its
-    own prefix is tried first: an executable started without a sourced setup file (no
-    AMENT_PREFIX_PATH) still finds its materials.
-    """
-    if (CONFIG_DIR / 'materials.yaml').exists():
-        return CONFIG_DIR
-    own_prefix = Path(__file__).resolve().parents[:5][-1]
-    prefixes = [own_prefix, Path(sys.prefix)]
-    prefixes += [Path(p) for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
-    for prefix in prefixes:
-        candidate = prefix / 'share' / 'rope_sim_ros' / 'config'
-        if (candidate / 'materials.yaml').exists():
-            return candidate
-    return CONFIG_DIR
-
-
 def _round_down(value: float) -> float:
     """Return value rounded down to 2 significant digits (a step that is safe to quote)."""
     shown = float(f'{value:.2g}')
@@ -91,11 +68,6 @@ def _round_down(value: float) -> float:
         exponent = math.floor(math.log10(value)) - 1
         shown = float(f'{shown - 10.0 ** exponent:.2g}')
     return shown
-
-
-def load_materials() -> MaterialLibrary:
-    """Load the material presets of config/materials.yaml."""
-    return MaterialLibrary.from_file(default_config_dir() / 'materials.yaml')
 
 
 def rope_properties(params: LineParams, material: MaterialProperties) -> RopeProperties:

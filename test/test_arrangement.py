@@ -24,13 +24,13 @@ import math
 
 import numpy as np
 import pytest
-from rope_sim_ros import arrangement
 from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
 from rope_sim_ros.model.frames import pose_point
 from rope_sim_ros.model.statics.catenary import solve_catenary
 from rope_sim_ros.mooring import length_for_tension, mooring_wrench
 from rope_sim_ros.mooring_driver import MooringDriver, SHIP
-from rope_sim_ros.params import ParameterError
+from rope_sim_ros.params import arrangement
+from rope_sim_ros.params.table import ParameterError
 
 T0 = 1_000_000_000  # [ns] the first pose's stamp
 RATE = 50.0

@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 
 BOUND_DEG = 45.0

@@ -25,12 +25,13 @@ import re
 
 import numpy as np
 import pytest
-from rope_sim_ros import arrangement, cli, passing_ship
+from rope_sim_ros import cli, passing_ship
 from rope_sim_ros.arrangement_runner import decode_tensions, read_ship_motion
 from rope_sim_ros.bag import read_messages
 from rope_sim_ros.bag.cdr import decode_float64
 from rope_sim_ros.mooring_driver import MooringDriver
 from rope_sim_ros.motion import MotionError
+from rope_sim_ros.params import arrangement
 
 RATE = 20.0
 SECONDS = 20.0

@@ -30,10 +30,11 @@ from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros.cli import parse_set
 from rope_sim_ros.line_driver import parameters_from_yaml, parameters_yaml
-from rope_sim_ros.params import (check, from_values, load_params, ParameterError,
-                                 read_params_file, SPECS)
+from rope_sim_ros.params.files import load_params, read_params_file
+from rope_sim_ros.params.materials import load_materials
+from rope_sim_ros.params.table import check, from_values, ParameterError, SPECS
 from rope_sim_ros.ros.mooring_line_node import describe
-from rope_sim_ros.simulator import load_materials, Simulator
+from rope_sim_ros.simulator import Simulator
 
 LEVELS = ('water_level', 'seabed_level')
 COEFFICIENTS = ('normal_drag_coefficient', 'tangential_drag_coefficient',

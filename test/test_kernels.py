@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from rope_sim_ros.model.rope import RopeProperties
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.stepping import kernels
 from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit

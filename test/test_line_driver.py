@@ -25,7 +25,7 @@ import numpy as np
 import pytest
 from rope_sim_ros.line_driver import (BOLLARD, decode_event, encode_event, FAIRLEAD,
                                       LineDriver, MAX_LAG)
-from rope_sim_ros.params import from_values, ParameterError
+from rope_sim_ros.params.table import from_values, ParameterError
 from rope_sim_ros.simulator import Simulator
 
 EPOCH = 1_767_225_600_000_000_000  # [ns] stamp of the first sample

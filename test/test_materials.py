@@ -17,8 +17,9 @@
 import pytest
 
 from rope_sim_ros.model.materials import MaterialError
-from rope_sim_ros.params import from_values, MATERIALS
-from rope_sim_ros.simulator import load_materials, Simulator
+from rope_sim_ros.params.materials import load_materials
+from rope_sim_ros.params.table import from_values, MATERIALS
+from rope_sim_ros.simulator import Simulator
 
 D = 0.064
 # MoorPy and MEG4 values, written out independently of config/materials.yaml

@@ -33,8 +33,8 @@ from node_harness import no_gc_pauses, node_summary, NodeProcess, SimClient
 import numpy as np
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
-from rope_sim_ros import params
 from rope_sim_ros.model.statics import catenary
+from rope_sim_ros.params import table as params
 from rope_sim_ros.ros import executables
 from rope_sim_ros.simulator import Simulator
 

@@ -38,10 +38,11 @@ from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.signals import SignalHandlerOptions
-from rope_sim_ros import arrangement, params
 from rope_sim_ros.line_status import COLOURS
 from rope_sim_ros.model.frames import pose_point
 from rope_sim_ros.mooring import length_for_tension
+from rope_sim_ros.params import arrangement
+from rope_sim_ros.params import table as params
 from rope_sim_ros.ros.mooring_display import line_diagnostics, line_markers
 from rope_sim_ros.ros.mooring_line_node import describe
 from rope_sim_ros.simulator import Simulator

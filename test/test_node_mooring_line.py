@@ -38,8 +38,8 @@ from rclpy.parameter import Parameter, parameter_value_to_python
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
-from rope_sim_ros import params
 from rope_sim_ros.model.statics import catenary
+from rope_sim_ros.params import table as params
 from rope_sim_ros.simulator import Simulator
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger

@@ -37,8 +37,9 @@ from rope_sim_ros.model.rope import RopeProperties, tension_bound
 from rope_sim_ros.model.statics import catenary
 from rope_sim_ros.model.tension_curve import TensionCurve
 from rope_sim_ros.model.winch import quasi_static_stiffness, render
-from rope_sim_ros.params import check, from_values, ParameterError
-from rope_sim_ros.simulator import load_materials, Simulator
+from rope_sim_ros.params.materials import load_materials
+from rope_sim_ros.params.table import check, from_values, ParameterError
+from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit
 
 DATA = Path(__file__).resolve().parent / 'data' / 'winch'

@@ -61,7 +61,7 @@ import json, sys
 from numba.core.dispatcher import Dispatcher
 import rope_sim_ros
 from rope_sim_ros import cli
-from rope_sim_ros.params import LineParams
+from rope_sim_ros.params.table import LineParams
 from rope_sim_ros.ros.mooring_line_node import warm_up
 motion, out = sys.argv[1:]
 codes = [cli.main(['run', '--motion', motion, '--out', out, '--quiet', '--set', 'segments=50',

@@ -18,8 +18,8 @@ import math
 
 import pytest
 
-from rope_sim_ros.params import (
-    check, from_values, LineParams, load_params, ParameterError, read_params_file, SPECS)
+from rope_sim_ros.params.files import load_params, read_params_file
+from rope_sim_ros.params.table import check, from_values, LineParams, ParameterError, SPECS
 
 
 @pytest.mark.parametrize('name, value, allowed', [

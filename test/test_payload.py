@@ -26,7 +26,7 @@ from physics_cases import nrmse, read_rows
 import pytest
 
 from rope_sim_ros.model.rope import tension_bound
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 
 G = 9.81

@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from rope_sim_ros.params import from_values, MATERIALS
+from rope_sim_ros.params.table import from_values, MATERIALS
 from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.trajectory import TrajectoryError
 

@@ -29,7 +29,7 @@ import numpy as np
 from physics_cases import reference_params
 import pytest
 from rope_sim_ros.model.rope import tension_bound
-from rope_sim_ros.params import from_values, ParameterError
+from rope_sim_ros.params.table import from_values, ParameterError
 from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit
 

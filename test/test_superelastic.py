@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from rope_sim_ros.model.superelastic import adjust, MAX_ITERATIONS
-from rope_sim_ros.params import from_values
+from rope_sim_ros.params.table import from_values
 from rope_sim_ros.simulator import Simulator
 
 MAX_STRAIN = 0.25

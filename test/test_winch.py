@@ -26,7 +26,7 @@ import math
 import numpy as np
 from physics_cases import reference_params
 import pytest
-from rope_sim_ros.params import from_values, ParameterError
+from rope_sim_ros.params.table import from_values, ParameterError
 from rope_sim_ros.simulator import Simulator
 
 # MoorDyn's line in air (its drag and added mass): the reference's numbers

@@ -27,8 +27,6 @@ from dataclasses import dataclass
 import math
 from typing import Any, Mapping
 
-import yaml
-
 from .tension_curve import check_curve
 
 
@@ -95,27 +93,11 @@ def _finite(name: str, key: str, value: Any) -> float:
 
 
 class MaterialLibrary:
-    """The presets of a materials.yaml file."""
+    """The presets of a materials file (params/materials.py reads it)."""
 
     def __init__(self, entries: Mapping[str, Mapping]):
         """Keep the parsed `materials:` map of a materials file."""
         self._entries = dict(entries)
-
-    @classmethod
-    def from_file(cls, path) -> 'MaterialLibrary':
-        """
-        Read a materials.yaml file.
-
-        :raises MaterialError: the file is missing or has no `materials:` map.
-        """
-        try:
-            with open(path, encoding='utf-8') as f:
-                data = yaml.safe_load(f)
-        except OSError as e:
-            raise MaterialError(f'cannot read materials file {path}: {e.strerror}') from None
-        if not isinstance(data, dict) or not isinstance(data.get('materials'), dict):
-            raise MaterialError(f'{path} has no "materials:" map')
-        return cls(data['materials'])
 
     @property
     def names(self) -> tuple:

@@ -36,9 +36,9 @@ import rclpy
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
 
-from .. import arrangement
+from ..params import arrangement
+from ..params.materials import load_materials
 from ..passing_ship import END, ship_pose, START
-from ..simulator import load_materials
 
 START_TIMEOUT = 90.0  # [s] a first start compiles or loads the kernels
 

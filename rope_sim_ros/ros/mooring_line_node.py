@@ -77,10 +77,10 @@ from . import conversions
 from .outputs import OutputPublishers
 from .recorder import BOOL, FLOAT64, POSE_ARRAY, POSE_STAMPED, Recorder, STRING, WRENCH
 from .spinning import set_timer_period, signals_ignored, spin_until_shutdown
-from .. import params
 from ..bag import BagError, cdr
 from ..line_driver import (BOLLARD, encode_event, ENDS, EVENTS_TOPIC, FAIRLEAD, LineDriver,
                            MAX_LAG, PARAMETERS_KEY, parameters_yaml, PARTED_TOPIC, Published)
+from ..params import table as params
 from ..runner import particles_cdr, pose_stamped_cdr, wrench_cdr
 from ..simulator import Simulator
 from ..trajectory import TrajectoryError

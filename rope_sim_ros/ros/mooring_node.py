@@ -72,15 +72,15 @@ from .mooring_line_node import (check_pose_qos, describe, MooringLineNode, POSE_
 from .outputs import OutputPublishers
 from .recorder import Recorder
 from .spinning import set_timer_period, signals_ignored, spin_until_shutdown
-from .. import arrangement
-from ..arrangement import (ARRANGEMENT_SPECS, LINE_SPECS, LINES, LINES_DESCRIPTION,
-                           OWN_SPECS, SHARED)
 from ..bag import BagError, cdr
 from ..line_driver import encode_event, PARTED_TOPIC
 from ..line_status import Rating
 from ..model.frames import cross_rows, lines_tangent_quaternions, split_ns
 from ..mooring_driver import MooringDriver, MooringPublished, SHIP
-from ..params import ParameterError, SPECS
+from ..params import arrangement
+from ..params.arrangement import (ARRANGEMENT_SPECS, LINE_SPECS, LINES, LINES_DESCRIPTION,
+                                  OWN_SPECS, SHARED)
+from ..params.table import ParameterError, SPECS
 from ..runner import pose_stamped_cdr
 from ..trajectory import TrajectoryError
 

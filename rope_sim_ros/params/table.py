@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The line's parameters: one table shared by the ROS node, the offline runner and the tests.
+The parameter table of a line: one table for the ROS nodes, the offline commands and the docs.
 
 Every parameter has a name, a default, a unit, a description and an allowed range. The node
 turns the table into ParameterDescriptors; the runner reads the same keys from the standard
@@ -23,8 +23,6 @@ ROS parameter file (`mooring_line: ros__parameters: {...}`).
 from dataclasses import dataclass, field, fields, replace
 import math
 from typing import Any, Mapping, Optional
-
-import yaml
 
 
 NODE_NAME = 'mooring_line'
@@ -444,40 +442,3 @@ class LineParams:
 def from_values(values: Mapping[str, Any]) -> LineParams:
     """Validate a {name: value} map into parameters (defaults for the rest)."""
     return LineParams().with_values(values)
-
-
-def read_params_file(path, node_name: str = NODE_NAME) -> dict:
-    """
-    Read the `ros__parameters` of `node_name` from a ROS 2 parameter YAML file.
-
-    Accepts the node name with or without a namespace and the `/**` wildcard, as the ROS
-    parameter file format does.
-
-    :raises ParameterError: unreadable file or no parameters for the node.
-    """
-    try:
-        with open(path, encoding='utf-8') as f:
-            data = yaml.safe_load(f)
-    except OSError as e:
-        raise ParameterError(f'cannot read parameter file {path}: {e.strerror}') from None
-    except yaml.YAMLError as e:
-        raise ParameterError(f'parameter file {path} is not valid YAML: {e}') from None
-    if not isinstance(data, dict):
-        raise ParameterError(f'parameter file {path} has no "{node_name}:" section')
-    values = {}
-    for key, section in data.items():
-        short = str(key).rstrip('/').split('/')[-1]
-        if short in (node_name, '**') and isinstance(section, dict):
-            values.update(section.get('ros__parameters') or {})
-    if not values:
-        raise ParameterError(
-            f'parameter file {path} has no "{node_name}: ros__parameters:" section')
-    values.pop('use_sim_time', None)
-    return values
-
-
-def load_params(path, overrides: Optional[Mapping[str, Any]] = None) -> LineParams:
-    """Read and validate a parameter file, with optional overrides on top."""
-    values = read_params_file(path)
-    values.update(overrides or {})
-    return from_values(values)

@@ -38,8 +38,8 @@ from typing import Any, Dict, List, Mapping, Tuple
 
 import yaml
 
-from .params import (allowed, check, LineParams, ParameterError, read_params_file, Spec,
-                     SPECS)
+from .files import read_params_file
+from .table import allowed, check, LineParams, ParameterError, Spec, SPECS
 
 NODE_NAME = 'mooring'
 LINES = 'lines'
