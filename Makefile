@@ -23,13 +23,13 @@ build: venv
 		--event-handlers console_cohesion- status-
 
 demo: build
-	$(BIN)/python -m rope_sim_ros.demo
+	$(BIN)/python -m rope_sim_ros.offline.demo
 
 # test/conftest.py gives the run its own ROS_DOMAIN_ID (1..101) unless one is set. The
 # kernels are compiled first, once: the tests load them, and the colcon build of the tests
 # copies them into its install (setup.py's seed_cache) instead of compiling them again.
 test: venv
-	$(BIN)/python -m rope_sim_ros.precompile
+	$(BIN)/python -m rope_sim_ros.mooring.precompile
 	$(BIN)/python -m pytest -q test
 
 lint: venv

@@ -27,10 +27,11 @@ package_name = 'rope_sim_ros'
 # setuptools' own build_scripts (the one of its bundled distutils), whichever version it is
 build_scripts = Distribution().get_command_class('build_scripts')
 
-# The executables (ros2 run rope_sim_ros <name>) are the launchers in bin/, not console scripts:
+# The executables (ros2 run rope_sim_ros <name>) are bin/launcher under each name (bin/<name> is a
+# link to it: the launcher runs what its file is named for), not console scripts:
 # a console script's preamble (importlib.metadata, 50 ms) runs before any code of the package,
 # so Ctrl-C in it printed a KeyboardInterrupt traceback (80 of 140 tries in the first 75 ms).
-# A launcher takes SIGINT over in its first statements; see bin/mooring_line.
+# A launcher takes SIGINT over in its first statements; see bin/launcher.
 EXECUTABLES = ('mooring_line', 'mooring', 'ship_motion', 'line_monitor', 'bag_replay',
                'rope_sim')
 
@@ -59,8 +60,8 @@ def launcher_interpreter(python):
 
 # Compiling the numba kernels took 7.7 s (quiet 2 cores) to 44 s (loaded) at the first start
 # after every fresh build; compiled here, right after installing, numba's cache lands next to
-# the installed sources and every start only loads it (0.4 s). See rope_sim_ros/precompile.py.
-PRECOMPILE = 'import sys; from rope_sim_ros.precompile import main; sys.exit(main())'
+# the installed sources and every start only loads it (0.4 s): rope_sim_ros/mooring/precompile.py.
+PRECOMPILE = 'import sys; from rope_sim_ros.mooring.precompile import main; sys.exit(main())'
 
 
 def seed_cache(package_parent):

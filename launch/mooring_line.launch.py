@@ -18,16 +18,34 @@ Launch one simulated mooring line.
     ros2 launch rope_sim_ros mooring_line.launch.py namespace:=line_1 use_sim_time:=true
 
 Every topic of the node is relative, so a ship's lines run side by side, one namespace each.
+An arrangement's file (`mooring: ros__parameters: lines: [...]`, as config/berth.yaml) is
+refused with the launch file to use instead: the line's node would find none of its
+parameters in it and start a default line.
 """
 
 import os
 
 from ament_index_python.packages import get_package_share_directory
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument
+from launch.actions import DeclareLaunchArgument, OpaqueFunction
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
+import yaml
+
+
+def check_params_file(context):
+    """Refuse an arrangement's parameter file, naming the launch file to use."""
+    path = LaunchConfiguration('params_file').perform(context)
+    with open(path, encoding='utf-8') as f:
+        data = yaml.safe_load(f) or {}
+    for key, section in data.items():
+        name = str(key).rstrip('/').split('/')[-1]
+        if name in ('mooring', '**') and isinstance(section, dict) and \
+                'lines' in (section.get('ros__parameters') or {}):
+            raise RuntimeError(f'{path} is an arrangement (lines: ...): launch it with '
+                               'mooring.launch.py')
+    return []
 
 
 def generate_launch_description():
@@ -48,6 +66,7 @@ def generate_launch_description():
         DeclareLaunchArgument(
             'use_sim_time', default_value='false', choices=['true', 'false', 'True', 'False'],
             description='Follow /clock (a bag or a ship simulator) instead of the wall clock.'),
+        OpaqueFunction(function=check_params_file),
         Node(
             package='rope_sim_ros',
             executable='mooring_line',

@@ -70,7 +70,7 @@ _configure_environment()
 
 
 def _refresh_kernel_cache():
-    from rope_sim_ros import precompile
+    from rope_sim_ros.mooring import precompile
     fingerprint = precompile.sources_fingerprint(precompile.PACKAGE_DIR)
     precompile.refresh_in_tree_cache(precompile.PACKAGE_DIR, fingerprint)
     precompile.record_fingerprint(precompile.PACKAGE_DIR, fingerprint)

@@ -19,8 +19,8 @@ import math
 
 import numpy as np
 
+from one_line import OneLine
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 GRAVITY = 9.81
 BOLLARD = np.zeros(3)
@@ -69,7 +69,7 @@ def reference_params(material, segments, **overrides):
 
 def run_motion(params, times, fairlead, output_times, shape=None, compiled=True):
     """Drive the fairlead through (times, fairlead) and return outputs at output_times."""
-    sim = Simulator(params, history=math.inf, compiled=compiled)
+    sim = OneLine(params, history=math.inf, compiled=compiled)
     for t, p in zip(times, fairlead):
         sim.push_fairlead(float(t), p)
     sim.start(float(times[0]), shape)

@@ -13,26 +13,29 @@
 # limitations under the License.
 
 """
-A ship's arrangement of lines stepped in one System (mooring.py, mooring_driver.py).
+A ship's arrangement of lines stepped in one System (mooring/mooring.py, mooring/driver.py).
 
-Eight lines stepped together against the same eight lines run alone through LineDriver, the
-total wrench against the per-line forces and against a hand computation, pretension, and
-the one-line refusals of bad arrangements (arrangement.py).
+Eight lines stepped together against the same eight lines each run alone (a Driver of a
+mooring of that one line), the total wrench against the per-line forces and against a hand
+computation, pretension, the Driver's rules on an arrangement (skip ahead, clock back, rate
+change, the bollards' levers), and the one-line refusals of bad arrangements
+(params/arrangement.py).
 """
 
 import math
 
 import numpy as np
 import pytest
-from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
-from rope_sim_ros.model.frames import pose_point
+from rope_sim_ros.model import frames
 from rope_sim_ros.model.statics.catenary import solve_catenary
-from rope_sim_ros.mooring import length_for_tension, mooring_wrench
-from rope_sim_ros.mooring_driver import MooringDriver, SHIP
+from rope_sim_ros.model.statics.pretension import length_for_tension, PretensionError
+from rope_sim_ros.mooring.driver import Driver, SHIP
+from rope_sim_ros.mooring.mooring import mooring_wrench
 from rope_sim_ros.params import arrangement
 from rope_sim_ros.params.table import ParameterError
 
 T0 = 1_000_000_000  # [ns] the first pose's stamp
+SECOND = 1_000_000_000
 RATE = 50.0
 SHIP_Y = -18.0  # the ship's centreline, 18 m off the quay face (world y = 0)
 # Eight lines of a ship lying port side to the quay (body y to port = world y towards the
@@ -75,11 +78,11 @@ def ship_pose(t):
 
 def run_arrangement(values, seconds=3.0, pose=ship_pose, rate=RATE, winches=None):
     """
-    Drive a MooringDriver with ship poses at `rate` for `seconds`; return it and its outputs.
+    Drive a Driver with ship poses at `rate` for `seconds`; return it and its outputs.
 
     :param winches: {line: speed [m/s]} commanded before the first pose.
     """
-    driver = MooringDriver(arrangement.from_values(values), rate=rate, history=math.inf)
+    driver = Driver(arrangement.from_values(values), rate=rate, history=math.inf)
     for name, speed in (winches or {}).items():
         driver.command_winch(name, speed)
     outputs = []
@@ -94,18 +97,22 @@ def run_arrangement(values, seconds=3.0, pose=ship_pose, rate=RATE, winches=None
 
 
 def run_single(params, seconds=3.0, pose=ship_pose, rate=RATE, winch=None):
-    """Drive one line alone through LineDriver with the same poses; return its outputs."""
-    driver = LineDriver(params, rate=rate, history=math.inf)
+    """
+    Drive one line alone with the same poses; return its outputs.
+
+    A Driver of a mooring of that one line (single_line): its fairlead is the pose with
+    the line's fairlead_offset, as in the arrangement.
+    """
+    driver = Driver(arrangement.single_line(params), rate=rate, history=math.inf)
     if winch is not None:
-        driver.command_winch(winch)
+        driver.command_winch('', winch)
     outputs = []
     for i in range(round(seconds * rate) + 1):
         t = i / rate
         position, orientation = pose(t)
-        point = pose_point(position, orientation, params.fairlead_offset)
-        driver.push(FAIRLEAD, T0 + round(t * 1e9), point.point, point.lever)
+        driver.push_ship(T0 + round(t * 1e9), position, orientation)
         outputs += driver.advance(math.inf, max_lag=math.inf).outputs
-    driver.silence(FAIRLEAD)
+    driver.silence(SHIP)
     outputs += driver.advance(seconds, max_lag=math.inf).outputs
     return outputs
 
@@ -140,19 +147,19 @@ def test_eight_lines_together_step_as_eight_lines_alone(eight_lines):
     mooring = driver.mooring
     assert len(together) == 151  # 3 s at 50 Hz, from the first pose
     # lines of equal steps share a System: one kernel call per step a line takes
-    steps = {sim.time_step for sim in mooring.sims}
-    assert 1 < mooring.kernel_calls == len(steps) < len(mooring.sims)
+    steps = {line.time_step for line in mooring.lines}
+    assert 1 < mooring.kernel_calls == len(steps) < len(mooring.lines)
     for k, line in enumerate(driver.arrangement.lines):
         alone = run_single(line.params)  # at its own step, as in the arrangement
         assert [o.stamp_ns for o in alone] == [o.stamp_ns for o in together], line.name
         for key in ('fairlead_force', 'bollard_force', 'fairlead_peak', 'bollard_peak'):
             mine = np.array([getattr(o.output, key + 's')[k] for o in together])
-            single = np.array([getattr(o.output, key) for o in alone])
+            single = np.array([getattr(o.output, key + 's')[0] for o in alone])
             scale = np.abs(single).max()
             assert scale > 1.0e3, line.name  # the lines pull: a real comparison
             assert np.abs(mine - single).max() <= 1e-9 * scale, (line.name, key)
         positions = np.array([o.output.positions[k] for o in together])
-        assert np.abs(positions - np.array([o.output.positions for o in alone])).max() < 1e-9
+        assert np.abs(positions - np.array([o.output.positions[0] for o in alone])).max() < 1e-9
 
 
 def test_peaks_hold_every_steps_tension_not_only_the_outputs(eight_lines):
@@ -200,7 +207,7 @@ def test_wrench_is_the_sum_of_the_fairlead_forces_and_their_moments(eight_lines)
         assert np.allclose(world_force, forces.sum(axis=0), atol=1e-6)
         assert np.allclose(world_moment, np.cross(levers, forces).sum(axis=0),
                            atol=1e-9 * np.abs(world_moment).max())
-        assert np.allclose(published.levers, levers, atol=1e-12)
+        assert np.allclose(published.fairlead_levers, levers, atol=1e-12)
         assert np.allclose(published.ship_position, position, atol=1e-12)
 
 
@@ -221,10 +228,10 @@ def test_wrench_of_two_lines_by_hand():
         'astern': dict(line, fairlead_offset=[-40.0, 5.0, 10.0],
                        bollard_position=[-5.0, -65.0, 0.0], length=26.5),
     }
-    driver = MooringDriver(arrangement.from_values(values), rate=RATE, history=math.inf)
+    driver = Driver(arrangement.from_values(values), rate=RATE, history=math.inf)
     driver.push_ship(T0, [0.0, 0.0, 0.0], q)
     published = driver.advance(math.inf, max_lag=math.inf).outputs[0]  # the start, at rest
-    props = driver.mooring.sims[0].props
+    props = driver.mooring.lines[0].props
     w, ea = props.weight_per_length, props.axial_stiffness
     ahead = solve_catenary(30.0, 10.0, 32.0, w, ea)
     astern = solve_catenary(25.0, 10.0, 26.5, w, ea)
@@ -267,8 +274,8 @@ def test_pretension_starts_the_line_at_its_tension(eight_lines):
 
 
 def test_length_for_tension_inverts_the_catenary():
-    driver = MooringDriver(arrangement.from_values(berth_values()), rate=RATE)
-    props = driver.mooring.sims[0].props
+    driver = Driver(arrangement.from_values(berth_values()), rate=RATE)
+    props = driver.mooring.lines[0].props
     bollard, fairlead = np.array([0.0, 0.0, 0.0]), np.array([40.0, 5.0, 9.0])
     for tension in (2.0e3, 50.0e3, 400.0e3):
         length = length_for_tension(props, bollard, fairlead, tension)
@@ -276,9 +283,9 @@ def test_length_for_tension_inverts_the_catenary():
         got = solve_catenary(span, rise, length, props.weight_per_length,
                              props.axial_stiffness).tension_b
         assert got == pytest.approx(tension, rel=1e-9)
-    with pytest.raises(ParameterError, match='least fairlead tension'):
+    with pytest.raises(PretensionError, match='least fairlead tension'):
         length_for_tension(props, bollard, fairlead, 100.0)  # less than its weight holds
-    with pytest.raises(ParameterError, match='reach'):
+    with pytest.raises(PretensionError, match='reach'):
         length_for_tension(props, bollard, fairlead, 1e9)
 
 
@@ -333,14 +340,15 @@ def test_nested_and_flat_names_are_the_same_arrangement():
     flat = arrangement.flatten(berth_values())
     assert 'head_1.fairlead_offset' in flat
     assert arrangement.from_values(flat) == nested
-    again = arrangement.parameters_from_yaml(arrangement.parameters_yaml(nested))
+    again = arrangement.from_stored(
+        {arrangement.PARAMETERS_KEY: arrangement.parameters_yaml(nested)})
     assert again == nested
 
 
 def test_a_line_that_cannot_be_built_is_named():
     values = berth_values(integrator='improved_euler', time_step=0.01)
     with pytest.raises(ParameterError, match=r"^line 'head_1': time_step 0.01 s is above"):
-        MooringDriver(arrangement.from_values(values))
+        Driver(arrangement.from_values(values))
 
 
 def test_a_line_beyond_its_reach_is_held_and_restarted_as_alone():
@@ -372,12 +380,12 @@ def test_a_line_beyond_its_reach_is_held_and_restarted_as_alone():
     assert max(h[0] for h in held) > 17.5 + 1.0
     tensions = np.array([o.output.fairlead_tensions for o in together])
     assert np.isfinite(tensions).all()
-    props = driver.mooring.sims[0].props
+    props = driver.mooring.lines[0].props
     assert tensions[:, 0].max() <= 1.01 * props.axial_stiffness * props.max_strain
     for k, line in enumerate(driver.arrangement.lines):
         alone = run_single(line.params, seconds=3.0, pose=surge)
         mine = np.array([o.output.fairlead_forces[k] for o in together])
-        single = np.array([o.output.fairlead_force for o in alone])
+        single = np.array([o.output.fairlead_forces[0] for o in alone])
         assert mine.shape == single.shape
         assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
 
@@ -396,8 +404,7 @@ def test_every_fairlead_follows_its_own_samples_through_jumps():
         orientation = [c * x - s * y, c * y + s * x, c * z + s * w, c * w - s * z]
         return [position[0], position[1] + (8.0 if t >= 2.5 else 0.0), position[2]], orientation
 
-    driver = MooringDriver(arrangement.from_values(berth_values()), rate=RATE)
-    sims = driver.mooring.sims
+    driver = Driver(arrangement.from_values(berth_values()), rate=RATE)
     events, checked = {}, 0
     for i in range(round(3.0 * RATE) + 1):
         t = i / RATE
@@ -406,8 +413,9 @@ def test_every_fairlead_follows_its_own_samples_through_jumps():
             events[t] = [driver.mooring.names[k] for k in event['teleport']]
         for published in driver.advance(math.inf, max_lag=math.inf).outputs:
             out = published.output
-            for k, sim in enumerate(sims):
-                ends = sim.ends_at([out.t])[0][0]  # to round-off: divided steps' times
+            for k in range(len(BERTH)):
+                # to round-off: divided steps' times
+                ends = driver.mooring.drive(k, [out.t])[0][0]
                 assert np.abs(out.positions[k][[0, -1]] - ends).max() < 1e-9, (out.t, k)
             checked += 1
     assert events == {1.5: ['head_1', 'head_2', 'stern_1', 'stern_2'], 2.5: list(BERTH)}
@@ -438,10 +446,10 @@ def test_a_line_that_parts_leaves_the_others_and_its_pull_leaves_the_wrench():
     for line_k, line in enumerate(driver.arrangement.lines):
         alone = run_single(line.params)
         mine = np.array([o.output.fairlead_forces[line_k] for o in together])
-        single = np.array([o.output.fairlead_force for o in alone])
+        single = np.array([o.output.fairlead_forces[0] for o in alone])
         assert np.isfinite(mine).all()
         assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
-        assert [o.output.parted for o in alone] == list(parted[:, line_k]), line.name
+        assert [o.output.parted[0] for o in alone] == list(parted[:, line_k]), line.name
     # the pull before the break, and what the piece on the fairlead pulls a second later
     before = together[int(np.flatnonzero(times < when)[-1])].output.fairlead_tensions[k]
     assert before > 140.0e3
@@ -477,9 +485,9 @@ def test_a_winch_command_changes_only_its_lines_length():
     for line_k, line in enumerate(driver.arrangement.lines):
         alone = run_single(line.params, winch=-0.3 if line.name == 'head_1' else None)
         mine = np.array([o.output.fairlead_forces[line_k] for o in together])
-        single = np.array([o.output.fairlead_force for o in alone])
+        single = np.array([o.output.fairlead_forces[0] for o in alone])
         assert np.abs(mine - single).max() <= 1e-9 * np.abs(single).max(), line.name
-        assert np.array_equal(lengths[:, line_k], [o.output.line_length for o in alone])
+        assert np.array_equal(lengths[:, line_k], [o.output.line_lengths[0] for o in alone])
     # heaved in 0.9 m on a 47 m line: it pulls harder than the same line without a command
     still = run_arrangement(values)[1]
     assert together[-1].output.fairlead_tensions[k] > 2.0 * still[-1].output.fairlead_tensions[k]
@@ -488,7 +496,7 @@ def test_a_winch_command_changes_only_its_lines_length():
 @pytest.mark.parametrize('rate', [25.0, 100.0, 1000.0])
 def test_a_publish_rate_set_at_run_time_keeps_every_line_going(rate):
     """A legal publish_rate set while the lines run: the next outputs come at the new rate."""
-    driver = MooringDriver(arrangement.from_values(berth_values()), rate=RATE, history=math.inf)
+    driver = Driver(arrangement.from_values(berth_values()), rate=RATE, history=math.inf)
     stamps = []
     for i in range(round(2.0 * RATE) + 1):
         t = i / RATE
@@ -502,3 +510,164 @@ def test_a_publish_rate_set_at_run_time_keeps_every_line_going(rate):
     assert np.allclose(after, 1.0 / rate, atol=1e-9)
     assert all(np.isfinite(p.output.fairlead_forces).all()
                for p in driver.advance(math.inf, max_lag=math.inf).outputs)
+
+
+# ------------------------------------------------------------------ the driver's rules, many lines
+
+
+def stamps(report):
+    """Return the stamps [ns] of a report's outputs, from the first pose's."""
+    return [p.stamp_ns - T0 for p in report.outputs]
+
+
+def test_an_arrangement_too_far_behind_skips_ahead_and_restarts_every_line_at_rest():
+    driver = Driver(arrangement.from_values(berth_values()), rate=RATE)
+    mooring = driver.mooring
+    got = []
+    for i in range(6):
+        t = i / RATE
+        driver.push_ship(T0 + round(t * 1e9), *ship_pose(t))
+        got += stamps(driver.advance(math.inf, max_lag=1.0))
+    assert got == [20_000_000 * k for k in range(5)]  # to the second-newest pose, 0.08 s
+    moving = [float(np.abs(mooring.rope(k).v).max()) for k in range(len(BERTH))]
+    assert min(moving) > 1e-3, moving  # the ship moves every rope
+    driver.silence(SHIP)
+    report = driver.advance(0.08 + 1.0 + 0.5, max_lag=1.0)
+    assert report.skipped == pytest.approx(1.5) and report.skip_to == 1.58
+    assert report.clock_back == 0.0 and report.faults == []
+    # the fresh state at the skip: every line restarted at rest between its ends there
+    assert stamps(report) == [1_580_000_000] and report.outputs[0].advance is None
+    out = report.outputs[0].output
+    assert out.t == 1.58 and driver.time == 1.58
+    for k, line in enumerate(mooring.lines):
+        ends = mooring.drive(k, [1.58])[0][0]
+        at_rest = line.at_rest(ends, bool(mooring.held[k])).lines[0]
+        assert np.array_equal(out.positions[k], at_rest.x), line.name
+        assert np.abs(mooring.rope(k).v).max() == 0.0, line.name
+    # then the grid from there: due 1/rate after the skip (here at most 3 per call)
+    report = driver.advance(1.7, max_outputs=3, max_lag=1.0)
+    assert stamps(report) == [1_600_000_000, 1_620_000_000, 1_640_000_000]
+    assert report.skipped == 0.0
+    assert all(p.advance.steps > 0 and not p.advance.restarted for p in report.outputs)
+    assert driver.next_due() == pytest.approx(1.66, abs=1e-12)
+    # within max_lag: no skip, the ropes catch up
+    assert driver.advance(1.64 + 0.9, max_lag=1.0).skipped == 0.0
+    assert driver.time == pytest.approx(2.54)
+
+
+def test_a_clock_behind_an_arrangement_clears_it_and_the_next_pose_starts_it_again():
+    driver = Driver(arrangement.from_values(berth_values()), rate=RATE)
+    k = driver.mooring.names.index('stern_1')
+    first = driver.push_ship(T0, *ship_pose(0.0))
+    assert list(first) == ['start'] and list(first['start']) == [k]  # its pretension's length
+    fresh = driver.advance(math.inf).outputs
+    assert [p.stamp_ns - T0 for p in fresh] == [0]
+    driver.push_ship(T0 + SECOND, *ship_pose(0.0))
+    driver.silence(SHIP)
+    driver.advance(3.0, max_lag=math.inf)
+    assert driver.time == pytest.approx(3.0)
+    report = driver.advance(3.0 - 1.0 - 0.1, max_lag=1.0)
+    assert report.clock_back == pytest.approx(1.1) and report.outputs == []
+    assert not driver.started and driver.epoch_ns is None
+    assert driver.advance(math.inf).outputs == []  # nothing moves until a ship pose
+    # the next ship pose starts every line again, its stamp the new epoch: a fresh output,
+    # the very state of the first start at the same pose
+    again = driver.push_ship(T0 - 5 * SECOND, *ship_pose(0.0))
+    assert again == first
+    report = driver.advance(math.inf)
+    assert stamps(report) == [-5 * SECOND] and report.outputs[0].advance is None
+    out, before = report.outputs[0].output, fresh[0].output
+    assert out.t == 0.0
+    assert np.array_equal(out.fairlead_forces, before.fairlead_forces)
+    for mine, theirs in zip(out.positions, before.positions):
+        assert np.array_equal(mine, theirs)
+    assert out.fairlead_tensions[k] == pytest.approx(80.0e3, rel=2e-3)
+
+
+@pytest.mark.parametrize('rate, count', [(30.0, 30), (100.0, 102)])
+def test_a_rate_change_on_an_arrangement_re_anchors_the_grid_at_the_last_output(rate, count):
+    driver = Driver(arrangement.from_values(berth_values()), rate=RATE)
+    got = []
+    for i in range(101):
+        if i == 50:  # the last output so far is at 0.96 s
+            assert got[-1] == 960_000_000
+            driver.update(None, {'publish_rate': rate})
+            assert driver.rate == rate
+        t = i / RATE
+        driver.push_ship(T0 + round(t * 1e9), *ship_pose(t))
+        report = driver.advance(math.inf)
+        assert report.skipped == 0.0 and report.faults == []
+        got += stamps(report)
+    before = [20_000_000 * k for k in range(49)]
+    after = [960_000_000 + round(k / rate * 1e9) for k in range(1, count + 1)]
+    assert got == before + after  # no gap, no burst: 1/rate after 0.96 s, and on
+    # every line's step divides the new period
+    for line in driver.mooring.lines:
+        assert line.params.publish_rate == rate
+        period = 1.0 / rate / line.time_step
+        assert period == pytest.approx(round(period), abs=1e-9), line.name
+
+
+def test_each_output_has_the_levers_of_the_newest_samples_at_or_before_it():
+    # Ship to ship: 'fore' is made fast to a bollard on a rolling vessel alongside (its
+    # bollard_offset in that vessel's frame), 'aft' to a fixed bollard. The ship's poses
+    # come every 100 ms, the vessel's every 80 ms, the outputs every 50 ms: an output gets
+    # the fairlead levers of the ship's pose at or before it and the bollard lever of the
+    # vessel's sample at or before it, not of the newest ones taken.
+    values = {
+        'lines': ['fore', 'aft'], 'segments': 8, 'material': 'polyester',
+        'publish_rate': 20.0, 'integrator': 'implicit_euler',
+        'fore': dict(fairlead_offset=[20.0, 5.0, 3.0], bollard_offset=[15.0, -4.0, 2.0],
+                     bollard_position=[15.0, 16.0, 2.0], length=12.5),
+        'aft': dict(fairlead_offset=[-20.0, 5.0, 3.0], bollard_position=[-25.0, 16.0, 0.0],
+                    length=13.0),
+    }
+    setup = arrangement.from_values(values)
+    offsets = np.array([line.params.fairlead_offset for line in setup.lines])
+    bollard_offset = setup.line('fore').params.bollard_offset
+
+    def ship(t):
+        roll = 0.02 * math.sin(3.0 * t)
+        return [0.1 * math.sin(2.0 * t), 0.0, 0.0], [math.sin(roll / 2), 0.0, 0.0,
+                                                     math.cos(roll / 2)]
+
+    def vessel(t):
+        roll = 0.03 * math.sin(2.5 * t)
+        return [0.0, 20.0 + 0.05 * math.sin(2.0 * t), 0.1 * math.sin(t)], [
+            math.sin(roll / 2), 0.0, 0.0, math.cos(roll / 2)]
+
+    ship_ns = [100_000_000 * i for i in range(11)]  # 0 .. 1 s
+    vessel_ns = [80_000_000 * j for j in range(13)]  # 0 .. 0.96 s
+    vessel_levers = [frames.pose_point(*vessel(ns / 1e9), bollard_offset).lever
+                     for ns in vessel_ns]
+    fairlead_levers = [
+        offsets @ frames.rotation_matrix(frames.unit_quaternion(ship(ns / 1e9)[1])[0]).T
+        for ns in ship_ns]
+    # every sample in stamp order, the vessel's first at a tie (the bollard's stream first)
+    samples = sorted([(ns, 0, j) for j, ns in enumerate(vessel_ns)]
+                     + [(ns, 1, i) for i, ns in enumerate(ship_ns)])
+    driver = Driver(setup, rate=20.0)
+    got = []
+    for ns, stream, _ in samples:
+        if stream == 0:
+            point = frames.pose_point(*vessel(ns / 1e9), bollard_offset)
+            assert driver.push_bollard('fore', T0 + ns, point.point, point.lever) == ''
+        else:
+            assert 'teleport' not in driver.push_ship(T0 + ns, *ship(ns / 1e9))
+        got += driver.advance(math.inf).outputs
+    # every 50 ms up to the vessel's second-newest sample (0.88 s)
+    assert [p.stamp_ns - T0 for p in got] == [50_000_000 * k for k in range(18)]
+    chosen = set()
+    for published in got:
+        ns = published.stamp_ns - T0
+        i = max(i for i, sample in enumerate(ship_ns) if sample <= ns)
+        j = max(j for j, sample in enumerate(vessel_ns) if sample <= ns)
+        chosen.add(j)
+        assert np.array_equal(published.fairlead_levers, fairlead_levers[i]), ns
+        assert np.array_equal(published.bollard_levers[0], vessel_levers[j]), ns
+        assert np.array_equal(published.bollard_levers[1], np.zeros(3)), ns  # a fixed bollard
+        assert np.array_equal(published.ship_position, ship(ship_ns[i] / 1e9)[0]), ns
+    # the levers differ from sample to sample, by centimetres: the choice is seen
+    assert len(chosen) == 11
+    assert np.abs(np.diff(vessel_levers, axis=0)).max() > 0.01
+    assert np.abs(np.diff(fairlead_levers, axis=0)).max() > 0.01

@@ -163,7 +163,9 @@ def test_replay_through_the_node_reproduces_the_recorded_tension(
 @pytest.mark.parametrize('arguments, complaint', [
     (['--delay', '-1'], '--delay -1.0 must be >= 0 seconds'),
     (['--rate', '0'], '--rate 0.0 and --clock-rate 100.0 must be > 0'),
-    (['--topics', '/nowhere'], 'has no topic /nowhere; it has /bollard/tension, /fairlead/pose'),
+    # a recording holds the node's outputs: the peaks, the winch's length, parted too
+    (['--topics', '/nowhere'], 'has no topic /nowhere; it has /bollard/peak_tension, '
+     '/bollard/tension, /fairlead/peak_tension, /fairlead/pose'),
 ])
 def test_bad_arguments_are_named_with_exit_code_2(
         colcon_install, colcon_env, tmp_path, arguments, complaint):

@@ -17,10 +17,10 @@
 import math
 
 import numpy as np
+from one_line import OneLine
 import pytest
 
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 BOUND_DEG = 45.0
 
@@ -43,7 +43,7 @@ def _whip(bending_ratio):
     params = from_values(dict(
         material='polyester', segments=40, length=40.0, air_density=0.0,
         bending_stiffness_ratio=bending_ratio, bending_damping_ratio=bending_ratio))
-    sim = Simulator(params, history=math.inf)
+    sim = OneLine(params, history=math.inf)
     times = np.arange(0.0, 6.0001, 0.005)
     for t in times:
         sway = 4.0 * math.sin(2.0 * math.pi * 1.5 * t) * min(t, 1.0)

@@ -16,20 +16,22 @@
 ``rope_sim run --bag``: the node's bag layout, read back by rosbags and mcap_ros2.
 
 Every message is compared with what the run computed: the input poses with the motion
-rows, the tension wrenches with the OUT.csv rows of the same run, the particles with the
-end points and the rope tangent.
+rows, the tension wrenches, peaks and the winch's length with the OUT.csv rows of the same
+run, the latched parted flag with its one message, the particles with the end points and
+the rope tangent.
 """
 
 import csv
 import math
+from typing import NamedTuple
 import warnings
 
 import numpy as np
 import pytest
-from rope_sim_ros import cli
 from rope_sim_ros.bag import bag_info
-from rope_sim_ros.motion import read_motion
-from rope_sim_ros.resim import stored_parameters
+from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.motion import read_motion
+from rope_sim_ros.offline.resim import stored_setup
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
 import yaml
@@ -46,7 +48,27 @@ TYPES = {
     '/rope/particles': 'geometry_msgs/msg/PoseArray',
     '/fairlead/tension': 'geometry_msgs/msg/Wrench',
     '/bollard/tension': 'geometry_msgs/msg/Wrench',
+    '/fairlead/peak_tension': 'std_msgs/msg/Float64',
+    '/bollard/peak_tension': 'std_msgs/msg/Float64',
+    '/winch/length': 'std_msgs/msg/Float64',
+    '/rope/parted': 'std_msgs/msg/Bool',
 }
+
+
+class Motion(NamedTuple):
+    """The rows of a MOTION.csv: times [s] (n,), fairlead and bollard points (n, 3)."""
+
+    t: np.ndarray
+    fairlead: np.ndarray
+    bollard: np.ndarray
+
+
+def read_points(path) -> Motion:
+    """Read a MOTION.csv with both ends' points."""
+    streams = read_motion(path)  # no fairlead_offset: the ship's poses are the points
+    _, bollard, _ = streams.bollards['']
+    return Motion(np.array([ns / 10**9 for ns in streams.t_ns.tolist()]), streams.position,
+                  bollard)
 
 
 def write_motion(path):
@@ -72,7 +94,7 @@ def run(tmp_path_factory):
     assert code == 0
     with open(out, newline='') as f:
         rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
-    return {'motion': read_motion(motion), 'rows': rows, 'bag': bag}
+    return {'motion': read_points(motion), 'rows': rows, 'bag': bag}
 
 
 def stamp_ns(t):
@@ -106,7 +128,18 @@ def check_message(run, topic, log_time, msg):
         q = msg.pose.orientation
         assert (q.x, q.y, q.z, q.w) == (0.0, 0.0, 0.0, 1.0)
         return topic
+    if topic == '/rope/parted':  # latched: said once, at the first output
+        assert log_time == stamp_ns(rows[0]['t'])
+        assert not msg.data and not any(r['parted'] for r in rows)
+        return topic
     row = next(r for r in rows if stamp_ns(r['t']) == log_time)
+    if topic.endswith('/peak_tension'):
+        end = topic.split('/')[1]
+        assert msg.data == row[f'{end}_peak_tension']
+        return topic
+    if topic == '/winch/length':
+        assert msg.data == row['line_length']
+        return topic
     if topic.endswith('/tension'):
         end = topic.split('/')[1]
         force = xyz(msg.force)
@@ -141,7 +174,9 @@ def check_message(run, topic, log_time, msg):
 def expected_counts(run):
     n_in, n_out = len(run['motion'].t), len(run['rows'])
     return {'/fairlead/pose': n_in, '/bollard/pose': n_in, '/rope/particles': n_out,
-            '/fairlead/tension': n_out, '/bollard/tension': n_out}
+            '/fairlead/tension': n_out, '/bollard/tension': n_out,
+            '/fairlead/peak_tension': n_out, '/bollard/peak_tension': n_out,
+            '/winch/length': n_out, '/rope/parted': 1}
 
 
 def test_rows_cover_the_motion_at_the_rate(run):
@@ -182,7 +217,7 @@ def test_metadata_counts_and_stored_parameters(run):
     assert info['duration']['nanoseconds'] == 3 * 10**9
     ours = bag_info(run['bag'])
     assert ours.complete and {n: t.message_count for n, t in ours.topics.items()} == counts
-    stored = stored_parameters(run['bag'])
+    stored = stored_setup(run['bag']).lines[0].params.as_dict()
     assert stored['segments'] == SEGMENTS and stored['frame_id'] == 'quay'
     assert stored['fairlead_offset'] == FAIRLEAD_OFFSET.tolist()
 
@@ -196,23 +231,43 @@ def test_existing_bag_directory_is_refused(run, tmp_path, capsys):
     assert sorted(p.name for p in run['bag'].iterdir()) == before
 
 
+def encoded(ns, frame_id, points, force, lever) -> dict:
+    """Return {topic: CDR bytes} the offline run's encoder builds for one line's output."""
+    from rope_sim_ros.messages import topics
+    from rope_sim_ros.messages.encode import OutputEncoder
+    from rope_sim_ros.mooring.driver import Published
+    from rope_sim_ros.mooring.mooring import MooringOutput
+    zeros = np.zeros((1, 3))
+    output = MooringOutput(
+        t=0.0, positions=(points,), fairlead_forces=np.array([force]), bollard_forces=zeros,
+        max_strains=np.zeros(1), payload_positions=(None,), parted=np.zeros(1, dtype=bool),
+        fairlead_peaks=np.zeros(1), fairlead_tensions=np.zeros(1),
+        bollard_tensions=np.zeros(1), bollard_peaks=np.zeros(1), line_lengths=np.zeros(1),
+        winch_speeds=np.zeros(1))
+    published = Published(ns, output, np.zeros(3), np.array([0.0, 0.0, 0.0, 1.0]),
+                          np.array([lever]), zeros, np.zeros(3), np.zeros(3), None)
+    encoder = OutputEncoder(topics.LINE_NODE, [''], [False], frame_id)
+    return dict(encoder.messages(published, [topics.PARTICLES, topics.FAIRLEAD_TENSION]))
+
+
 @pytest.mark.parametrize('frame_id', ['', 'a', 'abc', 'abcd', 'world', 'ship/base_link'])
 def test_numpy_cdr_equals_rclpy_serialization(frame_id):
-    """The runner's encoders: the node's messages as rclpy serialises them, zero padding."""
+    """The run's encoders: the node's messages as rclpy serialises them, zero padding."""
     from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
     from rclpy.serialization import deserialize_message, serialize_message
+    from rope_sim_ros.messages.encode import pose_stamped
     from rope_sim_ros.ros.conversions import ns_to_stamp, pose_array, wrench
-    from rope_sim_ros.runner import particles_cdr, pose_stamped_cdr, wrench_cdr
     points = np.random.default_rng(7).normal(size=(SEGMENTS + 1, 3)) * 20.0
     ns = 1_767_225_600_123_456_789
     pose = PoseStamped()
     pose.header.stamp, pose.header.frame_id = ns_to_stamp(ns), frame_id
     pose.pose.position.x, pose.pose.position.y, pose.pose.position.z = points[3].tolist()
     pose.pose.orientation.w = 1.0
+    line = encoded(ns, frame_id, points, points[0], points[1])
     for ours, message, cls in (
-            (particles_cdr(ns, frame_id, points), pose_array(points, frame_id, ns), PoseArray),
-            (pose_stamped_cdr(ns, frame_id, points[3]), pose, PoseStamped),
-            (wrench_cdr(points[0], points[1]), wrench(points[0], points[1]), Wrench)):
+            (line['rope/particles'], pose_array(points, frame_id, ns), PoseArray),
+            (pose_stamped(ns, frame_id, points[3]), pose, PoseStamped),
+            (line['fairlead/tension'], wrench(points[0], points[1]), Wrench)):
         theirs = serialize_message(message)
         assert len(ours) == len(theirs)
         assert deserialize_message(ours, cls) == message

@@ -16,7 +16,7 @@
 ``rope_sim run``: MOTION.csv in, OUT.csv out, bad input as one line and exit code 2.
 
 The good run drives the fairlead with the first 12 s of the MoorDyn reference motion and
-checks every row against the Simulator given the whole motion.
+checks every row against a Mooring of the line given the whole motion.
 """
 
 import csv
@@ -27,11 +27,14 @@ import subprocess
 import sys
 
 import numpy as np
+from one_line import OneLine
 import pytest
-from rope_sim_ros import cli
-from rope_sim_ros.motion import OUT_COLUMNS, read_motion
-from rope_sim_ros.runner import resolve_params
-from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.motion import read_motion
+from rope_sim_ros.offline.sinks import LINE_COLUMNS
+from rope_sim_ros.params.arrangement import read_setup
+from rope_sim_ros.params.files import parse_set
+from rope_sim_ros.params.materials import default_config_dir
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 SECONDS = 12.0
@@ -49,6 +52,18 @@ def reference_motion(reference_dir: Path, path: Path, seconds: float = SECONDS) 
     return path
 
 
+def resolve_params(overrides=None):
+    """Return the line `rope_sim run` runs without --params: the default file's."""
+    default = default_config_dir() / 'mooring_line.yaml'
+    return read_setup(default if default.exists() else None, overrides).lines[0].params
+
+
+def motion_points(path: Path) -> tuple:
+    """Return (t [s] (n,), fairlead points (n, 3)) of a MOTION.csv."""
+    streams = read_motion(path)  # no fairlead_offset: the ship's poses are the points
+    return np.array([ns / 10**9 for ns in streams.t_ns.tolist()]), streams.position
+
+
 def read_out(path: Path) -> tuple:
     """Return (header, rows as a float array) of an OUT.csv."""
     with open(path, newline='') as f:
@@ -57,14 +72,14 @@ def read_out(path: Path) -> tuple:
         return header, np.array([[float(v) for v in row] for row in reader])
 
 
-def simulation(params, motion, rate: float) -> np.ndarray:
-    """Rows of the Simulator given the whole motion, then advanced to each row's time."""
-    sim = Simulator(params, output_interval=1.0 / rate, history=math.inf)
-    for t, point in zip(motion.t.tolist(), motion.fairlead):
+def simulation(params, times, points, rate: float) -> np.ndarray:
+    """Rows of the line given the whole motion, then advanced to each row's time."""
+    sim = OneLine(params, output_interval=1.0 / rate, history=math.inf)
+    for t, point in zip(times.tolist(), points):
         sim.push_fairlead(t, point)
-    sim.start(float(motion.t[0]))
+    sim.start(float(times[0]))
     rows = []
-    for t in motion.t.tolist():
+    for t in times.tolist():
         sim.advance_to(t)
         out = sim.output()
         rows.append([t, *out.fairlead_force, out.fairlead_tension, *out.bollard_force,
@@ -85,10 +100,10 @@ def good_run(reference_dir, tmp_path_factory):
 def test_rows_every_step_from_first_to_last_time(good_run):
     motion_path, out = good_run
     header, rows = read_out(out)
-    assert tuple(header) == OUT_COLUMNS
-    motion = read_motion(motion_path)
-    assert rows[0, 0] == motion.t[0] == 0.0
-    assert rows[-1, 0] == pytest.approx(motion.t[-1], abs=1e-12)
+    assert tuple(header) == LINE_COLUMNS
+    times, _ = motion_points(motion_path)
+    assert rows[0, 0] == times[0] == 0.0
+    assert rows[-1, 0] == pytest.approx(times[-1], abs=1e-12)
     assert len(rows) == round(SECONDS * 100) + 1
     assert np.allclose(np.diff(rows[:, 0]), 0.01, rtol=0, atol=1e-12)
     assert np.isfinite(rows).all()
@@ -97,8 +112,8 @@ def test_rows_every_step_from_first_to_last_time(good_run):
 def test_rows_equal_the_simulator(good_run):
     motion_path, out = good_run
     _, rows = read_out(out)
-    motion = read_motion(motion_path)
-    expected = simulation(resolve_params(), motion, 100.0)
+    times, points = motion_points(motion_path)
+    expected = simulation(resolve_params(), times, points, 100.0)
     assert rows.shape == expected.shape
     np.testing.assert_allclose(rows[:, 0], expected[:, 0], rtol=0, atol=1e-12)
     # Same steps, same numbers: only the state time's rounding differs.
@@ -188,8 +203,8 @@ def test_bad_set_names_the_parameter(setting, name, tmp_path, capsys):
 
 
 def test_set_parses_yaml_values():
-    values = cli.parse_set(['material=hmpe', 'gravity=[0,0,-9.81]', 'time_step=1e-4',
-                            'segments=30', 'superelastic_adjustment=false'])
+    values = parse_set(['material=hmpe', 'gravity=[0,0,-9.81]', 'time_step=1e-4',
+                        'segments=30', 'superelastic_adjustment=false'])
     assert values == {'material': 'hmpe', 'gravity': [0, 0, -9.81], 'time_step': 1e-4,
                       'segments': 30, 'superelastic_adjustment': False}
     assert resolve_params(overrides=values).material == 'hmpe'
@@ -228,7 +243,7 @@ def test_console_entry_point_exit_codes(tmp_path):
 
 def test_progress_bar_redraws_one_line_and_ends_it():
     import io
-    from rope_sim_ros.runner import Progress
+    from rope_sim_ros.offline.run import Progress
     stream = io.StringIO()
     bar = Progress(stream, delay=0.0, enabled=True)
     for k in range(1, 11):
@@ -248,7 +263,7 @@ def test_a_payload_adds_its_position_to_out_csv_and_the_bag(tmp_path):
     """payload_mass > 0: payload_x, payload_y, payload_z columns and payload/pose messages."""
     from rope_sim_ros.bag import read_messages
     from rope_sim_ros.bag.cdr import decode_pose_array, decode_pose_stamped
-    from rope_sim_ros.motion import PAYLOAD_COLUMNS
+    from rope_sim_ros.offline.sinks import PAYLOAD_COLUMNS
     motion = tmp_path / 'motion.csv'
     lines = [HEADER + ',bollard_x,bollard_y,bollard_z']
     for k in range(101):
@@ -260,9 +275,9 @@ def test_a_payload_adds_its_position_to_out_csv_and_the_bag(tmp_path):
                      '--rate', '50', '--quiet', '--set', 'segments=8',
                      '--set', 'payload_mass=500']) == 0
     header, rows = read_out(out)
-    assert tuple(header) == OUT_COLUMNS + PAYLOAD_COLUMNS
+    assert tuple(header) == LINE_COLUMNS + PAYLOAD_COLUMNS
     assert len(rows) == 101 and np.isfinite(rows).all()
-    payload = rows[:, len(OUT_COLUMNS):]
+    payload = rows[:, len(LINE_COLUMNS):]
     # it hangs about a line's length under the fairlead (the bollard samples are ignored)
     assert payload[0] == pytest.approx([36.0, 0.0, 8.0 - 40.0], abs=0.1)
     assert np.abs(payload[:, 0] - 36.0).max() > 0.01  # the surge swings it

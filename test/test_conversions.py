@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-Unit tests of rope_sim_ros.frames and its message wrappers in rope_sim_ros.ros.conversions.
+Unit tests of rope_sim_ros.model.frames and its message wrappers in rope_sim_ros.ros.conversions.
 
 Pose ⊕ offset, quaternions, messages and stamps: frames does the arithmetic on plain
 numbers (the offline runner's way), conversions on geometry_msgs objects (the node's); both
@@ -26,7 +26,7 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Pose, Quaternion
 import numpy as np
 import pytest
-from rope_sim_ros import frames
+from rope_sim_ros.model import frames
 from rope_sim_ros.ros import conversions
 
 

@@ -17,24 +17,25 @@ Water and ground parameters: ranges, "none" levels, the materials' coefficients,
 
 Every new parameter refuses a bad value with one line naming it and what is allowed; a
 level of -inf (no water, no seabed) is accepted from a dict, a YAML file, the CLI and a ROS
-parameter file; the material presets carry MoorPy's coefficients; a Simulator gets them.
+parameter file; the material presets carry MoorPy's coefficients; a line of the model gets
+them.
 """
 
 import math
 
 import numpy as np
+from one_line import OneLine
 import pytest
 import rclpy
 from rclpy.exceptions import ParameterException
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
-from rope_sim_ros.cli import parse_set
-from rope_sim_ros.line_driver import parameters_from_yaml, parameters_yaml
-from rope_sim_ros.params.files import load_params, read_params_file
+from rope_sim_ros.params.arrangement import (from_stored, LINE_PARAMETERS_KEY, parameters_yaml,
+                                             single_line, stored)
+from rope_sim_ros.params.files import load_params, parse_set, read_params_file
 from rope_sim_ros.params.materials import load_materials
 from rope_sim_ros.params.table import check, from_values, ParameterError, SPECS
-from rope_sim_ros.ros.mooring_line_node import describe
-from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.ros.parameters import describe
 
 LEVELS = ('water_level', 'seabed_level')
 COEFFICIENTS = ('normal_drag_coefficient', 'tangential_drag_coefficient',
@@ -211,7 +212,7 @@ def test_material_coefficients_in_round_figures():
 
 
 def test_simulator_takes_the_materials_coefficients():
-    sim = Simulator(from_values({'water_level': 0.0, 'material': 'hmpe'}))
+    sim = OneLine(from_values({'water_level': 0.0, 'material': 'hmpe'}))
     material = load_materials().properties('hmpe', D)
     line_type = sim.props.line_type
     assert line_type.diameter == D
@@ -223,7 +224,7 @@ def test_simulator_takes_the_materials_coefficients():
     assert env.water_level == 0.0 and env.water_density == 1025.0
     assert env.seabed_level == -math.inf and env.air_density == 1.225
     # explicit values beat the material's, 0 included
-    sim = Simulator(from_values({
+    sim = OneLine(from_values({
         'water_level': 5.0, 'normal_drag_coefficient': 1.2, 'tangential_drag_coefficient': 0,
         'normal_added_mass_coefficient': 0.0, 'tangential_added_mass_coefficient': 0.5,
         'volume_diameter': D, 'seabed_level': -60.0, 'seabed_friction': 0.5,
@@ -246,7 +247,7 @@ def test_simulator_takes_the_materials_coefficients():
 
 
 def test_weight_for_the_start_shape_is_less_the_fluids_buoyancy():
-    sim = Simulator(from_values({'water_level': 0.0}))
+    sim = OneLine(from_values({'water_level': 0.0}))
     props, material = sim.props, sim.material
     area = math.pi / 4 * material.volume_diameter ** 2
     assert props.weight_per_length == pytest.approx(
@@ -257,7 +258,7 @@ def test_weight_for_the_start_shape_is_less_the_fluids_buoyancy():
 
 def test_current_changes_at_run_time_without_a_restart():
     fairlead = np.array([30.0, 0.0, -5.0])
-    sim = Simulator(from_values({'water_level': 5.0, 'segments': 10, 'length': 40.0}))
+    sim = OneLine(from_values({'water_level': 5.0, 'segments': 10, 'length': 40.0}))
     sim.push_fairlead(0.0, fairlead)
     sim.push_fairlead(100.0, fairlead)
     sim.start(0.0)
@@ -328,9 +329,10 @@ def test_descriptors_declare_on_an_rclpy_node(ros_context, tmp_path):
 def test_params_file_round_trip(tmp_path):
     """A file written with -inf levels (as the bags store parameters) reads back the same."""
     params = from_values({'seabed_level': -12.0, 'current': [0.1, 0.2, 0.0]})
-    text = parameters_yaml(params)
+    text = parameters_yaml(single_line(params))
+    assert stored(single_line(params)) == {LINE_PARAMETERS_KEY: text}
     assert 'water_level: -.inf' in text
-    assert from_values(parameters_from_yaml(text)) == params
+    assert from_stored({LINE_PARAMETERS_KEY: text}) == single_line(params)
     path = tmp_path / 'stored.yaml'
     path.write_text(text)
     assert from_values(read_params_file(path)) == params

@@ -17,11 +17,11 @@
 import math
 
 import numpy as np
+from one_line import OneLine
 import pytest
 
 from rope_sim_ros.model.rope import RopeProperties
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.stepping import kernels
 from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit
 
@@ -89,7 +89,7 @@ def test_improved_euler_needs_damping():
 def _settle(bending, time_step, gust):
     params = from_values({'material': 'steel_wire', 'segments': 50, 'time_step': time_step,
                           'bending_stiffness_ratio': bending})
-    sim = Simulator(params, history=math.inf)
+    sim = OneLine(params, history=math.inf)
     sim.push_fairlead(0.0, [36.0, 0.0, 8.0])
     sim.start(0.0)
     sim.rope.v[1:-1, 1] = gust

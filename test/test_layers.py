@@ -13,27 +13,32 @@
 # limitations under the License.
 
 """
-Every layer imports downward only, and the layers below the ROS side import no ROS.
+Every room imports downward only, and the rooms below the ROS side import no ROS.
 
-The layers, bottom up (a module's layer is its subpackage; modules directly in rope_sim_ros/
-are the offline layer):
+The rooms, bottom up (a module's room is its subpackage of rope_sim_ros):
 
-- physics (rope_sim_ros/physics/): the model; imports nothing of ours above it;
-- bag (rope_sim_ros/bag/): the rosbag2/MCAP container; imports only itself;
-- offline (rope_sim_ros/*.py): simulator, runner, resim, plot, cli, frames, ...: may import
-  physics and bag;
-- ros2bag (rope_sim_ros/ros2bag/): message objects, QoS and installed types for bags; may
-  import bag only;
-- ros (rope_sim_ros/ros/): the nodes; may import anything below;
+- bag (bag/): the rosbag2/MCAP container; imports only itself;
+- model (model/): what a mooring is: objects, forces, statics, frames; imports only itself;
+- stepping (stepping/): the integrators, their step rules, bringing a shape to rest: model;
+- params (params/): the parameter table, the arrangement format, the files they come from:
+  model;
+- mooring (mooring/): the one Mooring of 1..n lines and its one Driver: model, stepping,
+  params;
+- messages (messages/): every topic once and the outputs as message bytes: bag and the
+  mooring (with what it imports);
+- offline (offline/): run, resim, plot, info, the command line: everything above, no ROS;
+- ros2bag (ros2bag/): message objects, QoS and installed types for bags: bag only;
+- ros (ros/): the one node and the tool nodes: everything but offline;
 - entry (rope_sim_ros/__main__.py, ``python -m rope_sim_ros``): goes through the launcher of
   the executables (ros/executables.py, standard library only) like the rope_sim command; it
   is checked by running it: the offline commands through it load no ROS.
 
-physics, bag and offline import no ROS at all, and offline never imports ros2bag or ros (nor
-those the offline runner). Two independent checks: a static one (every import statement,
-also inside functions, and every ``importlib.import_module`` / ``__import__`` call with a
-literal name, in every .py file) and dynamic ones in fresh interpreters (import a whole
-layer, and run the offline commands on a bag, then look at ``sys.modules``).
+Below ros and ros2bag no room imports ROS, and the nodes and the offline commands never
+import each other: what both need lives below both. Two independent checks: a static one
+(every import statement, also inside functions, and every ``importlib.import_module`` /
+``__import__`` call with a literal name, in every .py file) and dynamic ones in fresh
+interpreters (import a whole room, and run the offline commands on a bag, then look at
+``sys.modules``).
 """
 
 import ast
@@ -50,30 +55,26 @@ REPO_ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = 'rope_sim_ros'
 PACKAGE_DIR = REPO_ROOT / PACKAGE
 
-# subpackage -> layer; the modules directly in rope_sim_ros/ are OFFLINE
-SUBPACKAGE_LAYERS = {
-    'physics': 'physics',
-    'model': 'physics',
-    'stepping': 'physics',
-    'bag': 'bag',
-    'ros2bag': 'ros2bag',
-    'ros': 'ros',
-}
-OFFLINE = 'offline'
 ENTRY = 'entry'
+OFFLINE = 'offline'
 # rope_sim_ros/__init__.py, which every import of ours loads: imports nothing of ours
 ROOT = 'root'
-# layer -> the layers of ours it may import (besides the root package)
+# room -> the rooms of ours it may import (besides the root package); every subpackage is a
+# room of its own name
 ALLOWED = {
     ROOT: set(),
-    'physics': {'physics'},
     'bag': {'bag'},
-    OFFLINE: {'physics', 'bag', OFFLINE},
+    'model': {'model'},
+    'stepping': {'model', 'stepping'},
+    'params': {'model', 'params'},
+    'mooring': {'model', 'stepping', 'params', 'mooring'},
+    'messages': {'bag', 'model', 'stepping', 'params', 'mooring', 'messages'},
+    OFFLINE: {'bag', 'model', 'stepping', 'params', 'mooring', 'messages', OFFLINE},
     'ros2bag': {'bag', 'ros2bag'},
-    'ros': {'physics', 'bag', OFFLINE, 'ros2bag', 'ros'},
-    ENTRY: {'physics', 'bag', OFFLINE, 'ros2bag', 'ros'},
+    'ros': {'bag', 'model', 'stepping', 'params', 'mooring', 'messages', 'ros2bag', 'ros'},
+    ENTRY: {'ros'},
 }
-ROS_FREE = (ROOT, 'physics', 'bag', OFFLINE)
+ROS_FREE = (ROOT, 'bag', 'model', 'stepping', 'params', 'mooring', 'messages', OFFLINE)
 
 # Top-level ROS 2 distributions (client library, middleware, code generation, index,
 # launch, bags, tf); message/service/action packages are recognised by their suffix.
@@ -98,10 +99,10 @@ def is_ros_module(name):
 
 def layer_of(name):
     """
-    Return the layer of one of our dotted names, or None for a name not ours.
+    Return the room of one of our dotted names, or None for a name not ours.
 
-    'rope_sim_ros.runner.BagSink' (from 'from .runner import BagSink') is the runner's, so
-    offline; an unknown subpackage is 'unassigned' (it must be given a layer here).
+    'rope_sim_ros.offline.run.BagSink' (from 'from .run import BagSink') is offline's; a
+    module outside the rooms, or a new subpackage, is 'unassigned' (give it a room here).
     """
     parts = name.split('.')
     if parts[0] != PACKAGE:
@@ -110,11 +111,9 @@ def layer_of(name):
         return ROOT
     if parts[1] == '__main__':
         return ENTRY
-    if parts[1] in SUBPACKAGE_LAYERS:
-        return SUBPACKAGE_LAYERS[parts[1]]
-    if (PACKAGE_DIR / parts[1]).is_dir() and (PACKAGE_DIR / parts[1] / '__init__.py').exists():
-        return 'unassigned'
-    return OFFLINE
+    if parts[1] in ALLOWED:
+        return parts[1]
+    return 'unassigned'  # give it a room (a module outside the rooms has none)
 
 
 def module_name(path):
@@ -212,41 +211,53 @@ def test_detector_catches_forbidden_imports():
     }
     for layer in ROS_FREE:
         for snippet, name in ros.items():
-            problems = forbidden_imports(textwrap.dedent(snippet), layer, 'rope_sim_ros.physics')
+            problems = forbidden_imports(textwrap.dedent(snippet), layer, 'rope_sim_ros.model')
             assert any(name in p and '(ROS)' in p for p in problems), (layer, snippet, problems)
     # the ROS side may import ROS
     assert forbidden_imports('import rclpy', 'ros2bag', 'rope_sim_ros.ros2bag') == []
     upward = [
-        ('physics', 'rope_sim_ros.physics', 'from .. import simulator', 'rope_sim_ros.simulator'),
-        ('physics', 'rope_sim_ros.physics', 'from ..ros import mooring_line_node',
-         'rope_sim_ros.ros'),
-        ('physics', 'rope_sim_ros.physics', 'from rope_sim_ros.bag import writer',
+        ('model', 'rope_sim_ros.model', 'from ..stepping import kernels',
+         'rope_sim_ros.stepping'),
+        ('model', 'rope_sim_ros.model', 'from ..mooring import driver', 'rope_sim_ros.mooring'),
+        ('model', 'rope_sim_ros.model', 'from rope_sim_ros.bag import writer',
          'rope_sim_ros.bag'),
-        ('bag', 'rope_sim_ros.bag', 'from ..frames import pose_point', 'rope_sim_ros.frames'),
-        ('bag', 'rope_sim_ros.bag', 'from ..physics import rope', 'rope_sim_ros.physics'),
-        ('offline', 'rope_sim_ros', 'from .ros.conversions import pose_point',
+        ('stepping', 'rope_sim_ros.stepping', 'from ..params import table',
+         'rope_sim_ros.params'),
+        ('params', 'rope_sim_ros.params', 'from ..mooring.line import MooringLine',
+         'rope_sim_ros.mooring'),
+        ('mooring', 'rope_sim_ros.mooring', 'from ..messages import topics',
+         'rope_sim_ros.messages'),
+        ('messages', 'rope_sim_ros.messages', 'from ..offline import run',
+         'rope_sim_ros.offline'),
+        ('bag', 'rope_sim_ros.bag', 'from ..model.frames import pose_point',
+         'rope_sim_ros.model'),
+        ('offline', 'rope_sim_ros.offline', 'from ..ros.conversions import pose_point',
          'rope_sim_ros.ros.conversions'),
-        ('offline', 'rope_sim_ros', 'def f():\n    from .ros2bag import deserialize',
+        ('offline', 'rope_sim_ros.offline', 'def f():\n    from ..ros2bag import deserialize',
          'rope_sim_ros.ros2bag'),
-        ('offline', 'rope_sim_ros', 'import importlib\nimportlib.import_module(RECORDER)'
+        ('offline', 'rope_sim_ros.offline', 'import importlib\nimportlib.import_module(RECORDER)'
          .replace('RECORDER', repr('rope_sim_ros.ros.recorder')), 'rope_sim_ros.ros.recorder'),
+        ('ros', 'rope_sim_ros.ros', 'from ..offline.run import simulate', 'rope_sim_ros.offline'),
         ('ros2bag', 'rope_sim_ros.ros2bag', 'from ..ros import conversions', 'rope_sim_ros.ros'),
-        ('ros2bag', 'rope_sim_ros.ros2bag', 'from .. import runner', 'rope_sim_ros.runner'),
-        ('root', 'rope_sim_ros', 'from . import cli', 'rope_sim_ros.cli'),
+        ('ros2bag', 'rope_sim_ros.ros2bag', 'from ..mooring import driver',
+         'rope_sim_ros.mooring'),
+        ('root', 'rope_sim_ros', 'from .offline import cli', 'rope_sim_ros.offline'),
     ]
     for layer, package, snippet, name in upward:
         problems = forbidden_imports(textwrap.dedent(snippet), layer, package)
         assert any(name in p for p in problems), (layer, snippet, problems)
     clean = [
-        ('physics', 'rope_sim_ros.physics', 'from . import rope\nimport numpy as np\n'
-         'from .catenary import elastic_catenary\nfrom rope_sim_ros.physics import materials\n'
-         'import importlib\nimportlib.import_module("numba")'),
+        ('model', 'rope_sim_ros.model', 'from . import rope\nimport numpy as np\n'
+         'from .statics.catenary import solve_catenary\nfrom rope_sim_ros.model import '
+         'materials\nimport importlib\nimportlib.import_module("numba")'),
         ('bag', 'rope_sim_ros.bag', 'from . import cdr\nfrom .errors import BagError\n'
          'from mcap.writer import Writer\nimport yaml'),
-        ('offline', 'rope_sim_ros', 'from .bag import cdr\nfrom .model.frames import pose_point\n'
-         'from .model.rope import Rope\nfrom . import simulator'),
+        ('mooring', 'rope_sim_ros.mooring', 'from ..model.frames import pose_point\n'
+         'from ..stepping.step import step\nfrom ..params.table import SPECS'),
+        ('offline', 'rope_sim_ros.offline', 'from ..bag import cdr\nfrom ..mooring.driver import '
+         'Driver\nfrom ..messages.encode import OutputEncoder\nfrom . import run'),
         ('ros2bag', 'rope_sim_ros.ros2bag', 'from ..bag import schema\nimport rclpy'),
-        ('ros', 'rope_sim_ros.ros', 'from .. import frames, runner\nfrom ..ros2bag import '
+        ('ros', 'rope_sim_ros.ros', 'from ..mooring.driver import Driver\nfrom ..ros2bag import '
          'RosBagWriter\nfrom ..bag import cdr\nimport rclpy\nfrom . import conversions'),
     ]
     for layer, package, snippet in clean:
@@ -258,8 +269,9 @@ def test_detector_catches_forbidden_imports():
 
 
 def test_layers_are_assigned():
-    assert layer_of('rope_sim_ros.runner.BagSink') == OFFLINE
-    assert layer_of('rope_sim_ros.frames') == OFFLINE
+    assert layer_of('rope_sim_ros.offline.run.BagSink') == OFFLINE
+    assert layer_of('rope_sim_ros.model.frames') == 'model'
+    assert layer_of('rope_sim_ros.frames') == 'unassigned'
     assert layer_of('rope_sim_ros.ros.conversions.pose_point') == 'ros'
     assert layer_of('rope_sim_ros') == ROOT
     assert layer_of('numpy') is None
@@ -307,7 +319,8 @@ def loaded_problems(modules, layer):
     return sorted(bad)
 
 
-@pytest.mark.parametrize('layer', ['physics', 'bag', OFFLINE])
+@pytest.mark.parametrize('layer', ['bag', 'model', 'stepping', 'params', 'mooring', 'messages',
+                                   OFFLINE])
 def test_importing_a_layer_loads_nothing_above_it(layer):
     names = sorted(module_name(p) for p in sources()
                    if module_layer(p) == layer and p.name != '__main__.py')
@@ -346,8 +359,8 @@ def test_offline_commands_run_without_ros(tmp_path):
         """, cwd=tmp_path)
     assert (tmp_path / 'run.png').stat().st_size > 0
     assert (tmp_path / 'copy' / 'metadata.yaml').exists()
-    for name in ('rope_sim_ros.cli', 'rope_sim_ros.plot', 'rope_sim_ros.bag.writer',
-                 'rope_sim_ros.bag.recover'):
+    for name in ('rope_sim_ros.offline.cli', 'rope_sim_ros.offline.plot',
+                 'rope_sim_ros.bag.writer', 'rope_sim_ros.bag.recover'):
         assert name in modules
     assert loaded_problems(modules, OFFLINE) == [
         'rope_sim_ros.ros', 'rope_sim_ros.ros.executables']  # the launcher, stdlib only

@@ -13,28 +13,43 @@
 # limitations under the License.
 
 """
-The input and output rules of line_driver.LineDriver, which the node and the runner share.
+The input and output rules of mooring.driver.Driver on a single line, a mooring of one line.
 
 One sample behind a live stream, outputs pinned to their grid, skip ahead past MAX_LAG, a
 clock jump back, a rate change re-anchoring the grid, and the torque arm of each output.
+The fairlead is the ship's pose with the line's fairlead_offset (none here but in the lever
+test): a level pose at the fairlead point.
 """
 
 import math
 
 import numpy as np
+from one_line import OneLine
 import pytest
-from rope_sim_ros.line_driver import (BOLLARD, decode_event, encode_event, FAIRLEAD,
-                                      LineDriver, MAX_LAG)
+from rope_sim_ros.model.frames import rotation_matrix, unit_quaternion
+from rope_sim_ros.mooring.driver import decode_event, Driver, encode_event, MAX_LAG, SHIP
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values, ParameterError
-from rope_sim_ros.simulator import Simulator
 
 EPOCH = 1_767_225_600_000_000_000  # [ns] stamp of the first sample
 FAIRLEAD_POINT = np.array([36.0, 0.0, 8.0])
 SECOND = 1_000_000_000
+LEVEL = (0.0, 0.0, 0.0, 1.0)
+BOLLARD = ''  # the single line's name: its bollard's stream
 
 
 def line(**values):
     return from_values({'segments': 8, **values})
+
+
+def one_line(params, rate=None, history=5.0) -> Driver:
+    """Return a Driver of a mooring of this one line."""
+    return Driver(single_line(params), rate=rate, history=history)
+
+
+def push(driver: Driver, stamp_ns: int, point) -> dict:
+    """Take a fairlead sample: a level ship pose at the point (no fairlead_offset)."""
+    return driver.push_ship(stamp_ns, point, LEVEL)
 
 
 def surge(t: float) -> np.ndarray:
@@ -46,43 +61,43 @@ def stamps(report) -> list:
 
 
 def test_the_rope_stays_one_sample_behind_a_live_stream():
-    driver = LineDriver(line(), rate=50.0)
-    assert driver.push(FAIRLEAD, EPOCH, surge(0.0)) == 'start'
+    driver = one_line(line(), rate=50.0)
+    assert push(driver, EPOCH, surge(0.0)) == {'start': {}}
     # a single sample: the fresh output at the start, nothing past it
     assert stamps(driver.advance(math.inf)) == [0]
-    driver.push(FAIRLEAD, EPOCH + 100_000_000, surge(0.1))
+    push(driver, EPOCH + 100_000_000, surge(0.1))
     # the newest sample (0.1 s) is not reached: its motion up to it needs the next one
     assert stamps(driver.advance(math.inf)) == []
-    driver.push(FAIRLEAD, EPOCH + 200_000_000, surge(0.2))
+    push(driver, EPOCH + 200_000_000, surge(0.2))
     assert stamps(driver.advance(math.inf)) == [20_000_000 * k for k in range(1, 6)]
     # a clock behind the samples holds the rope back too
-    driver.push(FAIRLEAD, EPOCH + 300_000_000, surge(0.3))
+    push(driver, EPOCH + 300_000_000, surge(0.3))
     assert stamps(driver.advance(0.15)) == [120_000_000, 140_000_000]
     # a silent stream no longer holds it: the rope goes on with the clock, coasting
-    assert driver.silence(FAIRLEAD) and not driver.live(FAIRLEAD)
+    assert driver.silence(SHIP) and not driver.live(SHIP)
     assert stamps(driver.advance(0.5))[-1] == 500_000_000
-    driver.push(FAIRLEAD, EPOCH + 600_000_000, surge(0.6))
-    assert driver.live(FAIRLEAD)
+    push(driver, EPOCH + 600_000_000, surge(0.6))
+    assert driver.live(SHIP)
 
 
 @pytest.mark.parametrize('integrator, bound', [('implicit_euler', 1e-6), ('adaptive', 1e-3)])
 def test_one_sample_behind_is_the_whole_motion_known(integrator, bound):
     """
-    Fed sample by sample, the outputs are those of a Simulator given every sample first.
+    Fed sample by sample, the outputs are those of the line given every sample first.
 
-    To round-off: the driver pins its steps to the output grid (0.2 s), the Simulator adds
+    To round-off: the driver pins its steps to the output grid (0.2 s), the line alone adds
     them up (0.19999999999999998 s). The adaptive integrator's snap watch (this surge keeps
     it in improved Euler most of the time) can tip either way on such a difference: 8.5e-5 N.
     """
     params = line(integrator=integrator)
-    driver = LineDriver(params, rate=50.0)
-    whole = Simulator(params, output_interval=0.02, history=math.inf)
+    driver = one_line(params, rate=50.0)
+    whole = OneLine(params, output_interval=0.02, history=math.inf)
     times = np.arange(0, 101) * 0.02
     live = []
     for k, t in enumerate(times):
-        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(t))
+        push(driver, EPOCH + k * 20_000_000, surge(t))
         whole.push_fairlead(k * 20_000_000 / 1e9, surge(t))
-        live += [p.output.fairlead_force for p in driver.advance(math.inf).outputs]
+        live += [p.output.fairlead_forces[0] for p in driver.advance(math.inf).outputs]
     whole.start(0.0)
     offline = []
     for k in range(len(live)):
@@ -96,10 +111,10 @@ def test_one_sample_behind_is_the_whole_motion_known(integrator, bound):
 def test_outputs_are_pinned_to_their_grid():
     # 30 Hz does not divide the 20 ms samples; the step is chosen to divide 1/30 s: each
     # output's state time is exactly k / 30 s, not a running sum of steps
-    driver = LineDriver(line(), rate=30.0)
+    driver = one_line(line(), rate=30.0)
     times = []
     for k in range(301):
-        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+        push(driver, EPOCH + k * 20_000_000, surge(k * 0.02))
         times += [p.output.t for p in driver.advance(math.inf).outputs]
     assert len(times) == 180  # 0 .. 5.96 s: to the second-newest sample
     assert times == [k / 30.0 for k in range(180)]
@@ -107,11 +122,11 @@ def test_outputs_are_pinned_to_their_grid():
 
 
 def test_a_lag_past_max_lag_skips_ahead_and_restarts_there():
-    driver = LineDriver(line(), rate=50.0)
+    driver = one_line(line(), rate=50.0)
     for k in range(6):
-        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+        push(driver, EPOCH + k * 20_000_000, surge(k * 0.02))
     assert stamps(driver.advance(math.inf))[-1] == 80_000_000
-    driver.silence(FAIRLEAD)
+    driver.silence(SHIP)
     report = driver.advance(0.08 + MAX_LAG + 0.5)
     assert report.skipped == pytest.approx(MAX_LAG + 0.5) and report.skip_to == 1.58
     # the fresh state at the skip, then the grid from there (here at most 3 per call)
@@ -127,72 +142,80 @@ def test_a_lag_past_max_lag_skips_ahead_and_restarts_there():
 
 
 def test_a_clock_jump_back_clears_the_line():
-    driver = LineDriver(line(), rate=50.0)
-    driver.push(FAIRLEAD, EPOCH, surge(0.0))
-    driver.push(FAIRLEAD, EPOCH + SECOND, surge(0.0))
-    driver.silence(FAIRLEAD)
+    driver = one_line(line(), rate=50.0)
+    push(driver, EPOCH, surge(0.0))
+    push(driver, EPOCH + SECOND, surge(0.0))
+    driver.silence(SHIP)
     driver.advance(3.0, max_lag=math.inf)
     report = driver.advance(3.0 - MAX_LAG - 0.1)
     assert report.clock_back == pytest.approx(MAX_LAG + 0.1) and report.outputs == []
     assert not driver.started and driver.epoch_ns is None
     # the next fairlead sample starts it again, its stamp the new epoch
-    assert driver.push(FAIRLEAD, EPOCH - 5 * SECOND, surge(0.0)) == 'start'
+    assert push(driver, EPOCH - 5 * SECOND, surge(0.0)) == {'start': {}}
     assert stamps(driver.advance(math.inf)) == [-5 * SECOND]
 
 
 def test_a_rate_change_re_anchors_the_grid_at_the_last_output():
-    driver = LineDriver(line(), rate=50.0)
+    driver = one_line(line(), rate=50.0)
     outputs = []
     for k in range(101):
         if k == 50:  # the last output so far is at 0.96 s
-            driver.update({'publish_rate': 30.0})
+            driver.update(None, {'publish_rate': 30.0})
             assert driver.rate == 30.0
-        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+        push(driver, EPOCH + k * 20_000_000, surge(k * 0.02))
         outputs += stamps(driver.advance(math.inf))
     before = [k * 20_000_000 for k in range(49)]
     after = [960_000_000 + round(k / 30.0 * 1e9) for k in range(1, 31)]
     assert outputs == before + after  # no gap, no burst: 1/30 s after 0.96 s, and on
     # the step divides the new period
-    period = 1.0 / 30.0 / driver.simulator.time_step
+    period = 1.0 / 30.0 / driver.mooring.time_step
     assert period == pytest.approx(round(period), abs=1e-9)
+
+
+def lever_of(offset, orientation) -> np.ndarray:
+    """Return the fairlead's lever of a pose: its offset turned by the pose's orientation."""
+    return (np.array([offset]) @ rotation_matrix(unit_quaternion(orientation)[0]).T)[0]
 
 
 def test_the_lever_is_the_newest_samples_at_or_before_the_output():
     # The pose rolls: each sample has its own lever. An output gets the lever of the
     # newest sample at or before its time, not of the newest sample taken (one ahead).
-    driver = LineDriver(line(), rate=20.0)
-    levers = {k: np.array([2.0, 1.0, 3.0]) * (1.0 + 0.1 * k) for k in range(8)}
+    offset = [2.0, 1.0, 3.0]
+    driver = one_line(line(fairlead_offset=offset), rate=20.0)
+    rolls = {k: [math.sin(0.05 * k), 0.0, 0.0, math.cos(0.05 * k)] for k in range(8)}
+    levers = {k: lever_of(offset, rolls[k]) for k in range(8)}
     got = []
-    for k in range(8):
-        driver.push(FAIRLEAD, EPOCH + k * 100_000_000, surge(0.1 * k), levers[k])
+    for k in range(8):  # the fairlead at the surge point, the pose's origin a lever from it
+        driver.push_ship(EPOCH + k * 100_000_000, surge(0.1 * k) - levers[k], rolls[k])
         for p in driver.advance(math.inf).outputs:
-            got.append((p.stamp_ns - EPOCH, p.fairlead_lever, p.bollard_lever))
+            got.append((p.stamp_ns - EPOCH, p.fairlead_levers[0], p.bollard_levers[0]))
     # outputs every 50 ms up to the second-newest sample (0.6 s)
     assert [ns for ns, _, _ in got] == [50_000_000 * k for k in range(13)]
     for ns, fairlead, bollard in got:
         assert np.array_equal(fairlead, levers[ns // 100_000_000]), ns
         assert np.array_equal(bollard, np.zeros(3))  # no bollard sample: no arm
-    assert np.array_equal(driver.lever(FAIRLEAD, -1.0), levers[6])  # the oldest kept
-    assert np.array_equal(driver.lever(BOLLARD, 0.3), np.zeros(3))
+    oldest = driver.mooring.ship_pose(-1.0)[1]  # the oldest kept
+    assert np.array_equal(lever_of(offset, oldest), levers[6])
+    assert np.array_equal(driver._bollard_levers_at(0.3)[0], np.zeros(3))
 
 
 def test_a_bollard_stream_holds_the_rope_back_too():
-    driver = LineDriver(line(), rate=50.0)
-    driver.push(BOLLARD, EPOCH, [0.0, 0.0, 0.0])
-    driver.push(FAIRLEAD, EPOCH, surge(0.0))
+    driver = one_line(line(), rate=50.0)
+    driver.push_bollard(BOLLARD, EPOCH, [0.0, 0.0, 0.0])
+    push(driver, EPOCH, surge(0.0))
     for k in range(1, 11):
-        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
-    driver.push(BOLLARD, EPOCH + 100_000_000, [0.0, 0.0, 0.0])
+        push(driver, EPOCH + k * 20_000_000, surge(k * 0.02))
+    driver.push_bollard(BOLLARD, EPOCH + 100_000_000, [0.0, 0.0, 0.0])
     # the fairlead reached 0.2 s, the bollard is at its first sample still
     assert stamps(driver.advance(math.inf)) == [0]
-    driver.push(BOLLARD, EPOCH + 200_000_000, [0.0, 0.0, 0.0])
+    driver.push_bollard(BOLLARD, EPOCH + 200_000_000, [0.0, 0.0, 0.0])
     assert stamps(driver.advance(math.inf))[-1] == 100_000_000
 
 
 def test_reset_restarts_at_the_state_time_and_re_anchors():
-    driver = LineDriver(line(), rate=50.0)
+    driver = one_line(line(), rate=50.0)
     for k in range(11):
-        driver.push(FAIRLEAD, EPOCH + k * 20_000_000, surge(k * 0.02))
+        push(driver, EPOCH + k * 20_000_000, surge(k * 0.02))
     driver.advance(math.inf)
     driver.reset()
     report = driver.advance(math.inf)
@@ -207,4 +230,4 @@ def test_events_round_trip_and_bad_rates_are_refused():
         decode_event('{"event": "explode"}')
     for rate in (0.0, -1.0, math.nan, math.inf):
         with pytest.raises(ParameterError, match='output rate'):
-            LineDriver(line(), rate=rate)
+            one_line(line(), rate=rate)

@@ -14,12 +14,12 @@
 
 """Material presets reproduce the MoorPy fits and the OCIMF MEG4 working load limits."""
 
+from one_line import OneLine
 import pytest
 
 from rope_sim_ros.model.materials import MaterialError
 from rope_sim_ros.params.materials import load_materials
 from rope_sim_ros.params.table import from_values, MATERIALS
-from rope_sim_ros.simulator import Simulator
 
 D = 0.064
 # MoorPy and MEG4 values, written out independently of config/materials.yaml
@@ -58,10 +58,10 @@ def test_unknown_material_is_named():
 
 
 def test_overrides_beat_the_preset():
-    sim = Simulator(from_values({'mass_per_length': 3.0, 'axial_stiffness': 1e8}))
+    sim = OneLine(from_values({'mass_per_length': 3.0, 'axial_stiffness': 1e8}))
     assert sim.props.mass_per_length == 3.0
     assert sim.props.axial_stiffness == 1e8
-    default = Simulator(from_values({}))
+    default = OneLine(from_values({}))
     assert default.props.mass_per_length == pytest.approx(679 * D**2)
     # automatic damping: 1 % of critical for the first axial mode
     assert default.props.axial_damping > 0.0

@@ -31,12 +31,13 @@ from types import SimpleNamespace
 from geometry_msgs.msg import PoseStamped
 from node_harness import no_gc_pauses, node_summary, NodeProcess, SimClient
 import numpy as np
+from one_line import OneLine
 import pytest
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rope_sim_ros.model.statics import catenary
-from rope_sim_ros.params import table as params
+from rope_sim_ros.params.files import load_params
+from rope_sim_ros.params.table import LineParams
 from rope_sim_ros.ros import executables
-from rope_sim_ros.simulator import Simulator
 
 START = 5000 * 1_000_000_000  # [ns] sim time of the first pose
 FAIRLEAD = np.array([32.0, 12.0, 6.0])
@@ -45,8 +46,8 @@ PARAMS_FILE = Path(__file__).resolve().parent.parent / 'config' / 'mooring_line.
 SECOND = 1_000_000_000
 
 
-def default_line(**values) -> params.LineParams:
-    return params.load_params(PARAMS_FILE).with_values(values)
+def default_line(**values) -> LineParams:
+    return load_params(PARAMS_FILE).with_values(values)
 
 
 def log_lines(node: NodeProcess, word: str) -> list:
@@ -55,7 +56,7 @@ def log_lines(node: NodeProcess, word: str) -> list:
 
 def equilibrium(bollard, fairlead) -> tuple:
     """Return (bollard, fairlead) tension [N] of the default line at rest between the ends."""
-    p = Simulator(default_line()).props
+    p = OneLine(default_line()).props
     chain = catenary.chain_equilibrium(bollard, fairlead, p.length, p.segments,
                                        p.weight_per_length, p.axial_stiffness, p.gravity)
     return float(np.linalg.norm(chain.force_a)), float(np.linalg.norm(chain.force_b))
@@ -130,7 +131,7 @@ def test_poses_stamped_far_from_the_clock_are_dropped_and_the_stream_goes_on(sim
 
     # the node is the offline simulator fed with the good poses alone
     line = default_line()
-    sim = Simulator(line, output_interval=1.0 / line.publish_rate, history=math.inf)
+    sim = OneLine(line, output_interval=1.0 / line.publish_rate, history=math.inf)
     for k in range(251):
         sim.push_fairlead(k / 50.0, motion(k / 50.0))
     sim.start(0.0)
@@ -195,7 +196,7 @@ def test_a_jump_of_either_end_restarts_the_rope_at_the_new_place(sim_node):
 
 def test_the_bollard_has_the_fairleads_jump_guard_in_the_simulator():
     line = default_line(teleport_distance=2.0)
-    sim = Simulator(line, output_interval=0.02, history=math.inf)
+    sim = OneLine(line, output_interval=0.02, history=math.inf)
     sim.push_fairlead(0.0, FAIRLEAD)
     assert sim.push_bollard(0.0, [0.0, 0.0, 0.0]) == ''  # not started: nothing to restart
     sim.start(0.0)
@@ -217,7 +218,7 @@ def test_the_bollard_has_the_fairleads_jump_guard_in_the_simulator():
     assert sim.last_jump == pytest.approx(2.01)
 
     # a first bollard sample after the start jumps from bollard_position
-    fresh = Simulator(default_line(teleport_distance=2.0, bollard_position=[1.0, 1.0, 0.0]))
+    fresh = OneLine(default_line(teleport_distance=2.0, bollard_position=[1.0, 1.0, 0.0]))
     fresh.push_fairlead(0.0, FAIRLEAD)
     fresh.start(0.0)
     assert fresh.push_bollard(0.1, [1.0, 3.5, 0.0]) == 'teleport'
@@ -402,7 +403,7 @@ def test_a_ctrl_c_an_import_swallowed_still_ends_the_start(monkeypatch):
     monkeypatch.setattr(executables.signal, 'signal', install)
     monkeypatch.setattr(executables.importlib, 'import_module', import_swallowing_ctrl_c)
     monkeypatch.setattr(executables.sys, 'unraisablehook', executables.sys.unraisablehook)
-    assert executables._run('ros.mooring_line_node') == executables.EXIT_INTERRUPTED
+    assert executables._run('ros.node', 'main_line') == executables.EXIT_INTERRUPTED
     assert started == [] and handlers[-1] == executables.signal.SIG_IGN
 
 # ------------------------------------------------------------------------ QoS

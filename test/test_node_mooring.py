@@ -31,6 +31,7 @@ import time
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
 import numpy as np
+from one_line import OneLine
 import pytest
 import rclpy
 from rclpy.executors import SingleThreadedExecutor
@@ -38,14 +39,13 @@ from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.signals import SignalHandlerOptions
-from rope_sim_ros.line_status import COLOURS
 from rope_sim_ros.model.frames import pose_point
-from rope_sim_ros.mooring import length_for_tension
+from rope_sim_ros.model.statics.pretension import length_for_tension
+from rope_sim_ros.mooring.status import COLOURS
 from rope_sim_ros.params import arrangement
-from rope_sim_ros.params import table as params
+from rope_sim_ros.params.table import from_values, SPECS
 from rope_sim_ros.ros.mooring_display import line_diagnostics, line_markers
-from rope_sim_ros.ros.mooring_line_node import describe
-from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.ros.parameters import describe
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Bool, Float64, String
 from std_srvs.srv import Trigger
@@ -81,10 +81,10 @@ def line_values() -> dict:
     """Return the arrangement's parameters: each length chosen for its target tension."""
     end_position, end_orientation = ship_pose(RAMP[1])
     values = {'lines': NAMES, 'marker_rate': 10.0, 'publish_rate': RATE}
-    props = Simulator(params.from_values(LINE)).props
+    props = OneLine(from_values(LINE)).props
     for name, target, offset, bollard in zip(NAMES, TARGETS, OFFSETS, BOLLARDS):
         fairlead = pose_point(end_position, end_orientation, offset).point
-        mbl = Simulator(params.from_values(LINE)).material.mbl
+        mbl = OneLine(from_values(LINE)).material.mbl
         length = length_for_tension(props, bollard, fairlead, target * mbl)
         values[name] = dict(LINE, fairlead_offset=offset, bollard_position=bollard,
                             length=round(length, 6))
@@ -259,7 +259,7 @@ def test_each_line_has_the_single_line_nodes_parameters(mooring):
     described = {d.name: d for d in future.result().descriptors}
     for name in ('easy.axial_damping', 'hard.fairlead_offset', 'integrator'):
         base = name.split('.')[-1]
-        mine, single = described[name], describe(base, params.SPECS[base])
+        mine, single = described[name], describe(base, SPECS[base])
         assert mine.description == single.description
         assert mine.additional_constraints == single.additional_constraints
         assert mine.read_only == single.read_only
@@ -293,7 +293,7 @@ def test_markers_and_diagnostics_follow_the_utilisation(mooring):
     assert before['working'][0] == DiagnosticStatus.OK  # 48 % of MBL: below the WLL
     assert before['hard'][0] == DiagnosticStatus.WARN
     client.drive(2.4, 4.6)  # surge 0.5 m ahead, then held for 2.5 s
-    mbl = Simulator(params.from_values(LINE)).material.mbl
+    mbl = OneLine(from_values(LINE)).material.mbl
     report = statuses(client.diagnostics[-1])
     assert [report[name][0] for name in NAMES] == [
         DiagnosticStatus.OK, DiagnosticStatus.WARN, DiagnosticStatus.WARN]
@@ -393,7 +393,7 @@ def test_a_line_that_parts_shows_to_every_subscriber(mooring):
     assert client.parted == [False]  # latched at the first output, unchanged since
     working = client.tensions['working'][-1][1].force
     hard = client.tensions['hard'][-1][1].force
-    mbl = Simulator(params.from_values(LINE)).material.mbl
+    mbl = OneLine(from_values(LINE)).material.mbl
     set_parameter(client, 'hard.break_load', 0.5 * mbl)
     client.drive(13.5, 2.5)
     parted = [e for e in client.events if e['event'] == 'parted']
@@ -444,7 +444,7 @@ def test_parted_line_looks_parted_to_a_subscriber():
     # A parted line (the flag the Mooring's outputs carry) as the display builds it, through
     # serialisation: grey dashes, an ERROR status.
     from rclpy.serialization import deserialize_message, serialize_message
-    from rope_sim_ros.line_status import Rating
+    from rope_sim_ros.mooring.status import Rating
     rating = Rating(mbl=1.0e6, wll=5.0e5)
     positions = [np.column_stack([np.linspace(0, 10, 11), np.zeros(11), np.zeros(11)])] * 2
     markers = line_markers('world', 5, ['a', 'b'], positions, [1.0e5, 0.0], [rating] * 2,
@@ -487,8 +487,9 @@ def test_berth_file_is_an_arrangement(repo_root):
 
 
 def test_foxglove_layout_and_rviz_config_open_the_nodes_topics(repo_root):
-    from rope_sim_ros.ros.mooring_node import (DIAGNOSTICS_TOPIC, MARKERS_TOPIC,
-                                               WRENCH_TOPIC)
+    from rope_sim_ros.messages.topics import (DIAGNOSTICS as DIAGNOSTICS_TOPIC,
+                                              MARKERS as MARKERS_TOPIC,
+                                              MOORING_WRENCH as WRENCH_TOPIC)
     import json
     frame_id = arrangement.read_arrangement_file(
         repo_root / 'config' / 'berth.yaml').shared.frame_id

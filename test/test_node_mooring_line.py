@@ -31,6 +31,7 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 from node_harness import no_gc_pauses, NodeProcess
 import numpy as np
+from one_line import OneLine
 import pytest
 import rclpy
 from rclpy.executors import SingleThreadedExecutor
@@ -39,8 +40,8 @@ from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros.model.statics import catenary
-from rope_sim_ros.params import table as params
-from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.params.files import load_params, read_params_file
+from rope_sim_ros.params.table import LineParams, SPECS
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
@@ -49,7 +50,7 @@ CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
 SIM_START = 1000 * 1_000_000_000  # [ns] where the tests' sim time starts
 START_TIMEOUT = 60.0  # the first node of a fresh install compiles the kernels (~10 s)
 PARAMS_FILE = Path(__file__).resolve().parent.parent / 'config' / 'mooring_line.yaml'
-VECTORS = [name for name, spec in params.SPECS.items() if isinstance(spec.default, list)]
+VECTORS = [name for name, spec in SPECS.items() if isinstance(spec.default, list)]
 
 
 # ------------------------------------------------------------------------------ helpers
@@ -219,13 +220,13 @@ def all_finite(client: Client) -> bool:
     return bool(np.isfinite(numbers).all())
 
 
-def default_line() -> params.LineParams:
-    return params.load_params(PARAMS_FILE)
+def default_line() -> LineParams:
+    return load_params(PARAMS_FILE)
 
 
 def chain_at(fairlead) -> catenary.ChainEquilibrium:
     """Exact static equilibrium of the default line between the origin and `fairlead`."""
-    sim = Simulator(default_line())
+    sim = OneLine(default_line())
     p = sim.props
     return catenary.chain_equilibrium([0.0, 0.0, 0.0], fairlead, p.length, p.segments,
                                       p.weight_per_length, p.axial_stiffness, p.gravity)
@@ -261,9 +262,9 @@ def line_node(colcon_install, colcon_env, tmp_path_factory):
 
 
 def test_params_file_sets_every_parameter_to_its_default():
-    values = params.read_params_file(PARAMS_FILE)
-    assert set(values) == set(params.SPECS), set(values) ^ set(params.SPECS)
-    assert {k: v for k, v in values.items() if v != params.SPECS[k].default} == {}
+    values = read_params_file(PARAMS_FILE)
+    assert set(values) == set(SPECS), set(values) ^ set(SPECS)
+    assert {k: v for k, v in values.items() if v != SPECS[k].default} == {}
     text = PARAMS_FILE.read_text()
     assert '/**/mooring_line:' in text  # reaches the node in any namespace
 
@@ -276,7 +277,7 @@ def test_static_fairlead_gives_catenary_tension(line_node):
     assert len(log_lines(node, 'waiting for the first pose on /line/fairlead/pose')) == 1
 
     client.drive(4.0, lambda t: FAIRLEAD, rate=20.0)
-    line = Simulator(default_line())
+    line = OneLine(default_line())
     expected = catenary.solve_catenary(
         math.hypot(FAIRLEAD[0], FAIRLEAD[1]), FAIRLEAD[2], line.props.length,
         line.material.mass_per_length * 9.81, line.material.axial_stiffness)
@@ -346,16 +347,16 @@ def _ringing(client: Client) -> float:
 def test_parameters(line_node):
     node, client = line_node
     names = client.call(client.parameters.list_parameters()).result.names
-    assert set(params.SPECS) <= set(names)
+    assert set(SPECS) <= set(names)
     descriptors = {d.name: d for d in client.call(
-        client.parameters.describe_parameters(list(params.SPECS))).descriptors}
-    for name, spec in params.SPECS.items():
+        client.parameters.describe_parameters(list(SPECS))).descriptors}
+    for name, spec in SPECS.items():
         assert descriptors[name].read_only == spec.read_only, name
         assert spec.unit in descriptors[name].description
     # the parameter file reached the node in its namespace: every value is the file's
-    values = client.call(client.parameters.get_parameters(list(params.SPECS))).values
-    in_file = params.read_params_file(PARAMS_FILE)
-    for name, value in zip(params.SPECS, values):
+    values = client.call(client.parameters.get_parameters(list(SPECS))).values
+    in_file = read_params_file(PARAMS_FILE)
+    for name, value in zip(SPECS, values):
         got = parameter_value_to_python(value)
         assert (list(got) if name in VECTORS else got) == in_file[name], name
     assert descriptors['max_strain'].floating_point_range[0].to_value == 10.0
@@ -494,12 +495,12 @@ def _stamp_ns(msg: PoseArray) -> int:
     return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
 
 
-def offline_simulator(line: params.LineParams) -> Simulator:
+def offline_simulator(line: LineParams) -> OneLine:
     """Return the Simulator the node runs: its step divides the publish period."""
-    return Simulator(line, output_interval=1.0 / line.publish_rate, history=math.inf)
+    return OneLine(line, output_interval=1.0 / line.publish_rate, history=math.inf)
 
 
-def _first_sample(sent: list, first_output_ns: int, line: params.LineParams) -> tuple:
+def _first_sample(sent: list, first_output_ns: int, line: LineParams) -> tuple:
     """
     Return (index, time origin) of the pose the node started the rope with.
 

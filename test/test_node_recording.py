@@ -40,9 +40,9 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.serialization import deserialize_message
 from rclpy.signals import SignalHandlerOptions
-from rope_sim_ros import cli
 from rope_sim_ros.bag import bag_info, read_messages
-from rope_sim_ros.resim import stored_parameters
+from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.resim import stored_setup
 from rope_sim_ros.ros import recorder as rec
 from rope_sim_ros.ros.conversions import pose_array, wrench
 from rope_sim_ros.ros2bag import deserialize
@@ -347,9 +347,11 @@ def test_sigint_metadata_counts_agree(sigint_run):
 
 
 def test_node_bag_stores_parameters_and_rope_sim_reads_it(sigint_run, capsys):
-    stored = stored_parameters(sigint_run['bag'])
-    assert stored['material'] == 'polyester' and stored['segments'] == 20
-    assert 'record_path' not in stored
+    stored = stored_setup(sigint_run['bag'])
+    assert stored.single
+    line = stored.lines[0].params
+    assert line.material == 'polyester' and line.segments == 20
+    assert line.record_path == ''  # not stored: a re-run records nowhere by itself
     assert cli.main(['info', str(sigint_run['bag'])]) == 0
     out = capsys.readouterr().out
     for name in resolved('/rec_int').values():
@@ -441,7 +443,7 @@ def test_sigkill_leaves_a_recoverable_bag(colcon_install, colcon_env, tmp_path):
         assert reader.message_count == len(messages)
     assert bag_info(bag).complete
     # the node's parameters survive the kill, so resim and plot still know the line
-    assert stored_parameters(bag)['segments'] == 20
+    assert stored_setup(bag).lines[0].params.segments == 20
 
 
 # ------------------------------------------------------------------- refusing to start
@@ -547,10 +549,12 @@ def test_recorder_disk_error_stops_recording_once(tmp_path):
 
 
 def test_node_simulates_on_after_a_disk_error(tmp_path, capfd):
-    from rope_sim_ros.ros.mooring_line_node import MooringLineNode
+    from rope_sim_ros.messages.topics import LINE_NODE
+    from rope_sim_ros.mooring.driver import SHIP
+    from rope_sim_ros.ros.node import MooringNode
     context = rclpy.Context()
     rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
-    node = MooringLineNode(context=context, namespace='/rec_disk', parameter_overrides=[
+    node = MooringNode(LINE_NODE, context=context, namespace='/rec_disk', parameter_overrides=[
         Parameter('record_path', value=str(tmp_path / 'bag'))])
     try:
         assert node.recorder is not None and node.recorder.recording
@@ -564,7 +568,7 @@ def test_node_simulates_on_after_a_disk_error(tmp_path, capfd):
                 msg.header.frame_id = 'world'
                 msg.pose.position.x, msg.pose.position.z = FAIRLEAD[0], FAIRLEAD[2]
                 msg.pose.orientation.w = 1.0
-                node._on_pose('fairlead', msg)
+                node._on_pose(SHIP, msg)
                 time.sleep(0.02)
                 node._on_tick()
                 if until_error and not node.recorder.recording:
@@ -574,9 +578,9 @@ def test_node_simulates_on_after_a_disk_error(tmp_path, capfd):
         node.recorder.writer._file.write = _no_space
         run(5.0, until_error=True)
         assert not node.recorder.recording
-        before = node.simulator.time
+        before = node.driver.time
         run(0.5)
-        assert node.simulator.time > before  # the rope goes on
+        assert node.driver.time > before  # the rope goes on
     finally:
         node.destroy_node()
         rclpy.try_shutdown(context=context)

@@ -29,10 +29,10 @@ import math
 from geometry_msgs.msg import PoseStamped
 from node_harness import NodeProcess, SimClient
 import numpy as np
-from rope_sim_ros import cli
 from rope_sim_ros.bag import read_messages
 from rope_sim_ros.bag.cdr import (decode_pose_array, decode_pose_stamped, decode_string,
                                   decode_wrench)
+from rope_sim_ros.offline import cli
 from std_srvs.srv import Trigger
 
 START = 3000 * 1_000_000_000  # [ns] sim time of the first pose

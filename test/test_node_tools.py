@@ -75,7 +75,7 @@ def test_monitor_max_strain():
 
 
 def test_passing_ship_moves_the_ship_and_leaves_it_where_it_was():
-    from rope_sim_ros import passing_ship
+    from rope_sim_ros.mooring import scenario as passing_ship
     times = np.arange(0.0, passing_ship.END + 10.0, 0.05)
     poses = [passing_ship.ship_pose(t) for t in times]
     positions = np.array([p for p, _ in poses])
@@ -96,7 +96,7 @@ def test_passing_ship_moves_the_ship_and_leaves_it_where_it_was():
 def test_demo_runs_the_berth_and_leaves_its_plots(colcon_install, colcon_env, tmp_path):
     # the passing ship starts at t = 8 s: 14 s at 4x show the table, the bag and the plots
     result = subprocess.run(
-        [sys.executable, '-m', 'rope_sim_ros.demo', '--duration', '14', '--speed', '4',
+        [sys.executable, '-m', 'rope_sim_ros.offline.demo', '--duration', '14', '--speed', '4',
          '--install', str(colcon_install.parent), '--out', str(tmp_path)],
         env=colcon_env, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=240)
     output = result.stdout + result.stderr

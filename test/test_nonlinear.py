@@ -24,6 +24,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+from one_line import OneLine
 from physics_cases import nrmse, reference_params
 import pytest
 
@@ -39,7 +40,6 @@ from rope_sim_ros.model.tension_curve import TensionCurve
 from rope_sim_ros.model.winch import quasi_static_stiffness, render
 from rope_sim_ros.params.materials import load_materials
 from rope_sim_ros.params.table import check, from_values, ParameterError
-from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit
 
 DATA = Path(__file__).resolve().parent / 'data' / 'winch'
@@ -136,7 +136,7 @@ def test_settled_fairlead_force_matches_the_references(integrator):
     """The simulator's line at rest, then held 0.5 s: the discrete and continuous forces."""
     worst_discrete = worst_analytic = 0.0
     for row in STATIC:
-        sim = Simulator(_params(integrator=integrator), _library(), history=math.inf)
+        sim = OneLine(_params(integrator=integrator), _library(), history=math.inf)
         sim.push_fairlead(0.0, [row['span_m'], 0.0, RISE])
         sim.start(0.0)
         sim.advance_to(0.5)
@@ -298,7 +298,7 @@ def test_a_stretch_to_the_reach_stays_stable_at_the_automatic_step():
     """The fairlead pulled past the reach in 1 s: finite, within the bound, at the limit."""
     # parting off: at its default break load, the MBL, the line would part half way there
     params = _params(integrator='improved_euler', air_density=0.0, parting=False)
-    sim = Simulator(params, _library(), history=math.inf)
+    sim = OneLine(params, _library(), history=math.inf)
     times = np.linspace(0.0, 2.0, 201)
     for t in times:
         sim.push_fairlead(float(t), [38.0 + 22.0 * min(t, 1.0), 0.0, RISE])
@@ -338,7 +338,7 @@ def _moordyn_run():
 def test_fairlead_force_matches_moordyn(integrator, bound):
     """The table's line between 38.5 and 42 m span against MoorDyn 2.7.2 on the same table."""
     t, fairlead, shape, moordyn = _moordyn_run()
-    sim = Simulator(_params(integrator=integrator), _library(), history=math.inf)
+    sim = OneLine(_params(integrator=integrator), _library(), history=math.inf)
     for time, position in zip(t, fairlead):
         sim.push_fairlead(float(time), position)
     sim.start(0.0, shape)
@@ -361,7 +361,7 @@ def test_load_extension_parameter_is_checked():
         check('load_extension', 'cubic')
     with pytest.raises(ParameterError, match="'load_extension' = 'curve'.*'hmpe'.*"
                                              'no tension_curve'):
-        Simulator(from_values({'material': 'hmpe', 'load_extension': 'curve'}))
+        OneLine(from_values({'material': 'hmpe', 'load_extension': 'curve'}))
 
 
 def test_bad_curves_are_refused():
@@ -385,9 +385,9 @@ def test_presets():
     # the two published values it was fitted to: 50 % MBL at 0.5 / 3.54 strain
     assert float(curve.strain_at(0.5 * nylon.mbl)) == pytest.approx(0.5 / 3.54, rel=2e-3)
     assert library.properties('hmpe', DIAMETER).tension_curve == ()
-    default = Simulator(from_values({'material': 'nylon'}))
+    default = OneLine(from_values({'material': 'nylon'}))
     assert default.props.tension_curve == () and default.props.strain_limit == 0.25
-    curved = Simulator(from_values({'material': 'nylon', 'load_extension': 'curve'}))
+    curved = OneLine(from_values({'material': 'nylon', 'load_extension': 'curve'}))
     assert curved.props.tension_curve == nylon.tension_curve
     assert curved.props.strain_limit == pytest.approx(0.452, abs=1e-3)
 
@@ -449,7 +449,7 @@ def test_polyester_preset_is_the_published_working_curve():
     assert float(curve.strain_at(polyester.mbl)) == pytest.approx(0.09101, abs=1e-5)
     # with load_extension: curve the line takes it; its 2 MBL strain, 15.4 %, leaves the
     # 25 % max_strain standing
-    sim = Simulator(from_values({'material': 'polyester', 'load_extension': 'curve'}))
+    sim = OneLine(from_values({'material': 'polyester', 'load_extension': 'curve'}))
     assert sim.props.tension_curve == polyester.tension_curve
     assert float(curve.strain_at(2.0 * polyester.mbl)) == pytest.approx(0.1537, abs=1e-4)
     assert sim.props.strain_limit == 0.25
@@ -465,7 +465,7 @@ def test_polyester_line_settles_on_its_published_curve(integrator):
         fairlead = [span, 0.0, RISE]
         params = reference_params('polyester', 20, load_extension='curve',
                                   integrator=integrator)
-        sim = Simulator(params, history=math.inf)
+        sim = OneLine(params, history=math.inf)
         sim.push_fairlead(0.0, fairlead)
         sim.start(0.0)
         sim.advance_to(0.5)

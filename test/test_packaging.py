@@ -23,13 +23,12 @@ import ast
 import json
 import os
 from pathlib import Path
-import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
 import pytest
-from rope_sim_ros import precompile
+from rope_sim_ros.mooring import precompile
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 PACKAGE = 'rope_sim_ros'
@@ -51,8 +50,9 @@ SHARE_FILES = (
 # compile either.
 ENTRY_KERNELS = tuple('rope_sim_ros.' + name for name in (
     'stepping.kernels.implicit_euler_run', 'stepping.kernels.improved_euler_run',
-    'model.forces.assembly.largest_load', 'trajectory._sample', 'stepping.adaptive._clear_watch',
-    'stepping.adaptive._read_watch'))
+    'model.forces.assembly.largest_load', 'mooring.trajectory._sample',
+    'stepping.adaptive._clear_watch', 'stepping.adaptive._read_watch',
+    'stepping.rules.step_divisions', 'stepping.rules.fine_steps'))
 
 # Runs the runner (every integrator) and the node's warm-up from the installed package, then
 # prints numba's statistics of every dispatcher: what came from the cache, what compiled.
@@ -60,15 +60,16 @@ KERNEL_PROBE = r"""
 import json, sys
 from numba.core.dispatcher import Dispatcher
 import rope_sim_ros
-from rope_sim_ros import cli
+from rope_sim_ros.offline import cli
 from rope_sim_ros.params.table import LineParams
-from rope_sim_ros.ros.mooring_line_node import warm_up
+from rope_sim_ros.params.arrangement import single_line
+from rope_sim_ros.ros.node import warm_up
 motion, out = sys.argv[1:]
 codes = [cli.main(['run', '--motion', motion, '--out', out, '--quiet', '--set', 'segments=50',
                    '--set', 'material=steel_wire', '--set', 'integrator=' + name])
          for name in ('adaptive', 'implicit_euler', 'improved_euler')]
 said = []
-warm_up(LineParams(), said.append)
+warm_up(single_line(LineParams()), said.append)
 stats = {}
 for name, module in list(sys.modules.items()):
     for attribute, value in vars(module or object).items():
@@ -107,20 +108,22 @@ def test_executable_installed_for_ros2_run(colcon_install, name):
         (REPO_ROOT / 'bin' / name).read_text().split('\n', 1)[1]
 
 
-def test_launchers_differ_in_their_executable_only():
-    # one launcher per executable in bin/, all alike: setup.py installs what is there
-    names = sorted(p.name for p in (REPO_ROOT / 'bin').iterdir())
+def test_one_launcher_runs_every_executable():
+    # bin/launcher is the one launcher; every executable is a link to it by its own name,
+    # which says what it runs (setup.py installs a copy under each name)
+    folder = REPO_ROOT / 'bin'
+    names = sorted(p.name for p in folder.iterdir() if p.name != 'launcher')
     assert names == sorted(EXECUTABLES)
     assert _setup_py_constant('EXECUTABLES') == EXECUTABLES
-    texts = {name: (REPO_ROOT / 'bin' / name).read_text() for name in names}
-    # alike but for the name and the summary line of the docstring ('Start the ...')
-    alike = {'\n'.join(line for line in re.sub(r'\b{}\b'.format(name), 'NAME', text).split('\n')
-                       if not line.startswith('Start ')) for name, text in texts.items()}
-    assert len(alike) == 1, 'the launchers in bin/ differ in more than their executable'
-    for name, text in texts.items():
-        assert text.startswith('#!python -S\n'), name
-        assert text.endswith('from rope_sim_ros.ros.executables import {0}  # noqa: E402, I100'
-                             '\n\nsys.exit({0}())\n'.format(name)), name
+    for name in names:
+        assert (folder / name).is_symlink() and os.readlink(folder / name) == 'launcher', name
+    text = (folder / 'launcher').read_text()
+    assert text.startswith('#!python -S\n')
+    assert text.endswith('from rope_sim_ros.ros.executables import run_named  # noqa: E402, '
+                         'I100\n\nsys.exit(run_named(__file__))\n')
+    from rope_sim_ros.ros import executables
+    assert sorted(executables.ENTRY_POINTS) == sorted(EXECUTABLES)
+    assert executables.run_named('/somewhere/not_ours') == 2  # refused, named
 
 
 @pytest.mark.parametrize('relative', SHARE_FILES)
@@ -176,8 +179,9 @@ def test_installed_kernels_load_from_the_install_tree(colcon_env, colcon_install
     compiled = {name: s['compiled'] for name, s in stats.items() if s['compiled']}
     assert compiled == {}, 'compiled at the first start after the build: {}'.format(
         ', '.join(sorted(compiled)))
-    assert {name: stats.get(name, {}).get('loaded', 0) for name in ENTRY_KERNELS} == \
-        {name: 1 for name in ENTRY_KERNELS}
+    # each loaded (trajectory._sample twice: one end's points, and a ship's fairleads)
+    loaded = {name: stats.get(name, {}).get('loaded', 0) for name in ENTRY_KERNELS}
+    assert loaded == {name: 2 if name.endswith('._sample') else 1 for name in ENTRY_KERNELS}
     assert report['said'] == [], 'the node said it was compiling: {}'.format(report['said'])
     assert list(home.iterdir()) == [], 'numba wrote to HOME: {}'.format(_listing(home))
 

@@ -24,12 +24,14 @@ behind it moves at eps c = 43.853 m/s, and its 100 kJ turn into motion.
 import math
 
 import numpy as np
+from one_line import OneLine
 from physics_cases import reference_params
 import pytest
 from rope_sim_ros.model.objects import Environment, Line, LineType, Point, System
-from rope_sim_ros.motion import OUT_COLUMNS, read_motion
-from rope_sim_ros.runner import run_motion
-from rope_sim_ros.simulator import Simulator
+from rope_sim_ros.offline.motion import read_motion
+from rope_sim_ros.offline.run import run_motion
+from rope_sim_ros.offline.sinks import LINE_COLUMNS
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.stepping.step import step
 
 EA, MASS, L0, EPS = 5.0e7, 2.6, 40.0, 0.01
@@ -81,7 +83,7 @@ def test_the_free_end_flies_back_at_strain_times_wave_speed(segments, bound):
 def _jerked(**values):
     # the reference polyester line pulled 3 m past taut in 1 s: far past its MBL
     params = reference_params('polyester', 20, **values)
-    sim = Simulator(params, history=math.inf)
+    sim = OneLine(params, history=math.inf)
     fairlead = np.array([38.0, 0.0, 8.0])
     for k in range(31):
         sim.push_fairlead(0.1 * k, fairlead + [min(0.3 * k, 3.0) if k > 5 else 0.0, 0, 0])
@@ -126,10 +128,11 @@ def test_the_offline_runner_writes_the_peak_the_length_and_parted(tmp_path):
              f'{-0.2 if k < 5 else 0.0}' for k in range(31)]
     motion.write_text('\n'.join(rows) + '\n')
     out = tmp_path / 'out.csv'
-    run_motion(reference_params('polyester', 20, break_load=2.0e5, winch_mode='speed'),
+    run_motion(single_line(reference_params('polyester', 20, break_load=2.0e5,
+                                            winch_mode='speed')),
                read_motion(motion), out, rate=50.0)
     table = np.genfromtxt(out, delimiter=',', names=True)
-    assert table.dtype.names == OUT_COLUMNS
+    assert table.dtype.names == LINE_COLUMNS
     assert np.all(table['fairlead_peak_tension'] >= table['fairlead_tension'] - 1e-6)
     assert table['line_length'][0] == L0 and table['line_length'].min() < L0 - 0.05
     assert set(np.unique(table['parted'])) == {0.0, 1.0}

@@ -22,12 +22,12 @@ Statics, bounce, swing, energy, slack-taut snatches, and MoorDyn 2.7.2's heaving
 import math
 
 import numpy as np
+from one_line import OneLine
 from physics_cases import nrmse, read_rows
 import pytest
 
 from rope_sim_ros.model.rope import tension_bound
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 G = 9.81
 TOP = np.array([0.0, 0.0, 60.0])
@@ -38,7 +38,7 @@ def hanging(payload, integrator, tip=lambda t: TOP, duration=0.0, **values):
     """Start a payload line under the crane tip `tip(t)` (pushed every 10 ms)."""
     params = from_values(dict(payload_mass=payload, integrator=integrator,
                               gravity=[0.0, 0.0, -G], air_density=0.0, **values))
-    sim = Simulator(params, history=math.inf)
+    sim = OneLine(params, history=math.inf)
     for t in np.arange(0.0, duration + 0.05, 0.01):
         sim.push_fairlead(float(t), tip(t))
     sim.start(0.0)
@@ -189,7 +189,7 @@ def _crane(reference_dir, case, integrator, until):
         axial_stiffness=1.0e8, axial_damping=2.0 * 0.01 * 50.0 * math.sqrt(1.0e8 * 6.5) / math.pi,
         bending_stiffness_ratio=0.0, bending_damping_ratio=0.0, gravity=[0.0, 0.0, -G],
         air_density=0.0, integrator=integrator, parting=False))  # MoorDyn's lines never part:
-    sim = Simulator(params, history=math.inf)  # the 1.5 MN snatch passes the preset's MBL
+    sim = OneLine(params, history=math.inf)  # the 1.5 MN snatch passes the preset's MBL
     for t in np.arange(0.0, until + 0.01, 0.001):
         sim.push_fairlead(float(t), [0.0, 0.0, tip_z(t)])
     sim.start(0.0)

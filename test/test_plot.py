@@ -21,9 +21,9 @@ import re
 from matplotlib import image
 import numpy as np
 import pytest
-from rope_sim_ros import cli
 from rope_sim_ros.bag import bag_info, BagWriter, cdr
-from rope_sim_ros.plot import read_tensions
+from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.plot import read_tensions
 
 
 @pytest.fixture(scope='module')
@@ -71,9 +71,12 @@ def test_info_counts_duration_and_peaks(recorded, capsys):
     assert cli.main(['info', str(bag)]) == 0
     text = capsys.readouterr().out
     counts = dict(re.findall(r'^\s+(/\S+)\s+\S+\s+(\d+)$', text, re.M))
+    # the node's outputs: the peaks and the winch's length at each, parted (latched) once
     assert counts == {'/fairlead/pose': '201', '/rope/particles': '201',
-                      '/fairlead/tension': '201', '/bollard/tension': '201'}
-    assert 'duration:  2.000 s' in text and 'messages:  804' in text
+                      '/fairlead/tension': '201', '/bollard/tension': '201',
+                      '/fairlead/peak_tension': '201', '/bollard/peak_tension': '201',
+                      '/winch/length': '201', '/rope/parted': '1'}
+    assert 'duration:  2.000 s' in text and 'messages:  1408' in text
     for end in ('fairlead', 'bollard'):
         tension = np.array([r[f'{end}_tension'] for r in rows])
         k = int(np.argmax(tension))

@@ -24,11 +24,13 @@ import math
 
 import numpy as np
 import pytest
-from rope_sim_ros import cli
 from rope_sim_ros.bag import bag_info, read_messages
 from rope_sim_ros.bag.cdr import decode_pose_array, decode_wrench
+from rope_sim_ros.offline import cli
 
-OUTPUTS = ('/rope/particles', '/fairlead/tension', '/bollard/tension')
+# what the node records: the peaks, the winch's length and the latched parted flag too
+OUTPUTS = ('/rope/particles', '/fairlead/tension', '/bollard/tension',
+           '/fairlead/peak_tension', '/bollard/peak_tension', '/winch/length', '/rope/parted')
 
 
 def write_motion(path, seconds: float = 4.0):

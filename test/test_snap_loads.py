@@ -17,11 +17,11 @@
 import math
 
 import numpy as np
+from one_line import OneLine
 import pytest
 
 from rope_sim_ros.model.layout import PARTED_STEP, PEAK_B
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.stepping import adaptive
 
 JERK = ((0.0, 38.0), (0.5, 38.0), (0.7, 39.5), (3.0, 39.5))  # (t [s], fairlead x [m])
@@ -33,7 +33,7 @@ def _jerk(integrator=None, time_step=0.0, **values):
         values['integrator'] = integrator
     params = from_values(dict(material='polyester', segments=50, time_step=time_step,
                               **values))
-    sim = Simulator(params, output_interval=0.01)
+    sim = OneLine(params, output_interval=0.01)
     for t, x in JERK:
         sim.push_fairlead(t, [x, 0.0, 0.0])
     sim.start(0.0)
@@ -69,8 +69,8 @@ def test_ship_motion_takes_implicit_steps_only(monkeypatch):
         return take(system, integrator, *args, **kwargs)
 
     monkeypatch.setattr(adaptive, '_take', counting)
-    sim = Simulator(from_values(dict(material='polyester', segments=50, integrator='adaptive')),
-                    output_interval=0.01, history=math.inf)
+    sim = OneLine(from_values(dict(material='polyester', segments=50, integrator='adaptive')),
+                  output_interval=0.01, history=math.inf)
     fairlead = np.array([36.0, 0.0, 8.0])
     samples = np.arange(0.0, 12.05, 0.02)
     for t in samples:

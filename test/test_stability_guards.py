@@ -26,11 +26,11 @@ import subprocess
 import sys
 
 import numpy as np
+from one_line import OneLine
 from physics_cases import reference_params
 import pytest
 from rope_sim_ros.model.rope import tension_bound
 from rope_sim_ros.params.table import from_values, ParameterError
-from rope_sim_ros.simulator import Simulator
 from rope_sim_ros.stepping.rules import automatic_time_step, stability_limit
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -50,7 +50,7 @@ def run(params, fairlead, duration, rate=100.0, sample=0.01):
 
     :returns: (simulator, outputs, advances) at every 1/rate s; every output is checked.
     """
-    sim = Simulator(params, output_interval=1.0 / rate)
+    sim = OneLine(params, output_interval=1.0 / rate)
     times = np.arange(0.0, duration + 2.0 * sample, sample)
     pushed = 0
 
@@ -104,8 +104,8 @@ LINES = {
 def test_the_users_step_is_refused_naming_the_largest_stable_one():
     """improved_euler at 0.5 ms put the jerked reference line at 14.5 MN (converged 53 kN)."""
     with pytest.raises(ParameterError) as error:
-        Simulator(reference_params('polyester', 20, integrator='improved_euler',
-                                   time_step=0.0005))
+        OneLine(reference_params('polyester', 20, integrator='improved_euler',
+                                 time_step=0.0005))
     assert str(error.value) == (
         "time_step 0.0005 s is above improved_euler's stability limit for this line (largest "
         'stable step 0.00026 s): set time_step <= 0.00026 or 0 (automatic)')
@@ -113,22 +113,22 @@ def test_the_users_step_is_refused_naming_the_largest_stable_one():
 
 @pytest.mark.parametrize('line', LINES)
 def test_improved_euler_refuses_exactly_the_unstable_steps(line):
-    limit = stability_limit(Simulator(LINES[line]()).props)
+    limit = stability_limit(OneLine(LINES[line]()).props)
     for step in (1.01 * limit, 2.0 * limit, 0.1):
         with pytest.raises(ParameterError, match='above improved_euler') as error:
-            Simulator(LINES[line](integrator='improved_euler', time_step=step))
+            OneLine(LINES[line](integrator='improved_euler', time_step=step))
         largest, advised = (float(v) for v in LARGEST.search(str(error.value)).groups())
         # the step quoted is stable and only rounded down (2 significant digits)
         assert largest == advised and 0.9 * limit <= largest <= limit
     for step in (largest, 0.999 * limit, 1e-6):
-        assert Simulator(LINES[line](integrator='improved_euler', time_step=step)).time_step \
+        assert OneLine(LINES[line](integrator='improved_euler', time_step=step)).time_step \
             == step
 
 
 @pytest.mark.parametrize('line', ['reference polyester N20', 'reference wire N50',
                                   'hmpe N40, stiff bending'])
 def test_improved_euler_at_its_largest_step_matches_the_automatic_step(line):
-    limit = stability_limit(Simulator(LINES[line]()).props)
+    limit = stability_limit(OneLine(LINES[line]()).props)
     _, automatic, _ = run(LINES[line](integrator='improved_euler'), jerk(3.0), 2.0)
     sim, largest, advances = run(
         LINES[line](integrator='improved_euler', time_step=0.999 * limit), jerk(3.0), 2.0)
@@ -138,8 +138,8 @@ def test_improved_euler_at_its_largest_step_matches_the_automatic_step(line):
 
 
 def test_a_run_time_change_that_makes_the_step_unstable_is_refused():
-    sim = Simulator(reference_params('polyester', 20, integrator='improved_euler',
-                                     time_step=0.00025))
+    sim = OneLine(reference_params('polyester', 20, integrator='improved_euler',
+                                   time_step=0.00025))
     before = sim.props
     for values, largest in (({'axial_damping': 1000.0}, '0.00017'),
                             ({'bending_damping_ratio': 10.0}, '0.00016')):
@@ -159,12 +159,12 @@ def test_a_run_time_change_that_makes_the_step_unstable_is_refused():
 
 @pytest.mark.parametrize('line', LINES)
 def test_implicit_euler_divides_a_coarse_step_into_automatic_ones(line):
-    automatic = automatic_time_step(Simulator(LINES[line]()).props, 'implicit_euler')
+    automatic = automatic_time_step(OneLine(LINES[line]()).props, 'implicit_euler')
     for step in (0.1, 0.01, 1.5 * automatic):
-        sim = Simulator(LINES[line](integrator='implicit_euler', time_step=step))
+        sim = OneLine(LINES[line](integrator='implicit_euler', time_step=step))
         assert sim.time_step == pytest.approx(step / math.ceil(step / automatic - 1e-9))
         assert sim.time_step <= automatic * (1.0 + 1e-12)
-    fine = Simulator(LINES[line](integrator='implicit_euler', time_step=0.5 * automatic))
+    fine = OneLine(LINES[line](integrator='implicit_euler', time_step=0.5 * automatic))
     assert fine.time_step == 0.5 * automatic
 
 
@@ -205,7 +205,7 @@ def test_a_state_past_the_bound_is_restarted_at_rest(velocity, reason):
     """A particle flung at 100 km/s stretches a line without the strain limit 28-fold."""
     # parting off: a line parts long before this bound (test_parting); with it off, the
     # bound is what keeps a fault from being published
-    sim = Simulator(from_values({'superelastic_adjustment': False, 'parting': False}))
+    sim = OneLine(from_values({'superelastic_adjustment': False, 'parting': False}))
     sim.push_fairlead(0.0, START)
     sim.start(0.0)
     settled = sim.output().fairlead_tension
@@ -216,7 +216,7 @@ def test_a_state_past_the_bound_is_restarted_at_rest(velocity, reason):
 
 
 def test_the_bound_of_the_reference_line():
-    props = Simulator(reference_params('polyester', 20)).props
+    props = OneLine(reference_params('polyester', 20)).props
     # 2 EA max_strain = 25 MN; dampers at twice (c max_strain + sqrt(2 g L)), 3.4 MN; the
     # weight, 1 kN; an end at 10 m/s adds 29 kN
     assert tension_bound(props) == pytest.approx(28.27e6, rel=1e-3)
@@ -319,7 +319,7 @@ def test_rope_sim_run_refuses_an_unstable_step_in_one_line(tmp_path):
     assert result.stderr.startswith(
         "rope_sim run: error: time_step 0.01 s is above improved_euler's stability limit "
         'for this line (largest stable step ')
-    limit = stability_limit(Simulator(from_values({})).props)
+    limit = stability_limit(OneLine(from_values({})).props)
     largest = float(LARGEST.search(result.stderr).group(1))
     assert 0.9 * limit <= largest <= limit
     assert not out.exists()  # refused before anything was written

@@ -17,11 +17,11 @@
 import math
 
 import numpy as np
+from one_line import OneLine
 import pytest
 
 from rope_sim_ros.model.superelastic import adjust, MAX_ITERATIONS
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 MAX_STRAIN = 0.25
 
@@ -32,7 +32,7 @@ def _jerk(integrator, adjusting):
         segments=20, length=10.0, mass_per_length=1.0, axial_stiffness=2.0e4,
         axial_damping=1.0, max_strain=MAX_STRAIN, superelastic_adjustment=adjusting,
         integrator=integrator))
-    sim = Simulator(params, history=math.inf)
+    sim = OneLine(params, history=math.inf)
     for t, x in ((0.0, 9.0), (0.5, 9.0), (0.6, 12.0), (3.0, 12.0)):
         sim.push_fairlead(t, [x, 0.0, 0.0])
     sim.start(0.0)

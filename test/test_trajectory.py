@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from rope_sim_ros.trajectory import EndBlend, EndTrajectory, TrajectoryError
+from rope_sim_ros.mooring.trajectory import EndBlend, EndTrajectory, TrajectoryError
 
 
 def _filled(method, step=0.02):

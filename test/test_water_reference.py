@@ -26,10 +26,10 @@ import csv
 import math
 
 import numpy as np
+from one_line import OneLine
 import pytest
 
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])
 # MoorDyn's line types of these cases: d, m, EA, BA (test/data/README.md, water/)
@@ -95,7 +95,7 @@ def test_settled_end_forces_in_a_current(reference_dir, line, segments):
     """Both ends held in a 1 m/s cross current: the end forces settle onto MoorDyn's."""
     row = current_row(reference_dir, line, segments)
     current = [row['Ux_m_s'], row['Uy_m_s'], row['Uz_m_s']]
-    sim = Simulator(water_params(line, segments, current=current))
+    sim = OneLine(water_params(line, segments, current=current))
     sim.push_fairlead(0.0, FAIRLEAD)
     sim.start(0.0)
     # MoorDyn, started in still water, is within 1e-5 of its end state after 40 s (wire)
@@ -132,8 +132,8 @@ def heave_runs(reference_dir):
     for variant, coefficients in VARIANTS.items():
         rows = read_rows(reference_dir / 'water' / f'heave_wire_N20_{variant}.csv')
         t = columns(rows, 't_s')[:, 0]
-        sim = Simulator(water_params('wire', 20, coefficients), output_interval=HEAVE_OUTPUT,
-                        history=math.inf)
+        sim = OneLine(water_params('wire', 20, coefficients), output_interval=HEAVE_OUTPUT,
+                      history=math.inf)
         for time, position in zip(samples, fairlead):
             sim.push_fairlead(float(time), position)
         sim.start(0.0, start)

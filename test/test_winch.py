@@ -24,10 +24,10 @@ import csv
 import math
 
 import numpy as np
+from one_line import OneLine
 from physics_cases import reference_params
 import pytest
 from rope_sim_ros.params.table import from_values, ParameterError
-from rope_sim_ros.simulator import Simulator
 
 # MoorDyn's line in air (its drag and added mass): the reference's numbers
 AIR = dict(diameter=0.064, volume_diameter=0.064, mass_per_length=2.6, air_density=1.225,
@@ -61,8 +61,8 @@ def _moordyn_rate(t):
 
 
 def _line(integrator, fairlead=B, **winch):
-    sim = Simulator(reference_params('polyester', 20, integrator=integrator, **winch, **AIR),
-                    history=math.inf, output_interval=0.01)
+    sim = OneLine(reference_params('polyester', 20, integrator=integrator, **winch, **AIR),
+                  history=math.inf, output_interval=0.01)
     sim.push_fairlead(0.0, fairlead)
     sim.push_fairlead(1000.0, fairlead)
     sim.start(0.0)
@@ -138,7 +138,7 @@ def _lift(**winch):
     # launch and recovery: a 2 t payload on 40 m of polyester under a crane tip at 50 m
     params = from_values(dict(payload_mass=2000.0, length=40.0, segments=20,
                               winch_max_speed=0.5, **winch))
-    sim = Simulator(params, history=math.inf)
+    sim = OneLine(params, history=math.inf)
     top = np.array([0.0, 0.0, 50.0])
     sim.push_fairlead(0.0, top)
     sim.push_fairlead(1000.0, top)
@@ -208,7 +208,7 @@ def test_the_brake_renders_at_its_holding_load():
     # brake pays out and holds it there
     params = reference_params('polyester', 20, winch_mode='brake', winch_brake_load=5.0e4,
                               **AIR)
-    sim = Simulator(params, history=math.inf)
+    sim = OneLine(params, history=math.inf)
     start = np.array([39.0, 0.0, 8.0])  # nearly taut
     for k in range(101):
         sim.push_fairlead(0.2 * k, start + [min(0.1 * 0.2 * k, 2.0), 0.0, 0.0])

@@ -34,17 +34,19 @@ allowed. No ROS and no files here beyond reading a parameter file.
 
 from dataclasses import dataclass
 import re
-from typing import Any, Dict, List, Mapping, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 import yaml
 
 from .files import read_params_file
 from .table import allowed, check, LineParams, ParameterError, Spec, SPECS
+from .table import NODE_NAME as LINE_NODE_NAME
 
 NODE_NAME = 'mooring'
 LINES = 'lines'
-# custom_data key of metadata.yaml under which an arrangement's bag stores its parameters
-# (a single line's use line_driver.PARAMETERS_KEY).
+# custom_data keys of metadata.yaml under which a bag stores the parameters it was made with:
+# a single line's (the mooring_line node's parameter file) and an arrangement's.
+LINE_PARAMETERS_KEY = 'rope_sim_ros.parameters'
 PARAMETERS_KEY = 'rope_sim_ros.arrangement'
 # Shared by every line: one Environment, one integrator and step (one kernel call steps them
 # all), one frame and output grid, one ship pose stream and one bag.
@@ -115,6 +117,11 @@ class ArrangementParams:
     shared: LineParams
     ship_frame_id: str = ARRANGEMENT_SPECS['ship_frame_id'].default
     marker_rate: float = ARRANGEMENT_SPECS['marker_rate'].default
+
+    @property
+    def single(self) -> bool:
+        """Tell whether this is the one unnamed line of the mooring_line node (single_line)."""
+        return len(self.lines) == 1 and not self.lines[0].name
 
     @property
     def names(self) -> List[str]:
@@ -290,6 +297,45 @@ def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],
     return LineSetup(name, LineParams().with_values({**shared, **values}), float(pretension))
 
 
+def single_line(params: LineParams) -> ArrangementParams:
+    """
+    Return the arrangement of one line of the mooring_line node: a mooring of that line.
+
+    Its line has no name (its topics sit at the namespace root, its messages name no line)
+    and its parameters are the shared ones too.
+    """
+    return ArrangementParams((LineSetup('', params),), params)
+
+
+def is_arrangement_file(path) -> bool:
+    """
+    Tell whether a parameter file holds an arrangement: `lines` for the mooring node.
+
+    A `/**:` section reaches every node: it is an arrangement only with `lines` in it.
+    """
+    try:
+        return LINES in read_params_file(path, NODE_NAME)
+    except ParameterError:
+        return False
+
+
+def read_setup(path, overrides: Optional[Mapping[str, Any]] = None) -> ArrangementParams:
+    """
+    Read a parameter file as the node it is for does: an arrangement, or a single line.
+
+    :param path: a mooring node's file (with `lines`), or a mooring_line node's; None: the
+        single line's defaults.
+    :param overrides: values on top (`--set`): a line's own names for a single line,
+        `head_1.length` for an arrangement.
+    :raises ParameterError: unreadable file, no section for either node, a bad value.
+    """
+    overrides = dict(overrides or {})
+    if path is not None and is_arrangement_file(path):
+        return from_values({**flatten(read_params_file(path, NODE_NAME)), **overrides})
+    values = read_params_file(path, LINE_NODE_NAME) if path is not None else {}
+    return single_line(LineParams().with_values({**values, **overrides}))
+
+
 def read_arrangement_file(path) -> ArrangementParams:
     """
     Read and validate the `mooring: ros__parameters:` section of a ROS parameter file.
@@ -301,25 +347,46 @@ def read_arrangement_file(path) -> ArrangementParams:
 
 def parameters_yaml(arrangement: ArrangementParams) -> str:
     """Return the arrangement as a one-line ROS parameter file (stored in bags)."""
-    values = arrangement.values()
+    if arrangement.single:
+        node, values = LINE_NODE_NAME, arrangement.lines[0].params.as_dict()
+    else:
+        node, values = NODE_NAME, arrangement.values()
     values.pop('record_path', None)
-    return yaml.safe_dump({NODE_NAME: {'ros__parameters': values}}, default_flow_style=True,
+    return yaml.safe_dump({node: {'ros__parameters': values}}, default_flow_style=True,
                           sort_keys=True, width=2**31).strip()
 
 
-def parameters_from_yaml(text: str) -> ArrangementParams:
-    """
-    Return the arrangement of a parameters_yaml text.
+def stored(arrangement: ArrangementParams) -> Dict[str, str]:
+    """Return the custom_data of a bag made with these parameters: {key: parameters_yaml}."""
+    key = LINE_PARAMETERS_KEY if arrangement.single else PARAMETERS_KEY
+    return {key: parameters_yaml(arrangement)}
 
-    :raises ParameterError: it is not such a text, or a value is not allowed.
+
+def from_stored(custom_data: Mapping[str, Any],
+                overrides: Optional[Mapping[str, Any]] = None) -> Optional[ArrangementParams]:
     """
-    try:
-        values = yaml.safe_load(text)[NODE_NAME]['ros__parameters']
-    except (yaml.YAMLError, KeyError, TypeError):
-        raise ParameterError(f'stored parameters are not an arrangement: {text[:80]!r}') from None
-    if not isinstance(values, dict):
-        raise ParameterError(f'stored parameters are not an arrangement: {text[:80]!r}')
-    return from_values(values)
+    Return the parameters a bag stores in its custom_data (either kind), or None.
+
+    :param overrides: values applied on top (--set): a line's own names for a single line,
+        `head_1.length` for an arrangement.
+    :raises ParameterError: the text is not a stored parameter file, or a value is not
+        allowed.
+    """
+    for key, node in ((PARAMETERS_KEY, NODE_NAME), (LINE_PARAMETERS_KEY, LINE_NODE_NAME)):
+        text = custom_data.get(key)
+        if not text:
+            continue
+        try:
+            values = yaml.safe_load(text)[node]['ros__parameters']
+        except (yaml.YAMLError, KeyError, TypeError):
+            values = None
+        if not isinstance(values, dict):
+            raise ParameterError(f'stored parameters are not a parameter map: {text[:80]!r}')
+        values = {**flatten(values), **(overrides or {})}
+        if node == LINE_NODE_NAME:
+            return single_line(LineParams().with_values(values))
+        return from_values(values)
+    return None
 
 
 def describe_own(name: str) -> Tuple[Spec, str]:

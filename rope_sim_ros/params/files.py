@@ -12,13 +12,37 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""ROS 2 parameter files (`node: ros__parameters: {...}`) read as the nodes would read them."""
+"""
+ROS 2 parameter files (`node: ros__parameters: {...}`), read as ROS itself reads them.
 
+ROS's parameter file parser reads an unquoted scalar that looks like a number as a number:
+`time_step: 5e-05` is a double. PyYAML follows YAML 1.1, whose floats need a dot (5.0e-05)
+and which reads 5e-05 as the text '5e-05': a node given that file took 5e-05 s while the
+offline commands refused it as text. ROS_LOADER reads such numbers as ROS does; a quoted
+'5e-05' stays text, in both.
+"""
+
+import re
 from typing import Any, Mapping, Optional
 
 import yaml
 
 from .table import from_values, LineParams, NODE_NAME, ParameterError
+
+
+class RosLoader(yaml.SafeLoader):
+    """PyYAML's safe loader, with the numbers ROS's parser takes that YAML 1.1 does not."""
+
+
+# an exponent without a dot in the mantissa (1e3, 5e-05, -2E+4): a float, as for ROS
+RosLoader.add_implicit_resolver(
+    'tag:yaml.org,2002:float', re.compile(r'^[-+]?[0-9][0-9_]*(?:\.[0-9_]*)?[eE][-+]?[0-9]+$'),
+    list('-+0123456789'))
+
+
+def load_yaml(text: str) -> Any:
+    """Read YAML text as ROS's parameter parser would (RosLoader)."""
+    return yaml.load(text, Loader=RosLoader)  # noqa: S506 (a safe loader)
 
 
 def read_params_file(path, node_name: str = NODE_NAME) -> dict:
@@ -32,7 +56,7 @@ def read_params_file(path, node_name: str = NODE_NAME) -> dict:
     """
     try:
         with open(path, encoding='utf-8') as f:
-            data = yaml.safe_load(f)
+            data = load_yaml(f.read())
     except OSError as e:
         raise ParameterError(f'cannot read parameter file {path}: {e.strerror}') from None
     except yaml.YAMLError as e:
@@ -56,3 +80,24 @@ def load_params(path, overrides: Optional[Mapping[str, Any]] = None) -> LinePara
     values = read_params_file(path)
     values.update(overrides or {})
     return from_values(values)
+
+
+def parse_set(items) -> dict:
+    """
+    Parse ``--set key=value`` items of the offline commands; values are YAML, read as ROS does.
+
+    :param items: the raw items (None: none).
+    :returns: {key: value}, the last item winning.
+    :raises ParameterError: an item is not key=value or its value is not YAML.
+    """
+    values = {}
+    for item in items or []:
+        key, sep, text = item.partition('=')
+        key = key.strip()
+        if not sep or not key:
+            raise ParameterError(f'--set {item!r}: expected key=value, e.g. --set length=40')
+        try:
+            values[key] = load_yaml(text) if text.strip() else ''
+        except yaml.YAMLError:
+            raise ParameterError(f'--set {item!r}: {text!r} is not a YAML value') from None
+    return values

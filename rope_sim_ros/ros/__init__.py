@@ -13,8 +13,8 @@
 # limitations under the License.
 
 """
-ROS 2 layer of rope_sim_ros: the mooring_line node, a scripted ship and a line monitor.
+The ROS side: the one node (mooring_line and mooring), the tool nodes, bags as they record.
 
-Glue only: it turns messages into simulator inputs and simulator outputs into messages; the
-physics and the time handling live in rope_sim_ros.simulator.
+Glue only: it turns messages into the Driver's inputs and its outputs into messages; the
+physics and the time rules live below it (mooring/, model/, stepping/).
 """

@@ -36,9 +36,9 @@ import rclpy
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
 
+from ..mooring.scenario import END, ship_pose, START
 from ..params import arrangement
 from ..params.materials import load_materials
-from ..passing_ship import END, ship_pose, START
 
 START_TIMEOUT = 90.0  # [s] a first start compiles or loads the kernels
 

@@ -90,8 +90,8 @@ class _Interrupted:
             self.redelivery.start()
 
 
-def _run(module: str) -> int:
-    """Import rope_sim_ros.<module> and return its main(); 130 after Ctrl-C."""
+def _run(module: str, function: str = 'main') -> int:
+    """Import rope_sim_ros.<module> and return its function(); 130 after Ctrl-C."""
     interrupted = _Interrupted()
     try:
         # inside the try: a Ctrl-C that lands as signal.signal returns raises here already
@@ -102,7 +102,7 @@ def _run(module: str) -> int:
         entry = importlib.import_module(f'rope_sim_ros.{module}')
         if interrupted.seen:  # a Ctrl-C whose KeyboardInterrupt an import swallowed
             return EXIT_INTERRUPTED
-        return entry.main()
+        return getattr(entry, function)()
     except KeyboardInterrupt:
         return EXIT_INTERRUPTED
     except Exception:
@@ -115,13 +115,13 @@ def _run(module: str) -> int:
 
 
 def mooring_line() -> int:
-    """Run the mooring_line node (rope_sim_ros.ros.mooring_line_node.main)."""
-    return _run('ros.mooring_line_node')
+    """Run the mooring_line node (rope_sim_ros.ros.node.main_line)."""
+    return _run('ros.node', 'main_line')
 
 
 def mooring() -> int:
-    """Run the mooring node (rope_sim_ros.ros.mooring_node.main)."""
-    return _run('ros.mooring_node')
+    """Run the mooring node (rope_sim_ros.ros.node.main_mooring)."""
+    return _run('ros.node', 'main_mooring')
 
 
 def ship_motion() -> int:
@@ -140,5 +140,22 @@ def bag_replay() -> int:
 
 
 def rope_sim() -> int:
-    """Run the rope_sim command line (rope_sim_ros.cli.main)."""
-    return _run('cli')
+    """Run the rope_sim command line (rope_sim_ros.offline.cli.main)."""
+    return _run('offline.cli')
+
+
+# Each executable's entry point: its launcher (bin/launcher, installed under its name)
+# runs the one its file is named for.
+ENTRY_POINTS = {'mooring_line': mooring_line, 'mooring': mooring, 'ship_motion': ship_motion,
+                'line_monitor': line_monitor, 'bag_replay': bag_replay, 'rope_sim': rope_sim}
+
+
+def run_named(path: str) -> int:
+    """Run the executable a launcher file is named for (its file name: mooring_line, ...)."""
+    name = path.rsplit('/', 1)[-1]
+    entry = ENTRY_POINTS.get(name)
+    if entry is None:
+        print(f'{path}: not an executable of rope_sim_ros (known: '
+              f'{", ".join(ENTRY_POINTS)})', file=sys.stderr)
+        return 2
+    return entry()

@@ -18,13 +18,14 @@ What an instructor sees of a mooring: markers for RViz and Foxglove, and diagnos
 mooring/markers (visualization_msgs/MarkerArray), in frame_id:
 
 - ns 'lines', id k: line k as a LINE_STRIP through its particles, coloured by its band
-  (line_status: green below the WLL, amber past it, red past 90 % of the MBL); a parted
+  (mooring/status.py: green below the WLL, amber past it, red past 90 % of the MBL); a parted
   line as a grey, dashed LINE_LIST (every other segment);
 - ns 'labels', id k: its name and utilisation above its middle particle (TEXT_VIEW_FACING);
 - ns 'fairleads', id 0 and ns 'bollards', id 0: the ends as SPHERE_LISTs, white and blue.
 
 /diagnostics (diagnostic_msgs/DiagnosticArray): one status per line, named
-'mooring: <line>', hardware_id the line's name: OK below the WLL, WARN past it, ERROR once
+'<node>: <line>' (the node's full name: 'mooring: head_1', 'ship_a/mooring:
+head_1'), hardware_id the line's name: OK below the WLL, WARN past it, ERROR once
 it has parted or was restarted since the last report; its values the tension, utilisation,
 peak since the last report, strain, WLL and MBL.
 """
@@ -39,7 +40,7 @@ from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
 from .conversions import ns_to_stamp
-from ..line_status import COLOURS, PARTED, Rating, WORDS
+from ..mooring.status import COLOURS, PARTED, Rating, WORDS
 
 LINE_WIDTH = 0.25  # [m]: a 64 mm line drawn at its size is lost beside a 200 m hull
 END_SIZE = 1.0  # [m]: fairlead and bollard spheres
@@ -151,10 +152,14 @@ def _line_markers(_marker, frame_id, stamp_ns, names, positions, tensions, ratin
 def line_diagnostics(stamp_ns: int, names: Sequence[str], tensions: Sequence[float],
                      peaks: Sequence[float], strains: Sequence[float],
                      ratings: Sequence[Rating], parted: Sequence[bool],
-                     restarted: Sequence[Optional[str]]) -> DiagnosticArray:
+                     restarted: Sequence[Optional[str]],
+                     node: str = 'mooring') -> DiagnosticArray:
     """
     Return one DiagnosticStatus per line (see the module docstring).
 
+    :param node: the node's full name without its leading slash: a status is named
+        '<node>: <line>', so two ships' nodes in two namespaces name theirs apart on the one
+        /diagnostics topic.
     :param tensions: each line's tension now [N]; peaks: the largest since the last report.
     :param strains: each line's largest strain now.
     :param restarted: why each line was restarted since the last report, or None.
@@ -164,7 +169,7 @@ def line_diagnostics(stamp_ns: int, names: Sequence[str], tensions: Sequence[flo
         rating = ratings[k]
         band = rating.band(peaks[k], parted[k])
         utilisation = 100.0 * rating.utilisation(tensions[k])
-        status = DiagnosticStatus(name=f'mooring: {name}', hardware_id=name)
+        status = DiagnosticStatus(name=f'{node}: {name}', hardware_id=name)
         if parted[k]:
             status.level, status.message = DiagnosticStatus.ERROR, 'parted'
         elif restarted[k]:

@@ -43,15 +43,9 @@ import numpy as np
 from std_msgs.msg import Bool, Float64, String
 
 from ..bag import BagError, cdr
+from ..messages.topics import BOOL, FLOAT64, POSE_ARRAY, POSE_STAMPED, STRING, WRENCH
 from ..ros2bag import QosSpec
 from ..ros2bag import RosBagWriter as BagWriter
-
-POSE_STAMPED = 'geometry_msgs/msg/PoseStamped'
-POSE_ARRAY = 'geometry_msgs/msg/PoseArray'
-WRENCH = 'geometry_msgs/msg/Wrench'
-STRING = 'std_msgs/msg/String'
-FLOAT64 = 'std_msgs/msg/Float64'
-BOOL = 'std_msgs/msg/Bool'
 
 
 def pose_stamped_cdr(msg: PoseStamped) -> bytes:

@@ -321,3 +321,56 @@ def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bol
         distances[:, j] = apart
         beyond[i] = apart.max() > reach[i]
     return beyond
+
+
+# A step in which a particle would move more than MAX_STEP_MOTION of a segment against the
+# bollard is divided until none does (Mooring._step says why) ...
+MAX_STEP_MOTION = 0.5
+# ... into at most this many parts (a faster state is past any physical one: the state check
+# restarts it).
+MAX_DIVISIONS = 1000
+
+
+@numba.njit(cache=True)
+def fine_steps(stable, rate, current, speeds, out):
+    """
+    Write each line's improved Euler step now into out (L,) [s]: its stable step, or less.
+
+    No longer than the drag takes a particle's speed in: its rate grows with the speed
+    through the fluid (drag_rate: rate per m/s, times the particles' speed bound plus the
+    current), and past 2 / step the explicit step blows up.
+    """
+    for j in range(len(out)):
+        r = rate[j] * (speeds[j] + current[j])
+        out[j] = stable[j] if not r * stable[j] > 1.0 else 1.0 / r
+
+
+@numba.njit(cache=True)
+def step_divisions(spreads, dt, segment_length, explicit, stable, rate, current):
+    """
+    Return into how many parts a group's steps are divided, and whether to look again.
+
+    :param spreads: each line's motion_spread (L, 3): its particles' speeds against its
+        bollard, its ends' speeds, its particles' speeds.
+    :param dt: the group's step [s].
+    :param segment_length: each line's segment length now (L,) [m].
+    :param explicit: the steps are improved Euler's: also divide until no part is longer
+        than a line's fine step (fine_steps; stable, rate, current (L,) as there).
+    :returns: the parts (the most any line needs) and whether a violent stretch asks for
+        them (a particle moving more than MAX_STEP_MOTION of a segment in a step): that
+        changes from step to step, so the caller divides each step by what the lines do
+        then. A NaN motion asks for nothing: the state check restarts a non-finite line.
+    """
+    parts = 1
+    violent = False
+    for j in range(len(segment_length)):
+        motion = spreads[j, 0] * dt / (MAX_STEP_MOTION * segment_length[j])
+        needed = motion
+        if explicit:
+            r = rate[j] * (spreads[j, 2] + current[j])
+            fine = stable[j] if not r * stable[j] > 1.0 else 1.0 / r
+            needed = max(needed, dt / fine)
+        if needed > 1.0:
+            parts = max(parts, int(np.ceil(min(needed, MAX_DIVISIONS))))
+            violent |= motion > 1.0
+    return parts, violent

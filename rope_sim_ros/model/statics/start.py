@@ -25,7 +25,9 @@ import math
 import numpy as np
 
 from . import catenary
+from ..forces import fluid
 from ..objects import Environment, LineType
+from ..rope import RopeProperties
 
 
 def line_weights(line_type: LineType, environment: Environment) -> tuple:
@@ -69,3 +71,51 @@ def start_shape(line_type: LineType, environment: Environment, end_a, end_b, len
         submerged_weight_per_length=w_water if water_level > -math.inf else None,
         water_level=water_level, volume_diameter=dv, seabed_level=seabed_level,
         seabed_sink=sink, tension_curve=getattr(line_type, 'curve', None))
+
+
+def wet_fraction(z, water_level: float, width) -> np.ndarray:
+    """
+    How much of a body of height `width` centred at z is under water, 0..1 (elementwise).
+
+    The physics' own smooth submergence (forces/fluid.py point_fraction, a width below 1e-6 m
+    taken as 1e-6 m, as the steps take it); no water (water_level = -inf) gives 0.
+    """
+    z = np.asarray(z, dtype=float)
+    width = np.maximum(np.broadcast_to(np.asarray(width, dtype=float), z.shape), 1e-6)
+    return np.vectorize(fluid.point_fraction, otypes=[float])(z, float(water_level), width)
+
+
+def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
+    """
+    Particles (N+1, 3) of a line hanging straight down from `top` with its payload, at rest.
+
+    Particle N is at top, particle 0 (the payload) lowest, along gravity (-z without it).
+    Each segment is stretched by the tension it carries: the weight of the payload and of
+    the line below it (the lumped masses below: the payload's half segment first), less
+    the buoyancy of the air or water each lumped mass is in (a segment that would carry
+    a net upward pull is left at its rest length). Which fluid depends on where the
+    particles end up: a few passes settle it (each moves them by the stretch only).
+    """
+    gravity = np.asarray(props.gravity, dtype=float)
+    g = float(np.linalg.norm(gravity))
+    down = gravity / g if g > 0.0 else np.array([0.0, 0.0, -1.0])
+    n = props.segments
+    lumped = np.full(n + 1, props.segment_length)
+    lumped[[0, -1]] *= 0.5
+    masses = props.mass_per_length * lumped
+    masses[0] += props.payload_mass
+    volumes = props.volume_area * lumped
+    widths = np.full(n + 1, props.volume_diameter or props.diameter)
+    volumes[0] += props.payload_volume
+    widths[0] = props.payload_volume ** (1.0 / 3.0) if props.payload_volume > 0.0 else widths[0]
+    shape = top + np.outer(props.segment_length * (n - np.arange(n + 1)), down)
+    for _ in range(4 if props.has_water else 1):
+        wet = wet_fraction(shape[:, 2], props.water_level, widths)
+        density = props.water_density * wet + props.air_density * (1.0 - wet)
+        below = np.cumsum(masses - density * volumes)[:-1]  # net mass under segment j
+        lengths = props.segment_length * (1.0 + props.strain_at(g * np.maximum(below, 0.0)))
+        shape = np.empty((n + 1, 3))
+        shape[n] = top
+        for j in range(n - 1, -1, -1):
+            shape[j] = shape[j + 1] + lengths[j] * down
+    return shape

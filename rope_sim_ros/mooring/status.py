@@ -63,6 +63,11 @@ class Rating:
     mbl: float
     wll: float
 
+    @classmethod
+    def of(cls, material) -> 'Rating':
+        """Return the rating of a material's properties (model/materials.py)."""
+        return cls(material.mbl, material.working_load_limit)
+
     def utilisation(self, tension: float) -> float:
         """Return tension / MBL (0 for a line without a finite MBL)."""
         return tension / self.mbl if math.isfinite(self.mbl) and self.mbl > 0.0 else 0.0

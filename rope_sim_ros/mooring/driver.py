@@ -13,50 +13,94 @@
 # limitations under the License.
 
 """
-The input and output rules of a mooring arrangement: line_driver's rules, for many lines.
+The input and output rules of a mooring: the one home of them.
 
-The mooring node and the offline commands drive a Mooring (mooring.py) through a
-MooringDriver, with the rules LineDriver gives one line (see line_driver.py), so that an
-arrangement and its lines run alone give the same outputs at the same times:
+Both nodes, ``rope_sim run`` and ``rope_sim resim`` drive a Mooring through a Driver, so
+that the same samples give the same outputs at the same times:
 
-- Time: simulated time 0 is the stamp of the first sample taken (a ship pose or a bollard
-  pose); stamps are integer nanoseconds, simulated times seconds from it.
-- One sample behind: the ropes never pass the second-newest sample of a live stream (the
-  ship's, or a line's bollard poses) until the caller takes that stream for silent.
-- Outputs fall every 1 / rate from the last (re)start, whose state is output at once; a
-  state time within PIN_TOLERANCE steps of its due time is pinned to it.
-- Skip ahead past max_lag; a clock max_lag behind the ropes starts them from scratch.
-- The ship pose of an output is the newest ship pose at or before the output time: its
-  orientation turns the lines' forces into the ship's body frame (mooring.mooring_wrench).
+- Streams: the ship's poses (SHIP: every fairlead is the pose ⊕ its offset; the single-line
+  node's fairlead/pose is this stream) and each line's bollard poses (named by the line).
+- Time: simulated time 0 is the stamp of the first sample taken (of any stream); stamps
+  are integer nanoseconds, simulated times seconds from it.
+- One sample behind: the ropes never pass the second-newest sample of a live stream. How an
+  end moves up to a sample depends on the sample after it (the side of the secant at the
+  sample instant, a spline's tangent there), so one sample behind the ends move exactly as
+  if the whole motion were known. A stream the caller declares silent (silence()) no longer
+  holds the ropes back: its ends coast to a stop; its next sample makes it live.
+- Outputs fall every 1 / rate from the last (re)start of the ropes, whose state is output at
+  once (a fresh output). A state time within PIN_TOLERANCE steps of its due time is pinned
+  to it (Mooring.skip_to), so rounding of the running sum of steps never adds up to a missed
+  step. A rate change re-anchors the grid at the state time: the next output is due
+  1 / rate after the last one.
+- Skip ahead: ropes more than max_lag behind their target restart there at rest instead of
+  catching up. A clock more than max_lag behind the ropes starts them from scratch.
+- Levers: an output's fairlead levers are the fairlead offsets rotated by the newest ship
+  pose at or before the output time, and a bollard's lever is that of its newest sample at
+  or before it (the first sample's before it). Output times on sample times, the usual
+  case, get the lever of that very sample; between samples, a lever carried over from the
+  sample before is what both the node and the re-simulation of its bag can know.
+- A state with a number that is not finite is never output: the ropes restart at rest.
 
+The clock-driven decisions are the caller's (a silent stream, a skip ahead, a reset, a
+clock jump back, a sample dropped for its stamp): the nodes record them as events
+(encode_event) and ``rope_sim resim`` replays them through the same methods.
 No ROS, no files here.
 """
 
 from collections import deque
 from dataclasses import dataclass, field
+import json
 import math
-from typing import Any, Dict, List, NamedTuple, Optional
+from typing import Any, Dict, List, NamedTuple, Optional, Tuple
 
 import numpy as np
 
-from .line_driver import MAX_LAG, PIN_TOLERANCE
-from .model.frames import rotation_matrix
 from .mooring import Mooring, mooring_wrench, MooringAdvance, MooringOutput, to_world
-from .params.arrangement import ArrangementParams
-from .params.table import ParameterError
+from ..model.frames import rotation_matrix
+from ..params.arrangement import ArrangementParams
+from ..params.table import ParameterError
 
-SHIP = 'ship'
+SHIP = 'ship'  # the ship's pose stream; a bollard's stream is named by its line
+# Falling further behind than this [s] restarts the ropes at the target instead of catching
+# up; a clock this far behind the ropes starts them from scratch.
+MAX_LAG = 1.0
+# An output's state time this close to its due time [steps] is pinned to it.
+PIN_TOLERANCE = 1e-6
+# The decisions a node records (one JSON object each, encode_event), and what a model did
+# ('parted': replayed, the model does it again).
+EVENT_KINDS = ('silent', 'skip', 'reset', 'clock_back', 'drop', 'restamp', 'set', 'winch',
+               'parted')
 
 
-class MooringPublished(NamedTuple):
+def encode_event(kind: str, **fields: Any) -> str:
+    """Return one event as JSON text: {'event': kind, ...fields}."""
+    return json.dumps({'event': kind, **fields}, sort_keys=True)
+
+
+def decode_event(text: str) -> Dict[str, Any]:
     """
-    One output of the arrangement.
+    Return an event of encode_event's as a dict with at least 'event'.
+
+    :raises ValueError: not a JSON object naming one of EVENT_KINDS.
+    """
+    event = json.loads(text)
+    if not isinstance(event, dict) or event.get('event') not in EVENT_KINDS:
+        raise ValueError(f'not an event: {text!r}')
+    return event
+
+
+class Published(NamedTuple):
+    """
+    One output of the mooring.
 
     :ivar stamp_ns: its stamp [ns] (epoch + simulated time).
     :ivar output: the lines' state (output.t is the simulated time [s]).
     :ivar ship_position: the ship pose's origin at the output [m] (see the module docstring).
     :ivar ship_orientation: its unit quaternion (x, y, z, w).
-    :ivar levers: each fairlead minus the ship's origin, in frame_id axes (L, 3) [m].
+    :ivar fairlead_levers: each fairlead minus the ship's origin, in frame_id axes (L, 3) [m]:
+        the torque arm of its force.
+    :ivar bollard_levers: each bollard minus its pose's origin (L, 3) [m] (zeros: a fixed
+        bollard).
     :ivar force: total force of the lines on the ship, body frame (3,) [N].
     :ivar moment: their total moment about the ship's origin, body frame (3,) [N m].
     :ivar advance: the Mooring advance that reached it; None for a fresh output.
@@ -66,7 +110,8 @@ class MooringPublished(NamedTuple):
     output: MooringOutput
     ship_position: np.ndarray
     ship_orientation: np.ndarray
-    levers: np.ndarray
+    fairlead_levers: np.ndarray
+    bollard_levers: np.ndarray
     force: np.ndarray
     moment: np.ndarray
     advance: Optional[MooringAdvance]
@@ -77,26 +122,28 @@ class MooringPublished(NamedTuple):
 
 
 @dataclass
-class MooringReport:
+class Report:
     """
-    What one call that moves the ropes on did (see line_driver.Report).
+    What one call that moves the ropes on did.
 
     :ivar outputs: the outputs reached, in order.
     :ivar skipped: how far [s] the ropes skipped ahead (0: no skip).
     :ivar skip_to: the simulated time they skipped to.
-    :ivar clock_back: how far [s] the clock was behind the ropes (0: it was not).
-    :ivar faults: simulated times of states not output because a number was not finite.
+    :ivar clock_back: how far [s] the clock was behind the ropes (0: it was not; else the
+        mooring was cleared and waits for the next ship pose).
+    :ivar faults: simulated times of states not output because a number was not finite
+        (the ropes were restarted at rest).
     """
 
-    outputs: List[MooringPublished] = field(default_factory=list)
+    outputs: List[Published] = field(default_factory=list)
     skipped: float = 0.0
     skip_to: float = math.nan
     clock_back: float = 0.0
     faults: List[float] = field(default_factory=list)
 
 
-class MooringDriver:
-    """A Mooring fed from ship and bollard poses, stepped from output time to output time."""
+class Driver:
+    """A Mooring fed from pose streams, stepped from output time to output time."""
 
     def __init__(self, arrangement: ArrangementParams, materials: Any = None,
                  rate: Optional[float] = None, history: float = 5.0) -> None:
@@ -104,6 +151,7 @@ class MooringDriver:
         Build every line (see Mooring); the ropes are placed by the first ship pose.
 
         :param rate: outputs per simulated second; None = publish_rate.
+        :param history: seconds of samples kept behind the newest (math.inf offline).
         :raises ParameterError: the rate is not a positive finite number, or a line cannot
             be built (also MaterialError, ValueError).
         """
@@ -114,6 +162,10 @@ class MooringDriver:
         self._materials = materials
         self._history = history
         self.mooring = Mooring(arrangement, materials, 1.0 / rate, history)
+        # the winch commands offline: {line index: (times [s of simulated time], speeds
+        # [m/s])}, each from its time on, applied before every output's steps (the nodes
+        # command through command_winch instead)
+        self.winch_schedules: Dict[int, Tuple[np.ndarray, np.ndarray]] = {}
         self._reset_inputs()
 
     def _reset_inputs(self) -> None:
@@ -121,6 +173,8 @@ class MooringDriver:
         # times [s] of the two newest samples of each stream, whether it holds the ropes
         self._recent = {stream: deque(maxlen=2) for stream in self.streams}
         self._live = {stream: False for stream in self.streams}
+        # each line's bollard levers: (time [s], lever) per sample
+        self._bollard_levers: List[deque] = [deque() for _ in self.mooring.lines]
         self._fresh = False  # output the state at once: the ropes were (re)started
         self._origin = 0.0  # simulated time [s] from which outputs are due
         self._count = 0  # outputs since then
@@ -159,6 +213,11 @@ class MooringDriver:
         """Tell whether a stream holds the ropes back (it has samples and is not silent)."""
         return self._live[stream]
 
+    def last_sample(self, stream: str) -> float:
+        """Return the time [s] of a stream's newest sample (-inf: none yet)."""
+        recent = self._recent[stream]
+        return recent[-1] if recent else -math.inf
+
     # -- inputs ---------------------------------------------------------------------------
 
     def push_ship(self, stamp_ns: int, position, orientation) -> Dict[str, Any]:
@@ -182,7 +241,7 @@ class MooringDriver:
             self.epoch_ns = epoch
             raise
         recent = self._recent[SHIP]
-        if teleported and len(teleported) == len(self.mooring.sims):
+        if teleported and len(teleported) == len(self.mooring.lines):
             recent.clear()  # the ship's samples before the jump are gone
         recent.append(t)
         self._live[SHIP] = True
@@ -192,17 +251,19 @@ class MooringDriver:
             return {'start': lengths}
         return {'teleport': teleported} if teleported else {}
 
-    def push_bollard(self, name: str, stamp_ns: int, point) -> str:
+    def push_bollard(self, name: str, stamp_ns: int, point, lever=None) -> str:
         """
         Take a bollard sample of the named line; its stream becomes live.
 
+        :param lever: the bollard point minus its pose's origin [m] (its torque arm); None:
+            zero.
         :returns: 'teleport' if a jump restarted the line, 'ignored' for a payload line
-            (its bollard end hangs free), else ''.
-        :raises KeyError: no line of that name.
+            (its bollard end hangs free: nothing changed), else ''.
+        :raises ValueError: no line of that name.
         :raises TrajectoryError: non-finite, or not after its newest sample.
         """
         k = self.mooring.names.index(name)
-        if self.mooring.sims[k].payload:
+        if self.mooring.lines[k].payload:
             return 'ignored'
         if self.epoch_ns is None:
             self.epoch_ns = int(stamp_ns)
@@ -213,6 +274,8 @@ class MooringDriver:
             recent.clear()
         recent.append(t)
         self._live[name] = True
+        self._bollard_levers[k].append(
+            (t, np.zeros(3) if lever is None else np.array(lever, dtype=float)))
         return event
 
     def silence(self, stream: str) -> bool:
@@ -232,9 +295,17 @@ class MooringDriver:
     # -- time -----------------------------------------------------------------------------
 
     def advance(self, now: float, max_outputs: float = math.inf,
-                max_lag: float = MAX_LAG) -> MooringReport:
-        """Move the ropes on towards `now`, outputs included (LineDriver.advance's rules)."""
-        report = MooringReport()
+                max_lag: float = MAX_LAG) -> Report:
+        """
+        Move the ropes on towards `now`, outputs included: the live node's one call.
+
+        A clock more than max_lag behind the ropes clears the mooring (report.clock_back);
+        a target more than max_lag ahead of it skips there (report.skipped). Then the fresh
+        output, if the ropes were (re)started, and at most max_outputs outputs on the grid.
+
+        :param now: the clock [s of simulated time]; math.inf = no clock.
+        """
+        report = Report()
         mooring = self.mooring
         if not mooring.started:
             return report
@@ -250,10 +321,14 @@ class MooringDriver:
             self.skip(target)
         return self.outputs_until(target, max_outputs, report)
 
+    def next_due(self) -> float:
+        """Return the simulated time [s] the next output is due at."""
+        return self._origin + (self._count + 1) / self.rate
+
     def outputs_until(self, target: float, max_outputs: float = math.inf,
-                      report: Optional[MooringReport] = None) -> MooringReport:
+                      report: Optional[Report] = None) -> Report:
         """Output the fresh state, then step to every output due by target (at most max)."""
-        report = MooringReport() if report is None else report
+        report = Report() if report is None else report
         mooring = self.mooring
         if not mooring.started:
             return report
@@ -262,10 +337,11 @@ class MooringDriver:
         done = 0
         while done < max_outputs:
             dt = mooring.time_step
-            due = self._origin + (self._count + 1) / self.rate
+            due = self.next_due()
             steps = max(1, math.ceil((due - mooring.time) / dt - 1e-9))
             if mooring.time + (steps - PIN_TOLERANCE) * dt > target:
                 break  # the input does not reach the next output time yet
+            self._command_scheduled_winches()
             advance = mooring.advance_to(due)
             self._count += 1
             done += 1
@@ -276,19 +352,23 @@ class MooringDriver:
             self._emit(advance, report)
         return report
 
-    def _emit(self, advance: Optional[MooringAdvance], report: MooringReport) -> None:
+    def _command_scheduled_winches(self) -> None:
+        """Command each scheduled winch the speed its schedule gives for the coming steps."""
+        mooring = self.mooring
+        middle = mooring.time + 0.5 * mooring.time_step
+        for k, (times, speeds) in self.winch_schedules.items():
+            row = max(int(np.searchsorted(times, middle, 'right')) - 1, 0)
+            mooring.command_winch(k, float(speeds[row]))
+
+    def _emit(self, advance: Optional[MooringAdvance], report: Report) -> None:
         mooring = self.mooring
         out = mooring.output()
         position, orientation = mooring.ship_pose(out.t)
         mooring.forget_ship()
         offsets = mooring.offsets
         force, moment = mooring_wrench(out.fairlead_forces, offsets, orientation)
-        # one sum is finite only if every number is (an overflow to inf is refused too)
-        total = (float(np.concatenate(out.positions).sum()) + float(out.fairlead_forces.sum())
-                 + float(out.bollard_forces.sum()) + float(force.sum()) + float(moment.sum())
-                 + float(out.fairlead_peaks.sum()) + float(out.bollard_peaks.sum())
-                 + float(out.line_lengths.sum()))
-        if not math.isfinite(total):
+        bollard_levers = self._bollard_levers_at(out.t)
+        if not (out.finite() and math.isfinite(float(force.sum()) + float(moment.sum()))):
             mooring.restart()
             self._fresh = True
             report.faults.append(out.t)
@@ -296,9 +376,26 @@ class MooringDriver:
         if self._fresh:  # (re)started ropes: the next outputs are due from here
             self._fresh = False
             self._origin, self._count = out.t, 0
-        report.outputs.append(MooringPublished(
+        report.outputs.append(Published(
             self.stamp_ns(out.t), out, position, orientation,
-            offsets @ rotation_matrix(orientation).T, force, moment, advance))
+            offsets @ rotation_matrix(orientation).T, bollard_levers, force, moment, advance))
+
+    def _bollard_levers_at(self, t: float) -> np.ndarray:
+        """Return each bollard's lever at time t (its newest sample's at or before it)."""
+        levers = np.zeros((len(self.mooring.lines), 3))
+        now = self.mooring.time
+        for k, samples in enumerate(self._bollard_levers):
+            if not samples:
+                continue
+            chosen = samples[0][1]
+            for time, lever in samples:
+                if time > t:
+                    break
+                chosen = lever
+            levers[k] = chosen
+            while len(samples) > 1 and samples[1][0] <= now:  # none older is ever asked
+                samples.popleft()
+        return levers
 
     def skip(self, t: float) -> None:
         """Skip the state to t and restart every rope there at rest (a skip ahead)."""
@@ -342,16 +439,23 @@ class MooringDriver:
         for k in self._indices(name):
             self.mooring.update(k, values)
         if 'publish_rate' in values:
-            self.set_rate(self.mooring.sims[0].params.publish_rate)
+            self.set_rate(self.mooring.lines[0].params.publish_rate)
 
     def _indices(self, name: Optional[str]) -> range:
         if name is None:
-            return range(len(self.mooring.sims))
+            return range(len(self.mooring.lines))
         k = self.mooring.names.index(name)
         return range(k, k + 1)
 
     def set_rate(self, rate: float) -> None:
-        """Make a new output rate take effect with the next output (LineDriver.set_rate)."""
+        """
+        Make a new output rate take effect with the next output: no gap, no burst.
+
+        The next output is due 1 / rate after the last one (the state time), and the steps
+        are chosen again to divide the new period. Counting on from the old origin at the
+        new period put the next one up to seconds away (a skip ahead) or in the past (a
+        burst).
+        """
         self.rate = float(rate)
         mooring = self.mooring
         mooring.set_output_interval(1.0 / self.rate)

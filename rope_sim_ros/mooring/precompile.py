@@ -41,7 +41,8 @@ import sys
 import time
 from typing import Callable, Dict, Iterator, List, Optional
 
-PACKAGE_DIR = Path(__file__).resolve().parent
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
+PACKAGE = __package__.split('.')[0]  # rope_sim_ros
 # Beside the cache: which sources it was compiled from (see refresh_in_tree_cache).
 FINGERPRINT_NAME = 'numba-kernels.sha256'
 CACHE_SUFFIXES = ('.nbi', '.nbc')  # numba's index and data files
@@ -66,8 +67,8 @@ CONFIGURATIONS = (
 
 START_MESSAGE = ('preparing the physics kernels: numba is compiling them (its cache holds none '
                  'for this install yet), one to three minutes on two cores; later starts '
-                 'load them from the cache (python3 -m rope_sim_ros.precompile prepares them '
-                 'ahead)')
+                 'load them from the cache (python3 -m rope_sim_ros.mooring.precompile prepares '
+                 'them ahead)')
 
 
 class _CompileNotice:
@@ -113,24 +114,26 @@ def announce_compilation(say: Optional[Callable[[str], None]]) -> Iterator[_Comp
 def exercise(values: dict) -> None:
     """Run a short line with these parameter values through every compiled path it has."""
     import numpy as np
-    from .params.table import LineParams
-    from .simulator import Simulator
+    from .mooring import Mooring
+    from ..params.arrangement import single_line
+    from ..params.table import LineParams
 
     line = LineParams().with_values(values)
-    sim = Simulator(line)
+    mooring = Mooring(single_line(line))
     fairlead = np.add(line.bollard_position, [0.9 * line.length, 0.0, 0.0])
-    sim.push_fairlead(0.0, fairlead)
-    sim.push_fairlead(0.1, fairlead + [0.01, 0.0, 0.0])
-    sim.push_bollard(0.0, line.bollard_position)  # the bollard's trajectory too
-    sim.start(0.0)
-    sim.advance_to(3.0 * sim.time_step)
-    sim.output()
+    level = [0.0, 0.0, 0.0, 1.0]
+    mooring.push_ship(0.0, fairlead, level)
+    mooring.push_ship(0.1, fairlead + [0.01, 0.0, 0.0], level)
+    mooring.push_bollard(0, 0.0, line.bollard_position)  # the bollard's trajectory too
+    mooring.start(0.0)
+    mooring.advance_to(3.0 * mooring.time_step)
+    mooring.output()
 
 
 def exercise_mooring() -> None:
     """Run a two-line arrangement: the kernels that drive a group of lines at once, its wrench."""
-    from .params.arrangement import from_values
     from .mooring import Mooring, mooring_wrench
+    from ..params.arrangement import from_values
 
     line = {'length': 30.0, 'segments': 4, 'bollard_position': [0.0, 0.0, 0.0]}
     mooring = Mooring(from_values({
@@ -150,7 +153,7 @@ def dispatchers() -> Dict[str, object]:
 
     found = {}
     for name, module in list(sys.modules.items()):
-        if module is None or not (name == __package__ or name.startswith(__package__ + '.')):
+        if module is None or not (name == PACKAGE or name.startswith(PACKAGE + '.')):
             continue
         for attribute, value in vars(module).items():
             if isinstance(value, Dispatcher) and value.py_func.__module__ == name:
@@ -221,7 +224,7 @@ def record_fingerprint(package_dir: Path, fingerprint: str) -> None:
 def main(argv: Optional[List[str]] = None) -> int:
     """Compile (or load) every kernel specialisation; print what it did and where."""
     parser = argparse.ArgumentParser(
-        prog='python3 -m rope_sim_ros.precompile',
+        prog='python3 -m rope_sim_ros.mooring.precompile',
         description="Compile the numba kernels of rope_sim_ros into numba's cache, so that "
         'the first start of the node or the runner does not wait for them.')
     parser.parse_args(argv)

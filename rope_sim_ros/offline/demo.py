@@ -26,7 +26,7 @@ process id, `rope_sim info` describes the bag, and the plots out/demo_<time>/ten
 (every line's tension against its WLL and MBL, linear scales) and plan.png (the berth from
 above at the most loaded moment) are drawn (arrangement_plot.py).
 
-    python -m rope_sim_ros.demo [--speed 2] [--install install] [--params FILE] [--out out]
+    python -m rope_sim_ros.offline.demo [--speed 2] [--install install] [--params FILE] [--out out]
 """
 
 import argparse
@@ -38,11 +38,11 @@ import subprocess
 import sys
 import time
 
-from .params.arrangement import read_arrangement_file
-from .params.table import ParameterError
-from .passing_ship import END, START
+from ..mooring.scenario import END, START
+from ..params.arrangement import read_arrangement_file
+from ..params.table import ParameterError
 
-REPO = Path(__file__).resolve().parent.parent
+REPO = Path(__file__).resolve().parents[2]
 PACKAGE = 'rope_sim_ros'
 STOP_TIMEOUT = 10.0
 MAX_SAFE_DOMAIN_ID = 101  # DDS ports of higher ids can collide with ephemeral ports
@@ -190,8 +190,8 @@ def show_bag(rope_sim: Path, env: dict, bag: Path, run_dir: Path) -> bool:
             return False
     print(f'demo: rope_sim info {bag}', flush=True)
     ok = subprocess.run([str(rope_sim), 'info', str(bag)], env=env).returncode == 0
-    from .arrangement_plot import plot_record
-    from .bag import BagError
+    from .plot import plot_record
+    from ..bag import BagError
     try:
         plots = plot_record(bag, run_dir, STORY)
     except (BagError, OSError) as e:

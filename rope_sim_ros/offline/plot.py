@@ -13,18 +13,22 @@
 # limitations under the License.
 
 """
-Look at an arrangement's bag: what happened at the berth, in two pictures.
+Look at a bag: ``rope_sim info`` (a summary) and ``rope_sim plot`` (pictures), of any bag.
 
-tensions.png, on linear scales: the ship's motion (ship/pose: surge and sway from where it
-lay), every line's fairlead tension against its working load limit and its MBL (one panel
-each, its peak marked with its utilisation), and the total force of the lines on the ship
-(ship/mooring_wrench, body frame). plan.png: the berth from above at the moment of the
-highest utilisation: the quay, the ship (outlined from its fairleads), every line coloured
-by its band (line_status: green below the WLL, amber past it, red past 90 % of the MBL)
-and labelled with its utilisation then and its peak, at rest in grey.
+A single line's bag (the mooring_line node's, or ``rope_sim run`` of a line): its fairlead
+and bollard tensions over time, the magnitudes of the recorded wrenches' forces at their log
+times, with the material's minimum breaking load (MBL) and working load limit (WLL), and a
+few rope shapes (x-z) from rope/particles.
 
-Times are the outputs' stamps (publish times), from the first output. The arrangement comes
-from the bag's metadata (the mooring node stores it, arrangement.PARAMETERS_KEY). No ROS.
+An arrangement's bag (the mooring node's): tensions.png, on linear scales, the ship's motion
+(ship/pose: surge and sway from where it lay), every line's fairlead tension against its
+WLL and its MBL (one panel each, its peak marked with its utilisation), and the total force
+of the lines on the ship (ship/mooring_wrench, body frame); plan.png, the berth from above
+at the moment of the highest utilisation: the quay, the ship (outlined from its fairleads),
+every line coloured by its band (mooring/status.py: green below the WLL, amber past it, red
+past 90 % of the MBL) and labelled with its utilisation then and its peak, at rest in grey.
+Times are the outputs' stamps (publish times), from the first output; the arrangement is
+the one the bag stores. No ROS.
 """
 
 from dataclasses import dataclass
@@ -34,16 +38,207 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .bag import BagError, read_messages
-from .bag.cdr import decode_pose_array, decode_pose_stamped, decode_wrench, \
-    decode_wrench_stamped
-from .bag.metadata import load_metadata, METADATA_FILE
-from .line_status import COLOURS, NEAR_BREAK_FRACTION, Rating
-from .params import arrangement
-from .params.materials import load_materials
+from .resim import stored_setup
+from .run import ratings
+from ..bag import bag_info, BagError, BagInfo, read_messages
+from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_wrench,
+                       decode_wrench_stamped)
+from ..messages.topics import (BOLLARD_TENSION, FAIRLEAD_TENSION, MOORING_WRENCH, PARTICLES,
+                               SHIP_POSE)
+from ..mooring.status import COLOURS, NEAR_BREAK_FRACTION, Rating
+from ..params.arrangement import ArrangementParams, single_line
+from ..params.table import LineParams
 
-SHIP_POSE = '/ship/pose'
-WRENCH = '/ship/mooring_wrench'
+WRENCH = f'/{MOORING_WRENCH}'
+ENDS = ('fairlead', 'bollard')
+_TENSION_TOPICS = {'fairlead': FAIRLEAD_TENSION, 'bollard': BOLLARD_TENSION}
+_TENSION_TOPICS = {'fairlead': FAIRLEAD_TENSION, 'bollard': BOLLARD_TENSION}
+
+
+@dataclass(frozen=True)
+class TensionSeries:
+    """
+    The tension recorded at one end.
+
+    :param topic: the Wrench topic.
+    :param times_ns: log times [ns], shape (n,).
+    :param tension: |force| [N], shape (n,).
+    """
+
+    topic: str
+    times_ns: np.ndarray
+    tension: np.ndarray
+
+    def peak(self) -> Tuple[float, int]:
+        """Return the largest tension [N] and its log time [ns] (nan, 0 when empty)."""
+        if not len(self.tension):
+            return float('nan'), 0
+        i = int(np.argmax(self.tension))
+        return float(self.tension[i]), int(self.times_ns[i])
+
+
+def tension_namespaces(info: BagInfo) -> List[str]:
+    """Return the namespaces ('' = root) with a fairlead or bollard tension topic, sorted."""
+    found = set()
+    for name in info.topics:
+        for relative in _TENSION_TOPICS.values():
+            if name.endswith('/' + relative):
+                found.add(name[:-len(relative) - 1])
+    return sorted(found)
+
+
+def read_tensions(path, namespace: str = '') -> Dict[str, TensionSeries]:
+    """
+    Return the tension series of both ends of one line (empty series for a missing topic).
+
+    :raises BagError: the bag cannot be read.
+    """
+    series = {}
+    for end in ENDS:
+        topic = f'{namespace}/{_TENSION_TOPICS[end]}'
+        times, values = [], []
+        for message in read_messages(path, [topic]):
+            force, _ = decode_wrench(message.data)
+            times.append(message.log_time_ns)
+            values.append(float(np.linalg.norm(force)))
+        series[end] = TensionSeries(topic, np.array(times, dtype=np.int64),
+                                    np.array(values, dtype=float))
+    return series
+
+
+def _seconds(ns: int) -> str:
+    return f'{ns / 1e9:.3f} s'
+
+
+def describe(path) -> str:
+    """
+    Return the text of ``rope_sim info``: topics, counts, duration, peak tensions.
+
+    :raises BagError: path is not a readable bag.
+    """
+    info = bag_info(path)
+    lines = [f'bag:       {os.fspath(path)}'
+             + ('' if info.complete else
+                f'  (cut short: not closed; `rope_sim recover {os.fspath(path)}` completes it)'),
+             f'duration:  {_seconds(info.duration_ns)}  '
+             f'(log time {_seconds(info.start_ns)} .. {_seconds(info.end_ns)})',
+             f'messages:  {info.message_count}',
+             'topics:']
+    width = max([len(name) for name in info.topics] + [5])
+    type_width = max([len(topic.type_name) for topic in info.topics.values()] + [4])
+    for name in sorted(info.topics):
+        topic = info.topics[name]
+        lines.append(f'  {name:<{width}}  {topic.type_name:<{type_width}}  '
+                     f'{topic.message_count:>8d}')
+    for namespace in tension_namespaces(info):
+        for end, series in read_tensions(path, namespace).items():
+            if not len(series.tension):
+                continue
+            peak, at = series.peak()
+            lines.append(
+                f'peak {end} tension {series.topic}: {peak:.1f} N at log time {_seconds(at)} '
+                f'({_seconds(at - info.start_ns)} after the start)')
+    return '\n'.join(lines)
+
+
+def _shapes(path, namespace: str, count: int,
+            start_ns: int) -> List[Tuple[float, np.ndarray]]:
+    topic = f'{namespace}/{PARTICLES}'
+    messages = list(read_messages(path, [topic]))
+    if not messages:
+        return []
+    picks = sorted(set(np.linspace(0, len(messages) - 1, count).round().astype(int).tolist()))
+    shapes = []
+    for i in picks:
+        poses = decode_pose_array(messages[i].data)[3]
+        # on the tension plot's time axis (a node bag's stamps are epoch times)
+        stamp = (messages[i].log_time_ns - start_ns) / 1e9
+        shapes.append((stamp, poses[:, :3]))
+    return shapes
+
+
+def plot_bag(path, out_path, params: LineParams, namespace: Optional[str] = None,
+             shapes: int = 5) -> str:
+    """
+    Draw a bag's tensions with MBL and WLL, and rope shapes, into a PNG file.
+
+    :param path: the bag.
+    :param out_path: the image file to write.
+    :param params: parameters giving the material and diameter (for MBL and WLL).
+    :param namespace: the line's namespace ('' = root); None = the only one there is.
+    :param shapes: how many rope shapes to draw, evenly spaced over the run.
+    :returns: the image path.
+    :raises BagError: unreadable bag, no tension topics, or several lines and none chosen.
+    :raises OSError: the image cannot be written.
+    """
+    import matplotlib
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    info = bag_info(path)
+    found = tension_namespaces(info)
+    if namespace is None:
+        if len(found) != 1:
+            raise BagError(
+                f'bag {os.fspath(path)} has tension topics in '
+                f'{len(found) or "no"} namespace(s) {", ".join(repr(n or "/") for n in found)}'
+                + ('; choose one with --namespace' if found else '; nothing to plot'))
+        namespace = found[0]
+    else:
+        namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
+        if namespace not in found:
+            raise BagError(f'bag {os.fspath(path)} has no tension topics in namespace '
+                           f'{namespace or "/"!r}')
+    rating = ratings(single_line(params))[0]
+    series = read_tensions(path, namespace)
+
+    figure = Figure(figsize=(10, 8), dpi=100, layout='constrained')
+    FigureCanvasAgg(figure)
+    top, bottom = figure.subplots(2, 1, gridspec_kw={'height_ratios': [3, 2]})
+    start = info.start_ns
+    peak = 0.0
+    for end, colour in zip(ENDS, ('tab:blue', 'tab:green')):
+        s = series[end]
+        if len(s.tension):
+            top.plot((s.times_ns - start) / 1e9, s.tension / 1e3, color=colour,
+                     label=f'{end} tension ({s.topic})')
+            peak = max(peak, float(s.tension.max()))
+    describe_line = f'{params.material} {params.diameter * 1e3:g} mm'
+    top.axhline(rating.mbl / 1e3, color='tab:red', linestyle='--',
+                label=f'MBL {rating.mbl / 1e3:.0f} kN ({describe_line})')
+    top.axhline(rating.wll / 1e3, color='tab:orange', linestyle='--',
+                label=f'working load limit {rating.wll / 1e3:.0f} kN')
+    if 0.0 < peak < 0.1 * rating.wll:
+        # On a linear axis the tension would be a flat line at the bottom.
+        top.set_yscale('log')
+        top.set_ylabel('tension [kN] (log scale)')
+    else:
+        top.set_ylabel('tension [kN]')
+        top.set_ylim(bottom=0.0)
+    top.set_xlabel(f'time since bag start [s] (start at log time {start / 1e9:.3f} s)')
+    folder = os.path.normpath(os.fspath(path))
+    title = os.path.join(os.path.basename(os.path.dirname(folder)), os.path.basename(folder))
+    top.set_title(f'{title}: line tension')
+    top.grid(True, which='both', alpha=0.3)
+    top.legend(loc='best', fontsize='small')
+
+    drawn = _shapes(path, namespace, shapes, start)
+    cmap = matplotlib.colormaps['viridis']
+    for k, (stamp, points) in enumerate(drawn):
+        bottom.plot(points[:, 0], points[:, 2], '.-', markersize=3,
+                    color=cmap(k / max(1, len(drawn) - 1)), label=f't = {stamp:.2f} s')
+    bottom.set_xlabel(f'x [m] ({params.frame_id})')
+    bottom.set_ylabel('z [m]')
+    bottom.set_title('rope shapes (rope/particles)')
+    bottom.set_aspect('equal', adjustable='datalim')
+    bottom.grid(True, alpha=0.3)
+    if drawn:
+        bottom.legend(loc='best', fontsize='small')
+    else:
+        bottom.text(0.5, 0.5, 'no rope/particles recorded', ha='center', va='center',
+                    transform=bottom.transAxes)
+    figure.savefig(os.fspath(out_path))
+    return os.fspath(out_path)
 
 
 @dataclass(frozen=True)
@@ -60,7 +255,7 @@ class ArrangementRecord:
     :ivar start_ns: the first output's stamp [ns].
     """
 
-    setup: arrangement.ArrangementParams
+    setup: ArrangementParams
     ratings: List[Rating]
     times: np.ndarray
     tensions: np.ndarray
@@ -78,39 +273,20 @@ class ArrangementRecord:
         return float(self.tensions[i, k]), float(self.times[i])
 
 
-def stored_arrangement(path) -> Optional[arrangement.ArrangementParams]:
-    """Return the arrangement a mooring node's bag stores, or None (not such a bag)."""
-    metadata_path = os.path.join(os.fspath(path), METADATA_FILE)
-    if not os.path.isfile(metadata_path):
-        return None
-    try:
-        custom = load_metadata(metadata_path).get('custom_data') or {}
-    except BagError:
-        return None
-    text = custom.get(arrangement.PARAMETERS_KEY) if isinstance(custom, dict) else None
-    return arrangement.parameters_from_yaml(text) if text else None
-
-
-def read_record(path, setup: Optional[arrangement.ArrangementParams] = None
-                ) -> ArrangementRecord:
+def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementRecord:
     """
     Read an arrangement's bag (its stored arrangement unless `setup` is given).
 
     :raises BagError: unreadable, not an arrangement's bag, or no line tension recorded.
     """
-    setup = setup or stored_arrangement(path)
-    if setup is None:
+    setup = setup or stored_setup(path)
+    if setup is None or setup.single:
         raise BagError(f'bag {os.fspath(path)} stores no arrangement (it was not recorded '
                        'by the mooring node)')
-    library = load_materials()
-    ratings = []
-    for line in setup.lines:
-        material = library.properties(line.params.material, line.params.diameter)
-        ratings.append(Rating(material.mbl, material.working_load_limit))
     series: Dict[str, List[Tuple[int, float]]] = {line: [] for line in setup.names}
-    topics = {f'/{line}/fairlead/tension': line for line in setup.names}
+    topics = {f'/{line}/{FAIRLEAD_TENSION}': line for line in setup.names}
     wrench, ship = [], []
-    for message in read_messages(path, [*topics, WRENCH, SHIP_POSE]):
+    for message in read_messages(path, [*topics, WRENCH, f'/{SHIP_POSE}']):
         if message.topic in topics:
             force, _ = decode_wrench(message.data)
             series[topics[message.topic]].append(
@@ -134,7 +310,7 @@ def read_record(path, setup: Optional[arrangement.ArrangementParams] = None
         return (np.asarray(ns, dtype=np.int64) - start) / 1e9
 
     return ArrangementRecord(
-        setup, ratings, seconds(stamps), tensions,
+        setup, ratings(setup), seconds(stamps), tensions,
         seconds([w[0] for w in wrench]), np.array([w[1] for w in wrench]).reshape(-1, 3),
         np.array([w[2] for w in wrench]).reshape(-1, 3),
         seconds([s[0] for s in ship]), np.array([s[1] for s in ship]).reshape(-1, 3),
@@ -171,16 +347,17 @@ def _placed(outline: np.ndarray, position, yaw: float) -> np.ndarray:
 
 
 def plot_record(path, out_dir, story: str = '', tensions: str = 'tensions.png',
-                plan: str = 'plan.png') -> List[str]:
+                plan: str = 'plan.png', setup: Optional[ArrangementParams] = None) -> List[str]:
     """
     Draw tensions.png and plan.png of an arrangement's bag into out_dir.
 
     :param story: what the run was, a sentence for the top of tensions.png ('' = none).
     :param tensions, plan: the images' file names.
+    :param setup: the arrangement (default: the one the bag stores).
     :returns: the two image paths.
     :raises BagError: see read_record. OSError: an image cannot be written.
     """
-    record = read_record(path)
+    record = read_record(path, setup)
     os.makedirs(os.fspath(out_dir), exist_ok=True)
     tensions = os.path.join(os.fspath(out_dir), tensions)
     plan = os.path.join(os.fspath(out_dir), plan)
@@ -328,3 +505,28 @@ def draw_plan(path, record: ArrangementRecord, out_path) -> None:
                    '(utilisation = tension / MBL)')
     axis.grid(True, alpha=0.3)
     figure.savefig(os.fspath(out_path), bbox_inches='tight')  # the equal axes leave margins
+
+
+def describe_lines(path) -> str:
+    """
+    Return each line's peak tension, utilisation and band of an arrangement's bag.
+
+    :raises BagError: not an arrangement's bag, or unreadable.
+    """
+    record = read_record(path)
+    rows = ['lines (peak fairlead tension, % of MBL, against the WLL):']
+    width = max(len(name) for name in record.setup.names)
+    for k, name in enumerate(record.setup.names):
+        peak, when = record.peak(k)
+        rating = record.ratings[k]
+        rows.append(f'  {name:<{width}}  {peak / 1e3:9.1f} kN at {when:8.2f} s  '
+                    f'{100 * rating.utilisation(peak):5.1f} % of MBL {rating.mbl / 1e3:.0f} kN  '
+                    f'{"PAST" if peak >= rating.wll else "below"} the WLL '
+                    f'{rating.wll / 1e3:.0f} kN')
+    if len(record.wrench_times):
+        horizontal = np.hypot(record.force[:, 0], record.force[:, 1])
+        i = int(np.argmax(horizontal))
+        fx, fy = record.force[i, :2] / 1e3
+        rows.append(f'peak horizontal force on the ship: {horizontal[i] / 1e3:.1f} kN at '
+                    f'{record.wrench_times[i]:.2f} s (body frame: Fx {fx:.1f}, Fy {fy:.1f} kN)')
+    return '\n'.join(rows)

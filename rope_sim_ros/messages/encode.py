@@ -1,0 +1,149 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+A mooring's outputs as message bytes (CDR), built once from the numbers for every taker.
+
+The nodes publish these bytes and record them; the offline bag writes the same bytes, so a
+node's bag and a re-simulation of it hold the same messages. Only the topics asked for are
+built: 16 lines' particles at 100 Hz, through rclpy's message classes, cost more than their
+physics (370 us an output for one line's particles and tensions, as bytes 80 us).
+
+- rope/particles: geometry_msgs/PoseArray, bollard first, each pose's x axis along the rope
+  (frames.lines_tangent_quaternions: every line in one pass);
+- fairlead/tension, bollard/tension: geometry_msgs/Wrench, the force of the line on the end
+  [N, frame_id axes], the torque its moment about the end's pose origin (the lever × force);
+- peaks and the winch's length: std_msgs/Float64; payload/pose: geometry_msgs/PoseStamped;
+- ship/mooring_wrench (body axes, ship_frame_id) and ship/mooring_wrench_world (frame_id
+  axes): geometry_msgs/WrenchStamped, about the ship's origin.
+"""
+
+from typing import Dict, Iterable, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import topics
+from .topics import Layout
+from ..bag import cdr
+from ..model.frames import cross_rows, lines_tangent_quaternions, split_ns
+from ..mooring.driver import Published
+
+
+def pose_stamped(stamp_ns: int, frame_id: str, position: Sequence[float],
+                 orientation: Sequence[float] = (0.0, 0.0, 0.0, 1.0)) -> bytes:
+    """Return a PoseStamped (identity orientation unless given) as CDR bytes."""
+    sec, nanosec = split_ns(stamp_ns)
+    return cdr.pose_stamped(sec, nanosec, frame_id,
+                            [*map(float, position), *map(float, orientation)])
+
+
+class OutputEncoder:
+    """
+    Builds an output's messages for one node kind's topics (see the module docstring).
+
+    :ivar line_topics: {topic: (line index, relative name)} of every line output but the
+        latched parted flag.
+    :ivar parted_topics: each line's parted topic.
+    """
+
+    def __init__(self, layout: Layout, names: Sequence[str], payloads: Sequence[bool],
+                 frame_id: str, ship_frame_id: str = 'base_link'):
+        """Name every output of these lines (payloads: which lines end in a payload)."""
+        self.layout = layout
+        self.frame_id = frame_id
+        self.ship_frame_id = ship_frame_id
+        self.line_topics: Dict[str, Tuple[int, str]] = {}
+        self.types: Dict[str, str] = {}
+        for k, (name, payload) in enumerate(zip(names, payloads)):
+            outputs = dict(topics.LINE_OUTPUTS)
+            if payload:
+                outputs[topics.PAYLOAD_POSE] = topics.POSE_STAMPED
+            for relative, type_name in outputs.items():
+                topic = layout.line_topic(name, relative)
+                self.line_topics[topic] = (k, relative)
+                self.types[topic] = type_name
+        self.parted_topics = [layout.line_topic(name, topics.PARTED) for name in names]
+        self.types.update({topic: topics.BOOL for topic in self.parted_topics})
+        if layout.ship_outputs:
+            self.types.update(topics.SHIP_OUTPUTS)
+        self._parted: List[Optional[bool]] = [None] * len(names)  # what was said last
+
+    def has_header(self, topic: str) -> bool:
+        """Tell whether an output topic's messages carry a header stamp (the ship's do)."""
+        line = self.line_topics.get(topic)
+        return topic in topics.SHIP_OUTPUTS if line is None else line[1] in topics.STAMPED
+
+    @property
+    def output_topics(self) -> List[str]:
+        """Return every topic an output may publish on: the lines', then the ship's."""
+        ship = list(topics.SHIP_OUTPUTS) if self.layout.ship_outputs else []
+        return list(self.line_topics) + ship
+
+    def messages(self, published: Published,
+                 wanted: Optional[Iterable[str]] = None) -> List[Tuple[str, bytes]]:
+        """
+        Return (topic, CDR bytes) of the output's messages on the wanted topics, in order.
+
+        :param wanted: the topics to build (None: every one of output_topics).
+        """
+        wanted = self.output_topics if wanted is None else list(wanted)
+        out = published.output
+        sec, nanosec = split_ns(published.stamp_ns)
+        kinds = {self.line_topics[topic][1] for topic in wanted if topic in self.line_topics}
+        if topics.PARTICLES in kinds:
+            positions = np.concatenate(out.positions)
+            starts = np.cumsum([0] + [len(x) for x in out.positions])
+            poses = np.concatenate([positions, lines_tangent_quaternions(positions, starts)],
+                                   axis=1)
+        if topics.FAIRLEAD_TENSION in kinds:
+            fairlead_torques = cross_rows(published.fairlead_levers, out.fairlead_forces)
+        if topics.BOLLARD_TENSION in kinds:
+            bollard_torques = cross_rows(published.bollard_levers, out.bollard_forces)
+        built = []
+        for topic in wanted:
+            if topic in self.line_topics:
+                k, relative = self.line_topics[topic]
+                if relative == topics.PARTICLES:
+                    data = cdr.pose_array(sec, nanosec, self.frame_id,
+                                          poses[starts[k]:starts[k + 1]])
+                elif relative == topics.FAIRLEAD_TENSION:
+                    data = cdr.wrench(out.fairlead_forces[k], fairlead_torques[k])
+                elif relative == topics.BOLLARD_TENSION:
+                    data = cdr.wrench(out.bollard_forces[k], bollard_torques[k])
+                elif relative == topics.FAIRLEAD_PEAK:
+                    data = cdr.float64(out.fairlead_peaks[k])
+                elif relative == topics.BOLLARD_PEAK:
+                    data = cdr.float64(out.bollard_peaks[k])
+                elif relative == topics.WINCH_LENGTH:
+                    data = cdr.float64(out.line_lengths[k])
+                else:  # PAYLOAD_POSE
+                    data = pose_stamped(published.stamp_ns, self.frame_id,
+                                        out.payload_positions[k])
+            elif topic == topics.MOORING_WRENCH:
+                data = cdr.wrench_stamped(sec, nanosec, self.ship_frame_id, published.force,
+                                          published.moment)
+            else:  # MOORING_WRENCH_WORLD
+                data = cdr.wrench_stamped(sec, nanosec, self.frame_id,
+                                          *published.world_wrench())
+            built.append((topic, data))
+        return built
+
+    def parted_changes(self, parted: Sequence[bool]) -> List[Tuple[str, bool]]:
+        """Return (topic, flag) of each line whose parted flag changed since it was said."""
+        changes = []
+        for k, now in enumerate(np.asarray(parted, dtype=bool).tolist()):
+            if now is not self._parted[k]:
+                self._parted[k] = now
+                changes.append((self.parted_topics[k], now))
+        return changes

@@ -1,0 +1,320 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+One line of a mooring: its parameters as the model's numbers, and the rules of that line.
+
+A MooringLine knows what its line is (its RopeProperties, its material's MBL and WLL), the
+step it takes (the one rule of time_step), how far its ends can be apart (its reach), what
+a physical state of it can pull (its load bound), its winch and its parting, and how it
+starts at rest between two ends: in a System of its own, which the Mooring then puts in the
+System its group shares. It steps nothing itself: the Mooring steps every line of a group
+at once, with these rules as arrays of the group (GroupRules).
+"""
+
+from dataclasses import dataclass, replace
+import math
+from typing import Optional
+
+import numpy as np
+
+from ..model.materials import MaterialLibrary
+from ..model.objects import Line, Point, System, Winch
+from ..model.rope import RopeProperties, tension_bound
+from ..model.statics.start import hanging_shape, start_shape
+from ..params.resolve import rope_properties
+from ..params.table import LineParams, ParameterError
+from ..stepping.relax import relax
+from ..stepping.rules import automatic_time_step, drag_rate, stability_limit
+
+# The winch's defaults (params/table.py): its brake holds 60 % of the MBL (OCIMF MEG4); it
+# hauls in to a tenth of the line's length and pays out to four times it.
+BRAKE_FRACTION = 0.6
+MIN_LENGTH_FRACTION = 0.1
+MAX_LENGTH_FRACTION = 4.0
+
+
+@dataclass(frozen=True)
+class Parting:
+    """
+    The moment a line parted.
+
+    :ivar t: the end of the step in which it parted [s].
+    :ivar segment: the segment that parted (0 at the bollard).
+    :ivar break_load: the load it exceeded [N].
+    """
+
+    t: float
+    segment: int
+    break_load: float
+
+
+def _round_down(value: float) -> float:
+    """Return value rounded down to 2 significant digits (a step that is safe to quote)."""
+    shown = float(f'{value:.2g}')
+    if shown > value:
+        exponent = math.floor(math.log10(value)) - 1
+        shown = float(f'{shown - 10.0 ** exponent:.2g}')
+    return shown
+
+
+def choose_time_step(params: LineParams, props: RopeProperties,
+                     output_interval: float = 0.0) -> float:
+    """
+    Return the step of a line with these parameters: the one rule of time_step.
+
+    0: automatic. improved_euler: time_step itself, refused above the step its line can
+    take stably (stability_limit: at 1.9 times it, 0.5 ms, a 2.5 m jerk of the reference
+    polyester line peaked at 14.5 MN for 53 kN converged, and at 2 ms overflowed).
+    implicit_euler and adaptive, stable at any step: an upper bound, divided into the fewest
+    equal substeps no longer than the automatic step (at 10 ms the same jerk of the
+    reference wire line peaked at 120 MN for 0.11 MN converged; the automatic step stays
+    within 0.49 to 1.13 times the converged peak on 10 jerks of the two lines). With an
+    output interval, the step is shortened to divide it, so that outputs fall on steps.
+
+    :raises ParameterError: improved_euler's time_step is above its stability limit.
+    """
+    if params.time_step == 0.0:
+        dt = automatic_time_step(props, params.integrator)
+    elif params.integrator == 'improved_euler':
+        limit = stability_limit(props)
+        if params.time_step > limit:
+            largest = _round_down(limit)
+            raise ParameterError(
+                f"time_step {params.time_step:g} s is above improved_euler's stability "
+                f'limit for this line (largest stable step {largest:g} s): set time_step '
+                f'<= {largest:g} or 0 (automatic)')
+        dt = params.time_step
+    else:
+        automatic = automatic_time_step(props, params.integrator)
+        dt = params.time_step / math.ceil(params.time_step / automatic - 1e-9)
+    if output_interval > 0.0:
+        dt = output_interval / math.ceil(output_interval / dt - 1e-9)
+    return dt
+
+
+class MooringLine:
+    """
+    One line's numbers and rules (see the module docstring).
+
+    :ivar name: the line's name (its parameter prefix and topic namespace in a mooring).
+    :ivar params: its parameters in force.
+    :ivar material: its material's properties at its diameter (MBL, WLL, ...).
+    :ivar props: its RopeProperties at its parameters' length.
+    :ivar time_step: its step [s].
+    :ivar length: its unstretched length now [m] (the winch changes it).
+    :ivar parting: how it parted, None while whole (until restore()).
+    """
+
+    def __init__(self, name: str, params: LineParams, materials: MaterialLibrary,
+                 output_interval: float = 0.0):
+        """
+        Resolve the line's parameters.
+
+        :raises ParameterError / MaterialError / ValueError: it cannot be built; the
+            message says why.
+        """
+        self.name = name
+        self.params = params
+        self.material = materials.properties(params.material, params.diameter)
+        self.props = rope_properties(params, self.material)
+        self.output_interval = output_interval
+        self.time_step = choose_time_step(params, self.props, output_interval)
+        self.length = params.length
+        self.parting: Optional[Parting] = None
+        self.winch_command = 0.0  # the speed last commanded [m/s]
+        self.held_tension = math.nan  # constant_tension with winch_tension 0: the one held
+        self._line_props = (None, None)  # (props, props at the length now)
+
+    # -- what the line is now -------------------------------------------------------------
+
+    @property
+    def payload(self) -> bool:
+        """Tell whether the bollard end is a free payload: payload_mass > 0."""
+        return self.params.has_payload
+
+    @property
+    def line_props(self) -> RopeProperties:
+        """Return props at the length the winch has given the line now."""
+        if self.props.length == self.length:
+            return self.props
+        if self._line_props[0] is not self.props or self._line_props[1].length != self.length:
+            self._line_props = (self.props, replace(self.props, length=self.length))
+        return self._line_props[1]
+
+    @property
+    def reach(self) -> float:
+        """
+        Farthest the ends can be apart [m], L (1 + strain limit) at L now; inf once parted.
+
+        The strain limit is max_strain, or on a curve line the strain of twice its MBL
+        (RopeProperties.strain_limit): the strain limit the kernels hold the segments to.
+        """
+        if self.parting is not None:
+            return math.inf
+        return self.length * (1.0 + self.props.strain_limit)
+
+    @property
+    def break_load(self) -> float:
+        """Return the load a segment parts at [N]: break_load or the MBL; inf if parting is off."""
+        if not self.params.parting:
+            return math.inf
+        return self.params.break_load or self.props.mbl
+
+    def load_bound(self) -> tuple:
+        """
+        Return the largest end force or EA strain [N] a physical state can have, as two terms.
+
+        rope.tension_bound of the line at its length now, at rest and its growth per m/s of
+        the ends (it is linear in their speed): a state past at_rest + per_speed * speed is
+        restarted.
+        """
+        props = self.line_props
+        at_rest = tension_bound(props)
+        return at_rest, tension_bound(props, 1.0) - at_rest
+
+    def fine_step(self) -> tuple:
+        """
+        Return improved Euler's step at the line's length now: its stable step and drag rate.
+
+        The adaptive integrator's step through a snap (and improved_euler's bound on drag):
+        the automatic improved Euler step of the line at its length now (its own step, for
+        improved_euler at its parameters' length), no longer than the drag takes the
+        particles' speed in: 1 / (rate (speed + current)), rate the drag's per m/s
+        (stepping/rules.py's drag_rate). Returns (stable step [s], drag rate per m/s [1/s
+        per m/s], current speed [m/s] where there is water).
+        """
+        props = self.line_props
+        own = props is self.props and self.params.integrator == 'improved_euler'
+        stable = self.time_step if own else automatic_time_step(props)
+        current = math.hypot(*props.current) if props.has_water else 0.0
+        return stable, drag_rate(props, 1.0), current
+
+    def winch(self) -> Winch:
+        """Return the fairlead's winch as the parameters and the last command set it."""
+        p = self.params
+        command = self.winch_command
+        if p.winch_mode == 'constant_tension':
+            command = p.winch_tension or self.held_tension
+            if not math.isfinite(command):
+                command = 0.0
+        return Winch(mode=p.winch_mode, end=1, command=command, max_speed=p.winch_max_speed,
+                     acceleration=p.winch_acceleration,
+                     brake_load=p.winch_brake_load or BRAKE_FRACTION * self.props.mbl,
+                     min_length=p.winch_min_length or MIN_LENGTH_FRACTION * p.length,
+                     max_length=p.winch_max_length or MAX_LENGTH_FRACTION * p.length)
+
+    # -- at rest -----------------------------------------------------------------------------
+
+    def at_rest(self, ends: np.ndarray, held: bool) -> System:
+        """
+        Return a System of this line alone at rest between its ends (2, 3) [m].
+
+        The catenary in its environment (start_shape: submerged weight below the surface,
+        laid on the seabed where it reaches it), brought to rest under the bending springs,
+        the fluids and the ground too (relax); the start shape itself wherever that fails
+        or the ends are held at the reach. With a payload: hanging straight down from the
+        fairlead (hanging_shape), likewise brought to rest.
+        """
+        p = self.line_props
+        if self.payload:
+            shape = hanging_shape(p, ends[1])
+        else:
+            shape = start_shape(p.line_type, p.environment, ends[0], ends[1], p.length,
+                                p.segments)
+        alone = self.build(shape)
+        if not held and (not relax(p, alone) or not self._physical(alone)):
+            alone = self.build(shape)
+        return alone
+
+    def _physical(self, system: System) -> bool:
+        """Tell whether a System of this line alone is finite and within its load bound."""
+        finite, largest = system.largest_load()
+        return finite and largest <= self.load_bound()[0]
+
+    def build(self, shape: np.ndarray) -> System:
+        """
+        Make the System of the line at rest at `shape` (N+1, 3), its ends on the points.
+
+        At the winch's length now, parted where it parted; its winch and break load are
+        the Mooring's to give (a line being brought to rest has neither).
+        """
+        p = self.line_props
+        if shape.shape != (p.segments + 1, 3):
+            raise ValueError(f'shape must have shape ({p.segments + 1}, 3), got {shape.shape}')
+        system = System(p.environment)
+        if self.payload:
+            system.add_point(Point('free', shape[0], mass=p.payload_mass,
+                                   volume=p.payload_volume, drag_area=p.payload_drag_area,
+                                   added_mass=p.payload_added_mass))
+        else:
+            system.add_point(Point('driven', shape[0]))
+        system.add_point(Point('driven', shape[-1]))
+        line = Line.uniform(p.line_type, p.length, p.segments, shape, (0, 1))
+        if self.parting is not None:
+            line.parted = self.parting.segment
+        system.add_line(line)
+        system.pack()
+        return system
+
+    # -- changes -------------------------------------------------------------------------
+
+    def command_winch(self, speed: float) -> None:
+        """
+        Take a winch speed command [m/s] (+ pays out): a speed winch runs at it.
+
+        :raises ParameterError: speed is not a finite number.
+        """
+        if not (isinstance(speed, (int, float)) and math.isfinite(speed)):
+            raise ParameterError(f'winch speed {speed!r} is not allowed: must be a finite '
+                                 'number [m/s] (+ pays out)')
+        self.winch_command = float(speed)
+
+    def restore(self) -> None:
+        """Give the line back its length and, if it parted, its whole rope."""
+        self.length = self.params.length
+        self.parting = None
+        self.held_tension = math.nan
+
+    def updated(self, values: dict) -> tuple:
+        """
+        Return (params, props, time_step) with run-time changes applied; change nothing.
+
+        :raises ParameterError: a bad value, or one that makes the fixed time_step unstable
+            (e.g. axial_damping lowered under improved_euler); the message says why.
+        """
+        params = self.params.with_values(values)
+        props = rope_properties(params, self.material)
+        try:
+            time_step = choose_time_step(params, props, self.output_interval)
+        except ParameterError as e:
+            changes = ', '.join(f'{k} = {v}' for k, v in values.items())
+            raise ParameterError(f'with {changes}, {e}') from None
+        return params, props, time_step
+
+    def update(self, values: dict) -> None:
+        """
+        Apply run-time parameter changes (damping, drag, max_strain, current, ...).
+
+        :raises ParameterError: as updated() (nothing is changed then).
+        """
+        before = (self.params.winch_mode, self.params.winch_tension)
+        self.params, self.props, self.time_step = self.updated(values)
+        if (self.params.winch_mode, self.params.winch_tension) != before:
+            self.held_tension = math.nan  # constant_tension takes the tension of now
+
+    def set_output_interval(self, interval: float) -> None:
+        """Choose the step again so that it divides a new output interval [s] (0: any)."""
+        self.output_interval = interval
+        self.time_step = choose_time_step(self.params, self.props, interval)

@@ -1,0 +1,312 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+``rope_sim``: the offline command line (also ``python -m rope_sim_ros``).
+
+Subcommands: run (a motion through a line or an arrangement, to CSV and/or a bag), resim (a
+bag's inputs with other parameters), plot and info (look at a bag), recover (complete a bag
+whose recorder was killed). A parameter file with `lines` for the mooring node is an
+arrangement, and its motion is the ship's (SHIP.csv); any other is a single line's
+(mooring_line: ros__parameters:), and its motion the fairlead's (MOTION.csv). A bag says
+itself which it is (the parameters it stores). This module parses arguments and reports
+errors; the work is done in run, resim, plot and bag.
+
+Bad input (files, parameters, bag paths) is one line on stderr and exit code 2, never a
+traceback. Imports stay inside the commands: rope_sim starts without numpy where it can.
+"""
+
+import argparse
+import os
+import sys
+from typing import List, Optional
+
+from ..bag import BagError
+from ..model.materials import MaterialError
+from ..model.statics.pretension import PretensionError
+from ..mooring.trajectory import TrajectoryError
+from ..params.table import ParameterError
+
+PROG = 'rope_sim'
+EXIT_INPUT = 2
+EXIT_OUTPUT = 1
+EXIT_INTERRUPTED = 130
+# Whatever a user can get wrong in a file or an argument: reported as one line, exit 2.
+INPUT_ERRORS = (ParameterError, MaterialError, TrajectoryError, BagError, PretensionError)
+LINE_FILE = 'config/mooring_line.yaml'
+
+
+def _add_params_options(parser: argparse.ArgumentParser, default: str) -> None:
+    parser.add_argument(
+        '--params', metavar='PARAMS.yaml',
+        help='ROS parameter file: a single line (mooring_line: ros__parameters: ...) or an '
+             f'arrangement (mooring: ros__parameters: lines: ...); default: {default}')
+    parser.add_argument(
+        '--set', metavar='KEY=VALUE', action='append', default=[],
+        help='override a parameter (repeatable), value as YAML: --set material=hmpe '
+             '--set gravity=[0,0,-9.81]; a line of an arrangement: --set head_1.length=40')
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """Return the argument parser of rope_sim."""
+    parser = argparse.ArgumentParser(
+        prog=PROG, description='Offline mooring simulation: run a motion, re-simulate, plot '
+        'and inspect bags.')
+    commands = parser.add_subparsers(dest='command', metavar='COMMAND', required=True)
+
+    run = commands.add_parser(
+        'run', help='run a motion table through a line (MOTION.csv) or an arrangement '
+        '(SHIP.csv)',
+        description='Run a motion through the mooring. For a single line, MOTION.csv has a '
+        'header with t, fairlead_x, fairlead_y, fairlead_z and optionally bollard_x, '
+        'bollard_y, bollard_z (world-frame end points, interpolated between rows as the '
+        'parameter end_interpolation says: cubic by default, linear = the secant of each row '
+        'interval) and winch_speed. For an arrangement, SHIP.csv has t, x, y, z and qx, qy, '
+        'qz, qw or yaw. Writes OUT.csv with the forces of the lines every 1/rate s and/or a '
+        'bag as the node records it.')
+    _add_params_options(run, LINE_FILE)
+    run.add_argument('--motion', required=True, metavar='MOTION.csv',
+                     help='motion table (SHIP.csv for an arrangement)')
+    run.add_argument('--out', metavar='OUT.csv',
+                     help='output table (overwritten); required unless --bag is given')
+    run.add_argument('--rate', type=float, default=100.0, metavar='HZ',
+                     help='output rows per simulated second (default 100)')
+    run.add_argument('--bag', metavar='DIR', help='also record a bag to this new directory')
+    run.add_argument('--quiet', action='store_true', help='no progress bar or summary')
+
+    resim = commands.add_parser(
+        'resim', help="re-simulate a bag's inputs with other parameters",
+        description="Feed a bag's poses (a line's fairlead and bollard poses, or a ship's) "
+        'through a fresh mooring, as fast as possible, and write a new bag of the same '
+        "layout. A node's recording is replayed with its decisions (its events). "
+        'Deterministic: the same inputs and parameters give byte-identical messages.')
+    resim.add_argument('bag', metavar='BAG', help='recorded bag directory (or .mcap file)')
+    resim.add_argument('--out', required=True, metavar='NEWBAG', help='new bag directory')
+    _add_params_options(resim, f"the bag's stored parameters, else {LINE_FILE}")
+    resim.add_argument('--rate', type=float, metavar='HZ',
+                       help='output rate (default: that of the recorded rope/particles, '
+                       'else 100)')
+    resim.add_argument('--namespace', metavar='NS',
+                       help='namespace of the mooring in the bag (default: the only one)')
+    resim.add_argument('--quiet', action='store_true', help='no progress bar or summary')
+
+    plot = commands.add_parser(
+        'plot', help='plot tensions (with MBL and WLL), rope shapes or the berth of a bag',
+        description="A line's bag: fairlead and bollard tension over time with the minimum "
+        'breaking load and working load limit of the material, and a few rope shapes (x-z). '
+        "An arrangement's bag: FILE.png (every line's tension and the ship's motion) and "
+        'FILE_plan.png (the berth from above at its most loaded moment).')
+    plot.add_argument('bag', metavar='BAG', help='bag directory (or .mcap file)')
+    plot.add_argument('-o', '--output', required=True, metavar='FILE.png', help='image file')
+    _add_params_options(plot, f"the bag's stored parameters, else {LINE_FILE}")
+    plot.add_argument('--namespace', metavar='NS',
+                      help='namespace of the line in the bag (default: the only one)')
+    plot.add_argument('--shapes', type=int, default=5, metavar='N',
+                      help='rope shapes to draw (default 5)')
+
+    info = commands.add_parser(
+        'info', help='topics, counts, duration and peak tensions of a bag')
+    info.add_argument('bag', metavar='BAG', help='bag directory (or .mcap file)')
+
+    recover = commands.add_parser(
+        'recover', help='complete a bag whose recorder was killed',
+        description='Rewrite everything readable (all finished chunks) of a bag cut short by '
+        'a kill as a complete bag, in place or into a new directory.')
+    recover.add_argument('bag', metavar='BAG', help='bag directory (or .mcap file)')
+    recover.add_argument('--out', metavar='NEWBAG',
+                         help='write the recovered bag here instead of in place')
+    return parser
+
+
+def _progress(quiet: bool):
+    from .run import Progress
+    return None if quiet else Progress()
+
+
+def _compiling_notice(quiet: bool):
+    """Say on stderr when numba compiles the kernels (where the build left none: 1-3 min)."""
+    from ..mooring.precompile import announce_compilation
+    return announce_compilation(
+        None if quiet else lambda message: print(f'{PROG}: {message}', file=sys.stderr))
+
+
+def _setup(args, bag: Optional[str] = None):
+    """
+    Return the parameters of a command: --params, else those a bag stores, else the default.
+
+    --set overrides them all.
+    """
+    from ..params.arrangement import read_setup
+    from ..params.files import parse_set
+    from ..params.materials import default_config_dir
+    overrides = parse_set(args.set)
+    if args.params is None and bag is not None:
+        from .resim import stored_setup
+        stored = stored_setup(bag, overrides)
+        if stored is not None:
+            return stored
+    path = args.params
+    if path is None:
+        default = os.path.join(default_config_dir(), 'mooring_line.yaml')
+        path = default if os.path.exists(default) else None
+    return read_setup(path, overrides)
+
+
+def _report(summary, single: bool) -> None:
+    for t, line, distance in summary.beyond_reach:
+        whose = "the line's" if single else f"{line}'s"
+        print(f'{PROG}: warning: {t:.3f} s into the run the ends of {line or "the line"} '
+              f'were up to {distance:.4g} m apart, beyond {whose} reach of '
+              f'{summary.reach[line]:.4g} m (length x (1 + max_strain)): the rope held the '
+              'fairlead at the reach', file=sys.stderr)
+    for t, line, reason in summary.restarts:
+        print(f'{PROG}: warning: {t:.3f} s into the run {line or "the rope"} was restarted '
+              f'at rest: {reason}', file=sys.stderr)
+    if summary.dropped:
+        print(f'{PROG}: warning: {summary.dropped} bag messages were not recorded',
+              file=sys.stderr)
+
+
+def _cmd_run(args) -> int:
+    from .motion import read_motion, read_ship_motion
+    from .run import run_motion
+    if args.out is None and args.bag is None:
+        raise ParameterError('run: give --out OUT.csv and/or --bag DIR')
+    setup = _setup(args)
+    if setup.single:
+        line = setup.lines[0].params
+        streams = read_motion(args.motion, line.fairlead_offset, line.bollard_offset)
+    else:
+        streams = read_ship_motion(args.motion)
+    progress = _progress(args.quiet)
+    try:
+        with _compiling_notice(args.quiet):
+            summary = run_motion(setup, streams, args.out, args.rate, args.bag, progress)
+    finally:
+        if progress is not None:
+            progress.finish()
+    _report(summary, setup.single)
+    if not args.quiet:
+        targets = ' and '.join(t for t in (args.out, args.bag) if t)
+        what = '' if setup.single else f' of {len(setup.lines)} lines'
+        print(f'{summary.rows} outputs{what}, t = {summary.start:.3f} .. {summary.end:.3f} s '
+              f'every {1 / args.rate:g} s (step {summary.time_step * 1e3:.4g} ms) -> '
+              f'{targets} in {summary.wall:.1f} s')
+    return 0
+
+
+def _cmd_resim(args) -> int:
+    from .resim import resim
+    setup = _setup(args, args.bag)
+    progress = _progress(args.quiet)
+    try:
+        with _compiling_notice(args.quiet):
+            result = resim(args.bag, args.out, setup, args.rate, args.namespace, progress)
+    finally:
+        if progress is not None:
+            progress.finish()
+    for reason in result.skipped:
+        print(f'{PROG}: warning: skipped input {reason}', file=sys.stderr)
+    _report(result.run, setup.single)
+    if not args.quiet:
+        if setup.single:
+            line = setup.lines[0].params
+            what = (f'{line.material} {line.diameter * 1e3:g} mm, {line.length:g} m, '
+                    f'N = {line.segments}')
+        else:
+            what = f'{len(setup.lines)} lines'
+        print(f'{result.run.rows} outputs at {result.rate:g} Hz, t = {result.run.start:.3f} .. '
+              f'{result.run.end:.3f} s, {what} -> {args.out} in {result.run.wall:.1f} s')
+    return 0
+
+
+def _cmd_plot(args) -> int:
+    from .plot import plot_bag, plot_record
+    if args.shapes < 0:
+        raise ParameterError(f'--shapes {args.shapes}: must be >= 0')
+    setup = _setup(args, args.bag)
+    if setup.single:
+        print(plot_bag(args.bag, args.output, setup.lines[0].params, args.namespace,
+                       args.shapes))
+        return 0
+    folder, name = os.path.split(os.path.abspath(args.output))
+    stem = os.path.splitext(name)[0]
+    for path in plot_record(args.bag, folder, tensions=name, plan=f'{stem}_plan.png',
+                            setup=setup):
+        print(path)
+    return 0
+
+
+def _cmd_info(args) -> int:
+    from .plot import describe, describe_lines
+    from .resim import stored_setup
+    print(describe(args.bag))
+    setup = stored_setup(args.bag)
+    if setup is not None and not setup.single:
+        print(describe_lines(args.bag))
+    return 0
+
+
+def _cmd_recover(args) -> int:
+    from ..bag import bag_info, recover
+    before = bag_info(args.bag)
+    count = recover(args.bag, args.out)
+    target = args.out or args.bag
+    state = 'was complete already; rewritten' if before.complete else 'recovered'
+    print(f'{target}: {state}: {count} messages in {len(before.files)} file(s)')
+    for name, topic in sorted(bag_info(target).topics.items()):
+        print(f'  {name}  {topic.type_name}  {topic.message_count}')
+    return 0
+
+
+COMMANDS = {
+    'run': _cmd_run,
+    'resim': _cmd_resim,
+    'plot': _cmd_plot,
+    'info': _cmd_info,
+    'recover': _cmd_recover,
+}
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    """
+    Run rope_sim with the given arguments (default: sys.argv[1:]).
+
+    :param argv: the arguments after the program name.
+    :returns: the exit code: 0 success, 2 bad input (one line on stderr), 1 an output
+        could not be written, 130 interrupted.
+    """
+    from .motion import MotionError
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as e:
+        return int(e.code or 0) if not isinstance(e.code, str) else EXIT_INPUT
+    try:
+        return COMMANDS[args.command](args)
+    except (MotionError, *INPUT_ERRORS) as e:
+        print(f'{PROG} {args.command}: error: {e}', file=sys.stderr)
+        return EXIT_INPUT
+    except OSError as e:
+        where = f'{e.filename}: ' if e.filename else ''
+        print(f'{PROG} {args.command}: error: {where}{e.strerror or e}', file=sys.stderr)
+        return EXIT_OUTPUT
+    except KeyboardInterrupt:
+        print(f'{PROG} {args.command}: interrupted; files hold what was done so far',
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+if __name__ == '__main__':
+    sys.exit(main())

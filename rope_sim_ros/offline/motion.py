@@ -1,0 +1,236 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The motion files an offline run reads: MOTION.csv of a single line, SHIP.csv of a ship.
+
+Both are CSV tables with a header naming their columns; other columns are ignored. Every
+cell of the columns read must be a finite number and ``t`` [s] must increase strictly; it
+is read to the exact nanosecond (a decimal, not a float: epoch times keep their digits).
+Errors name the file, the data row (1-based, header excluded), the file line and the
+column.
+
+- MOTION.csv: ``t`` and the world-frame fairlead point ``fairlead_x, fairlead_y,
+  fairlead_z`` [m], optionally the bollard point ``bollard_x, bollard_y, bollard_z`` (all
+  three or none) and ``winch_speed`` [m/s] (+ pays out), which commands the fairlead's winch
+  (winch_mode speed) from its row's time to the next row's.
+- SHIP.csv: ``t``, the ship's origin ``x, y, z`` [m] in frame_id, and its orientation as
+  ``qx, qy, qz, qw``, or as ``yaw`` [rad] (about z; roll and pitch zero), or neither
+  (heading along x).
+
+A line's motion is a ship's: its fairlead point is the pose whose origin plus the
+fairlead_offset (identity orientation) is that point, so the node fed with the recorded
+poses follows the same points.
+"""
+
+import csv
+from dataclasses import dataclass, field
+import decimal
+import math
+import os
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+TIME = 't'
+FAIRLEAD_COLUMNS = ('fairlead_x', 'fairlead_y', 'fairlead_z')
+BOLLARD_COLUMNS = ('bollard_x', 'bollard_y', 'bollard_z')
+WINCH_SPEED = 'winch_speed'
+POSITION = ('x', 'y', 'z')
+QUATERNION = ('qx', 'qy', 'qz', 'qw')
+YAW = 'yaw'
+
+
+class MotionError(ValueError):
+    """A motion file cannot be used; the message names the file, row and column."""
+
+
+@dataclass(frozen=True)
+class Streams:
+    """
+    What an offline run is fed: the ship's poses and each moving bollard's samples.
+
+    :ivar path: the file they were read from.
+    :ivar t_ns: the ship poses' stamps [ns], strictly increasing, (n,).
+    :ivar position: the ship's origin (n, 3) [m]; orientation: (x, y, z, w) (n, 4).
+    :ivar bollards: {line name: (stamps [ns] (m,), points (m, 3) [m], levers (m, 3) [m])} of
+        the bollards that move (a lever: the point minus its pose's origin).
+    :ivar winch: {line name: the winch speed commanded from each ship pose on (n,) [m/s]}.
+    :ivar origin: the first row's time as written [s] (an output's time in the file's base
+        is origin plus its simulated time).
+    """
+
+    path: str
+    t_ns: np.ndarray
+    position: np.ndarray
+    orientation: np.ndarray
+    bollards: Dict[str, Tuple[np.ndarray, np.ndarray, np.ndarray]] = field(
+        default_factory=dict)
+    winch: Dict[str, np.ndarray] = field(default_factory=dict)
+    origin: float = 0.0
+
+    def __len__(self) -> int:
+        """Return the number of ship poses."""
+        return len(self.t_ns)
+
+
+def _where(path: str, row: int, line: int, column: Optional[str] = None) -> str:
+    place = f'{path}: data row {row} (file line {line})'
+    return place + (f', column {column!r}' if column else '')
+
+
+def _number(path: str, row: int, line: int, column: str, cell: str) -> float:
+    text = cell.strip()
+    try:
+        value = float(text)
+    except ValueError:
+        shown = repr(text) if text else 'an empty cell'
+        raise MotionError(
+            f'{_where(path, row, line, column)}: {shown} is not a number') from None
+    if not math.isfinite(value):
+        raise MotionError(
+            f'{_where(path, row, line, column)}: {text!r} is not a finite number')
+    return value
+
+
+def _nanoseconds(cell: str) -> int:
+    """Return a (valid, finite) time cell in integer nanoseconds, rounded half to even."""
+    value = decimal.Decimal(cell.strip()) * 1_000_000_000
+    return int(value.to_integral_value(rounding=decimal.ROUND_HALF_EVEN))
+
+
+def read_table(path, required: Sequence[str], optional: Sequence[str],
+               expected: str) -> Tuple[Dict[str, np.ndarray], np.ndarray]:
+    """
+    Read a CSV table with a header: the required columns and those optional ones present.
+
+    :param expected: what the header must name, for the error message.
+    :returns: ({column: values (n,)}, the t column's stamps [ns] (n,)).
+    :raises MotionError: unreadable or empty file, a duplicate or missing column, a row
+        with too few or too many cells, a non-numeric or non-finite cell, t not
+        increasing strictly.
+    """
+    name = os.fspath(path)
+    try:
+        with open(name, newline='', encoding='utf-8-sig') as stream:
+            return _parse(csv.reader(stream), name, required, optional, expected)
+    except OSError as e:
+        raise MotionError(f'cannot read motion file {name}: {e.strerror or e}') from None
+    except csv.Error as e:
+        raise MotionError(f'{name}: not valid CSV: {e}') from None
+    except UnicodeDecodeError as e:
+        raise MotionError(f'{name}: not a UTF-8 text file ({e.reason})') from None
+
+
+def _parse(reader, path: str, required: Sequence[str], optional: Sequence[str],
+           expected: str) -> Tuple[Dict[str, np.ndarray], np.ndarray]:
+    header = next(reader, None)
+    while header is not None and not any(cell.strip() for cell in header):
+        header = next(reader, None)
+    if header is None:
+        raise MotionError(f'{path}: the file is empty; expected a header line naming {expected}')
+    names = [cell.strip() for cell in header]
+    seen = set()
+    for column in names:
+        if column and column in seen:
+            raise MotionError(f'{path}: file line 1 (header): column {column!r} appears twice')
+        seen.add(column)
+    missing = [column for column in required if column not in seen]
+    if missing:
+        raise MotionError(
+            f'{path}: file line 1 (header): missing column(s) {", ".join(missing)}; the header '
+            f'must name {expected} (found: {", ".join(names) or "nothing"})')
+    columns = list(required) + [column for column in optional if column in seen]
+    index = [names.index(column) for column in columns]
+    stamps: List[int] = []
+    rows: List[List[float]] = []
+    for cells in reader:
+        line = reader.line_num
+        if not any(cell.strip() for cell in cells):
+            continue  # blank lines, e.g. at the end of the file
+        row = len(rows) + 1
+        if len(cells) != len(names):
+            raise MotionError(f'{_where(path, row, line)}: {len(cells)} cells, but the header '
+                              f'has {len(names)} columns')
+        values = [_number(path, row, line, column, cells[i]) for column, i in zip(columns, index)]
+        ns = _nanoseconds(cells[index[0]])
+        if stamps and ns <= stamps[-1]:
+            raise MotionError(
+                f'{_where(path, row, line, TIME)}: {cells[index[0]].strip()} is not after the '
+                f"previous row's {rows[-1][0]!r}; t must increase strictly (by 1 ns at least)")
+        stamps.append(ns)
+        rows.append(values)
+    if not rows:
+        raise MotionError(f'{path}: the header has no data rows after it')
+    table = np.array(rows, dtype=float)
+    return ({column: table[:, c].copy() for c, column in enumerate(columns)},
+            np.array(stamps, dtype=np.int64))
+
+
+def read_motion(path, fairlead_offset: Sequence[float] = (0.0, 0.0, 0.0),
+                bollard_offset: Sequence[float] = (0.0, 0.0, 0.0), line: str = '') -> Streams:
+    """
+    Read MOTION.csv: a single line's fairlead (and bollard) points (see the module docstring).
+
+    :param fairlead_offset, bollard_offset: the line's offsets (the ship's pose is the
+        fairlead point less its offset; a bollard's lever is its offset).
+    :param line: the line's name (the single line's: '').
+    :raises MotionError: the file cannot be read or is not a valid motion table.
+    """
+    name = os.fspath(path)
+    optional = BOLLARD_COLUMNS + (WINCH_SPEED,)
+    expected = f'{TIME}, {", ".join(FAIRLEAD_COLUMNS)} and optionally ' + ', '.join(
+        BOLLARD_COLUMNS)
+    columns, t_ns = read_table(name, (TIME,) + FAIRLEAD_COLUMNS, optional, expected)
+    present = [column for column in BOLLARD_COLUMNS if column in columns]
+    if present and len(present) < 3:
+        missing = [column for column in BOLLARD_COLUMNS if column not in columns]
+        raise MotionError(f'{name}: file line 1 (header): has {", ".join(present)} but not '
+                          f'{", ".join(missing)}; give all three bollard columns or none')
+    fairlead = np.column_stack([columns[column] for column in FAIRLEAD_COLUMNS])
+    count = len(t_ns)
+    bollards = {}
+    if present:
+        points = np.column_stack([columns[column] for column in BOLLARD_COLUMNS])
+        bollards[line] = (t_ns, points, np.repeat([np.asarray(bollard_offset, dtype=float)],
+                                                  count, axis=0))
+    winch = {line: columns[WINCH_SPEED]} if WINCH_SPEED in columns else {}
+    orientation = np.repeat([[0.0, 0.0, 0.0, 1.0]], count, axis=0)
+    return Streams(name, t_ns, fairlead - np.asarray(fairlead_offset, dtype=float),
+                   orientation, bollards, winch, float(columns[TIME][0]))
+
+
+def read_ship_motion(path) -> Streams:
+    """
+    Read SHIP.csv: the ship's poses (see the module docstring).
+
+    :raises MotionError: unreadable, a column missing, a cell not a finite number, t not
+        increasing, a zero quaternion; named with the file, row and column.
+    """
+    name = os.fspath(path)
+    expected = f'{TIME}, {", ".join(POSITION)} and optionally {", ".join(QUATERNION)} or {YAW}'
+    columns, t_ns = read_table(name, (TIME,) + POSITION, QUATERNION + (YAW,), expected)
+    count = len(t_ns)
+    if all(column in columns for column in QUATERNION):
+        orientation = np.column_stack([columns[column] for column in QUATERNION])
+        norms = np.linalg.norm(orientation, axis=1)
+        if (norms < 1e-6).any():
+            r = int(np.flatnonzero(norms < 1e-6)[0]) + 1
+            raise MotionError(f'{name}: data row {r} (file line {r + 1}): zero quaternion')
+    else:
+        yaw = columns[YAW] if YAW in columns else np.zeros(count)
+        orientation = np.column_stack([np.zeros(count), np.zeros(count), np.sin(yaw / 2.0),
+                                       np.cos(yaw / 2.0)])
+    position = np.column_stack([columns[column] for column in POSITION])
+    return Streams(name, t_ns, position, orientation, origin=float(columns[TIME][0]))

@@ -1,0 +1,379 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+``rope_sim resim``: a bag's inputs through a fresh mooring, into a new bag of the same layout.
+
+Every bag the nodes or ``rope_sim run`` record: a single line's (its poses on
+``fairlead/pose``) or an arrangement's (``ship/pose``), in whatever namespace it was
+recorded (the only one there is, or --namespace). The parameters are the ones the bag
+stores (metadata.yaml's custom_data), else the file given. Nothing depends on the wall
+clock, so the same bag and parameters give byte-identical payloads.
+
+A bag a node recorded holds its clock-driven decisions too (its events: a stream taken
+for silent, a skip ahead, a reset, a clock jump back, a pose dropped for its stamp, a
+parameter set and a winch commanded at run time). Such a bag is replayed in its recorded
+order: poses and events go to the driver as the node took them, and the ropes are stepped to
+each output the node recorded, so the outputs are the node's to round-off, across gaps and
+jumps too. A bag without events (``rope_sim run``), or a re-simulation at another --rate,
+runs the poses in stamp order as ``rope_sim run`` does.
+"""
+
+from collections import deque
+from dataclasses import dataclass, field
+import math
+import os
+import time
+from typing import Dict, List, Optional, Tuple
+
+import numpy as np
+
+from .motion import Streams
+from .run import DEFAULT_RATE, driver_for, encoder_for, RunSummary, simulate, Tally
+from .sinks import BagSink
+from ..bag import bag_info, BagError, read_messages
+from ..bag.cdr import decode_pose_array, decode_pose_stamped, decode_string
+from ..bag.metadata import load_metadata, METADATA_FILE
+from ..messages import topics
+from ..messages.topics import Layout, LINE_NODE, MOORING_NODE, stream_of_event
+from ..model.frames import pose_point, PoseError, stamp_ns
+from ..mooring.driver import decode_event, Driver, SHIP
+from ..mooring.trajectory import TrajectoryError
+from ..params.arrangement import ArrangementParams, from_stored, stored
+from ..params.table import ParameterError
+
+
+@dataclass
+class ResimSummary:
+    """
+    What a re-simulation did.
+
+    :ivar run: the run's summary.
+    :ivar namespace: namespace of the topics re-simulated ('' = root).
+    :ivar rate: output rate used [Hz].
+    :ivar skipped: input messages left out, with the reason.
+    """
+
+    run: RunSummary
+    namespace: str
+    rate: float
+    skipped: List[str] = field(default_factory=list)
+
+
+def layout_of(setup: ArrangementParams) -> Layout:
+    """Return the topics of the node kind these parameters are for."""
+    return LINE_NODE if setup.single else MOORING_NODE
+
+
+def stored_setup(path, overrides: Optional[dict] = None) -> Optional[ArrangementParams]:
+    """
+    Return the parameters a bag was made with (either kind), or None.
+
+    ``rope_sim run --bag``, ``resim`` and the nodes store them; a bag without them (or
+    without metadata.yaml, as a killed recording) gives None.
+
+    :raises ParameterError: stored parameters that are not allowed (with the overrides).
+    """
+    metadata_path = os.path.join(os.fspath(path), METADATA_FILE)
+    if not os.path.isfile(metadata_path):
+        return None
+    try:
+        custom = load_metadata(metadata_path).get('custom_data') or {}
+    except BagError:
+        return None
+    return from_stored(custom, overrides) if isinstance(custom, dict) else None
+
+
+def namespaces(path, layout: Layout) -> List[str]:
+    """
+    Return the namespaces of the bag's ship pose topics of this kind ('' = root), sorted.
+
+    :raises BagError: path is not a readable bag.
+    """
+    suffix = '/' + layout.ship_pose
+    return sorted(name[:-len(suffix)] for name, topic in bag_info(path).topics.items()
+                  if name.endswith(suffix) and topic.type_name == topics.POSE_STAMPED)
+
+
+def choose_namespace(path, layout: Layout, namespace: Optional[str] = None) -> str:
+    """
+    Return the namespace of the mooring to use from a bag.
+
+    :param namespace: the wanted one (e.g. '/ship/line1'), or None to take the only one.
+    :raises BagError: no ship pose topic, the wanted one is missing, or several are
+        recorded and none was chosen.
+    """
+    found = namespaces(path, layout)
+    shown = ', '.join(repr(ns or '/') for ns in found)
+    if namespace is not None:
+        wanted = '/' + namespace.strip('/') if namespace.strip('/') else ''
+        if wanted not in found:
+            raise BagError(
+                f'bag {os.fspath(path)} has no {wanted}/{layout.ship_pose} '
+                f'({topics.POSE_STAMPED}); its {layout.node_name} poses are in namespace(s): '
+                f'{shown or "none"}')
+        return wanted
+    if not found:
+        raise BagError(
+            f'bag {os.fspath(path)} has no .../{layout.ship_pose} topic of type '
+            f'{topics.POSE_STAMPED}; nothing to re-simulate')
+    if len(found) > 1:
+        raise BagError(f'bag {os.fspath(path)} records several of them (namespaces {shown}); '
+                       'choose one with --namespace')
+    return found[0]
+
+
+def _rounded_rate(interval_ns: float) -> float:
+    rate = 1e9 / interval_ns
+    return round(rate, 3 - int(math.floor(math.log10(rate))))
+
+
+def recorded_rate(path, setup: ArrangementParams, namespace: str = '') -> Optional[float]:
+    """
+    Return the output rate of a bag (3 significant digits), or None.
+
+    The inverse of the median interval of the first line's rope/particles header stamps.
+    """
+    topic = f'{namespace}/{layout_of(setup).line_topic(setup.names[0], topics.PARTICLES)}'
+    stamps = [stamp_ns(*decode_pose_array(m.data)[:2]) for m in read_messages(path, [topic])]
+    intervals = np.diff(np.unique(stamps))
+    if not len(intervals):
+        return None
+    return _rounded_rate(float(np.median(intervals)))
+
+
+def has_events(path, setup: ArrangementParams, namespace: str = '') -> bool:
+    """Tell whether a bag holds a node's decisions (its events topic): a node recording."""
+    topic = bag_info(path).topics.get(f'{namespace}/{layout_of(setup).events}')
+    return topic is not None and topic.type_name == topics.STRING
+
+
+def read_streams(path, setup: ArrangementParams, namespace: str,
+                 skipped: List[str]) -> Tuple[Streams, list, dict]:
+    """
+    Return the streams of a bag's poses by the node's rules, and their messages as recorded.
+
+    The node's rules: a bollard's point is its pose ⊕ its bollard_offset; no non-finite
+    pose, strictly newer stamps, no negative stamp. The rest is left out, with a reason in
+    `skipped`.
+
+    :returns: the Streams, (stamp, relative topic, data) of the poses used, {topic: type}.
+    """
+    layout = layout_of(setup)
+    recorded = bag_info(path).topics
+    wanted = {layout.ship_pose: SHIP}
+    for line in setup.lines:
+        topic = layout.line_topic(line.name, topics.BOLLARD_POSE)
+        if f'{namespace}/{topic}' in recorded:
+            wanted[topic] = line.name
+    by_topic: Dict[str, List[tuple]] = {topic: [] for topic in wanted}
+    resolved = {f'{namespace}/{topic}': topic for topic in wanted}
+    for message in read_messages(path, list(resolved)):
+        sec, nanosec, _, position, orientation = decode_pose_stamped(message.data)
+        by_topic[resolved[message.topic]].append(
+            (stamp_ns(sec, nanosec), message.data, position, orientation))
+    inputs, types, kept = [], {}, {}
+    for topic, stream in wanted.items():
+        records = sorted(by_topic[topic], key=lambda record: record[0])  # stable
+        offset = (np.zeros(3) if stream == SHIP else
+                  np.asarray(setup.line(stream).params.bollard_offset, dtype=float))
+        rows = []
+        for ns, data, position, orientation in records:
+            try:
+                point = pose_point(position, orientation, offset)
+            except PoseError as e:
+                skipped.append(f'{namespace}/{topic} at {ns / 1e9:.9f} s: {e}')
+                continue
+            if rows and ns <= rows[-1][0]:
+                skipped.append(f'{namespace}/{topic} at {ns / 1e9:.9f} s: stamp not after the '
+                               'previous one')
+                continue
+            if ns < 0:
+                skipped.append(f'{namespace}/{topic} at {ns / 1e9:.9f} s: negative stamp')
+                continue
+            rows.append((ns, position, orientation, point))
+            inputs.append((ns, topic, data))
+        if rows:
+            types[topic] = topics.POSE_STAMPED
+        kept[stream] = rows
+    ship = kept[SHIP]
+    if not ship:
+        raise BagError(f'bag {os.fspath(path)} has no usable message on '
+                       f'{namespace}/{layout.ship_pose}; nothing to re-simulate')
+    bollards = {stream: (np.array([r[0] for r in rows], dtype=np.int64),
+                         np.array([r[3].point for r in rows]),
+                         np.array([r[3].lever for r in rows]))
+                for stream, rows in kept.items() if stream != SHIP and rows}
+    streams = Streams(os.fspath(path), np.array([r[0] for r in ship], dtype=np.int64),
+                      np.array([r[1] for r in ship]), np.array([r[2] for r in ship]),
+                      bollards, origin=ship[0][0] / 1e9)
+    return streams, inputs, types
+
+
+def resim(path, out_path, setup: ArrangementParams, rate: Optional[float] = None,
+          namespace: Optional[str] = None, progress=None) -> ResimSummary:
+    """
+    Re-simulate a bag's inputs with the given parameters into a new bag (module docstring).
+
+    :param rate: output rate [Hz]; None = the recorded one: a node recording is replayed at
+        the node's own output times, another bag at the rate of its particles, else 100 Hz.
+    :param namespace: the mooring's namespace in the bag; None = the only one there is.
+    :raises BagError: the bag cannot be read, holds no usable ship pose, or the new bag
+        cannot be written.
+    :raises ParameterError: a bad rate or line.
+    """
+    layout = layout_of(setup)
+    namespace = choose_namespace(path, layout, namespace)
+    if rate is None and has_events(path, setup, namespace):
+        return _replay(path, out_path, setup, namespace, progress)
+    skipped: List[str] = []
+    streams, inputs, types = read_streams(path, setup, namespace, skipped)
+    if rate is None:
+        rate = recorded_rate(path, setup, namespace) or DEFAULT_RATE
+    driver = driver_for(setup, rate)  # a refused line leaves no bag behind
+    sink = BagSink(out_path, encoder_for(setup, driver), namespace, inputs, types, stored(setup))
+    try:
+        summary = simulate(setup, streams, rate, [sink], progress)
+    except BaseException:
+        sink.abandon()
+        raise
+    summary.dropped = sink.close()
+    return ResimSummary(summary, namespace, rate, skipped)
+
+
+def _replay(path, out_path, setup: ArrangementParams, namespace: str,
+            progress) -> ResimSummary:
+    """
+    Replay a node recording in its recorded order (see the module docstring).
+
+    The node records a pose as it takes it, an event as it decides, an output as it
+    publishes it, with strictly increasing log times: read in log-time order, the bag is the
+    node's own sequence. A pose the node dropped for its stamp follows its 'drop' event; an
+    unstamped pose its 'restamp' event (the receive time the node used).
+    """
+    wall = time.monotonic()
+    layout = layout_of(setup)
+    # as the node: its rate, 5 s of samples kept (a refused line leaves no bag behind)
+    driver = Driver(setup, rate=setup.shared.publish_rate)
+    recorded = bag_info(path).topics
+    streams = {layout.ship_pose: SHIP}
+    for line in setup.lines:
+        streams[layout.line_topic(line.name, topics.BOLLARD_POSE)] = line.name
+    streams = {topic: stream for topic, stream in streams.items()
+               if f'{namespace}/{topic}' in recorded}
+    resolved = {f'{namespace}/{topic}': topic for topic in
+                [*streams, layout.events,
+                 layout.line_topic(setup.names[0], topics.PARTICLES)]}
+    particles = layout.line_topic(setup.names[0], topics.PARTICLES)
+    total = recorded[f'{namespace}/{particles}'].message_count \
+        if f'{namespace}/{particles}' in recorded else 0
+    sink = BagSink(out_path, encoder_for(setup, driver), namespace, [],
+                   {topic: topics.POSE_STAMPED for topic in streams}, stored(setup),
+                   {layout.events: topics.STRING})
+    summary = RunSummary(time_step=driver.mooring.time_step,
+                         reach={line.name: line.reach for line in driver.mooring.lines})
+    tally = Tally(summary, driver.mooring.names)
+    skipped: List[str] = []
+    dropped: Dict[str, deque] = {stream: deque() for stream in driver.streams}
+    restamped: Dict[str, deque] = {stream: deque() for stream in driver.streams}
+    first_ns = None
+    try:
+        for message in read_messages(path, list(resolved)):
+            topic = resolved[message.topic]
+            if topic == particles:
+                if not driver.started:
+                    continue
+                output_ns = stamp_ns(*decode_pose_array(message.data)[:2])
+                report = driver.outputs_until(driver.seconds(output_ns))
+                for published in report.outputs:
+                    tally.add(published)
+                    sink.write_output(published, message.log_time_ns)
+                    first_ns = published.stamp_ns if first_ns is None else first_ns
+                    if progress is not None:
+                        progress(summary.rows, max(total, summary.rows), published.output.t)
+                continue
+            sink.write(topic, message.data, message.log_time_ns)
+            if topic == layout.events:
+                _apply_event(driver, setup, decode_string(message.data), dropped, restamped)
+                continue
+            stream = streams[topic]
+            sec, nanosec, _, position, orientation = decode_pose_stamped(message.data)
+            ns = stamp_ns(sec, nanosec)
+            if dropped[stream] and dropped[stream][0] == ns:
+                dropped[stream].popleft()
+                skipped.append(f'{message.topic} at {ns / 1e9:.9f} s: dropped by the node for '
+                               'its stamp')
+                continue
+            if ns == 0 and restamped[stream]:
+                ns = restamped[stream].popleft()
+            try:
+                _push(driver, setup, stream, ns, position, orientation)
+            except (PoseError, TrajectoryError, ParameterError) as e:
+                skipped.append(f'{message.topic} at {ns / 1e9:.9f} s: {e}')
+    except BaseException:
+        sink.abandon()
+        raise
+    summary.dropped = sink.close()
+    if summary.rows == 0:
+        raise BagError(f'bag {os.fspath(path)}: the node published no output from its '
+                       f'poses on {namespace}/{layout.ship_pose}; nothing to re-simulate')
+    # Outputs in stamps: the epoch may change (a clock jump back), the first stamp not.
+    summary.end = first_ns / 1e9 + (summary.end - summary.start)
+    summary.start = first_ns / 1e9
+    summary.wall = time.monotonic() - wall
+    return ResimSummary(summary, namespace, driver.rate, skipped)
+
+
+def _push(driver: Driver, setup: ArrangementParams, stream: str, ns: int, position,
+          orientation) -> None:
+    """Push one recorded pose as the node pushes it."""
+    if stream == SHIP:
+        driver.push_ship(ns, position, orientation)
+        return
+    point = pose_point(position, orientation, setup.line(stream).params.bollard_offset)
+    driver.push_bollard(stream, ns, point.point, point.lever)
+
+
+def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: Dict[str, deque],
+                 restamped: Dict[str, deque]) -> None:
+    """Take one of the node's decisions, as the node took it."""
+    try:
+        event = decode_event(text)
+        kind = event['event']
+        if kind in ('drop', 'restamp', 'silent'):
+            stream = stream_of_event(event, setup.names[0])
+            if stream not in dropped:
+                raise ValueError(f'no stream in {text!r}')
+            if kind == 'drop':
+                dropped[stream].append(int(event['stamp']))
+            elif kind == 'restamp':
+                restamped[stream].append(int(event['stamp']))
+            else:
+                driver.silence(stream)
+        elif kind == 'skip':
+            if driver.started:
+                driver.skip(float(event['t']))
+        elif kind == 'reset':
+            if driver.started:
+                driver.reset()
+        elif kind == 'clock_back':
+            driver.clear()
+        elif kind == 'set':
+            driver.update(event.get('line'), dict(event['values']))  # None: every line
+        elif kind == 'winch':
+            driver.command_winch(event.get('line', setup.names[0] if setup.single else None),
+                                 float(event['speed']))
+        # 'parted' says what the model did: replayed, the model does it again
+    except (ValueError, KeyError, TypeError, ParameterError) as e:
+        raise BagError(f'{layout_of(setup).events}: cannot replay {text!r}: {e}') from None

@@ -1,0 +1,315 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The one offline loop: ``rope_sim run`` and ``rope_sim resim`` of a line or an arrangement.
+
+The samples go into one Driver (mooring/driver.py), the nodes' own input and output rules,
+in stamp order (a bollard sample before a ship pose of the same stamp, so that a line
+starts between both), each stream taken for finished after its last sample: the ropes stay
+one sample behind the streams, which moves the ends exactly as if the whole motion were
+known. The ropes start at the first ship pose and outputs follow every 1 / rate s up to the
+last one. Each output goes to the sinks (sinks.py: OUT.csv rows, a bag as the node records
+it).
+"""
+
+from dataclasses import dataclass, field
+import math
+import sys
+import time
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from .motion import MotionError, Streams
+from .sinks import BagSink, CsvSink
+from ..messages import topics
+from ..messages.encode import OutputEncoder, pose_stamped
+from ..messages.topics import LAYOUTS
+from ..mooring.driver import Driver, Published, SHIP
+from ..mooring.status import Rating
+from ..params.arrangement import ArrangementParams, stored
+from ..params.materials import load_materials
+
+DEFAULT_RATE = 100.0
+
+Sink = Callable[[Published], None]
+
+
+@dataclass
+class RunSummary:
+    """
+    What an offline run did.
+
+    :ivar rows: outputs produced.
+    :ivar start, end: first and last output time [s] (in the motion file's time base).
+    :ivar time_step: the smallest integration step [s].
+    :ivar restarts: (time [s], line, reason) of every restart of a line at rest ('non-finite
+        state', 'unphysical state', 'back within reach').
+    :ivar beyond_reach: (time [s], line, largest distance [m]) of every stretch of outputs
+        during which a line's ends were farther apart than its reach (its fairlead was held
+        at the reach).
+    :ivar reach: each line's reach, L (1 + max_strain) [m], by name.
+    :ivar dropped: bag messages not recorded.
+    :ivar wall: wall-clock seconds.
+    """
+
+    rows: int = 0
+    start: float = math.nan
+    end: float = math.nan
+    time_step: float = math.nan
+    restarts: List[Tuple[float, str, str]] = field(default_factory=list)
+    beyond_reach: List[Tuple[float, str, float]] = field(default_factory=list)
+    reach: Dict[str, float] = field(default_factory=dict)
+    dropped: int = 0
+    wall: float = 0.0
+
+
+class Tally:
+    """Counts outputs into a RunSummary: rows, first and last time, restarts, reach."""
+
+    def __init__(self, summary: RunSummary, names: Sequence[str], origin: float = 0.0) -> None:
+        """Count into `summary` the outputs of lines `names`; times from origin [s]."""
+        self.summary = summary
+        self.names = list(names)
+        self.origin = origin
+        self._held: Dict[int, int] = {}  # line: its stretch's index in beyond_reach
+
+    def add(self, published: Published) -> None:
+        """Count one output."""
+        summary = self.summary
+        t, advance = self.origin + published.output.t, published.advance
+        if summary.rows == 0:
+            summary.start = t
+        summary.end = t
+        summary.rows += 1
+        beyond = advance.beyond_reach if advance is not None else {}
+        if advance is not None:
+            summary.restarts += [(t, self.names[k], why) for k, why in advance.restarted.items()]
+        for k in list(self._held):
+            if k not in beyond:
+                del self._held[k]
+        for k, distance in beyond.items():
+            if k in self._held:
+                i = self._held[k]
+                start, name, before = summary.beyond_reach[i]
+                summary.beyond_reach[i] = (start, name, max(before, distance))
+            else:
+                self._held[k] = len(summary.beyond_reach)
+                summary.beyond_reach.append((t, self.names[k], distance))
+
+
+class Progress:
+    """
+    A text progress bar on a stream, shown only when the run is slow and stream a TTY.
+
+    Updates rewrite the line (carriage return) at most ten times a second, once ``delay``
+    seconds have passed; finish() ends the line with a newline if anything was drawn.
+    """
+
+    def __init__(self, stream=None, delay: float = 2.0, width: int = 30,
+                 enabled: Optional[bool] = None) -> None:
+        """
+        Prepare the bar.
+
+        :param stream: where to draw (default sys.stderr).
+        :param delay: seconds before the first drawing.
+        :param width: characters of the bar.
+        :param enabled: force on/off; None = only when the stream is a TTY.
+        """
+        self.stream = stream if stream is not None else sys.stderr
+        if enabled is None:
+            isatty = getattr(self.stream, 'isatty', None)
+            enabled = bool(isatty and isatty())
+        self.enabled = enabled
+        self.delay = delay
+        self.width = width
+        self._start = time.monotonic()
+        self._last = -math.inf
+        self._drawn = False
+
+    def __call__(self, done: int, total: int, t: float) -> None:
+        """Report done of total outputs, at simulated time t."""
+        if not self.enabled:
+            return
+        now = time.monotonic()
+        elapsed = now - self._start
+        if elapsed < self.delay or (now - self._last < 0.1 and done < total):
+            return
+        self._last = now
+        fraction = done / total if total else 1.0
+        filled = int(round(self.width * fraction))
+        remaining = elapsed * (1.0 - fraction) / fraction if fraction > 0 else math.inf
+        eta = f'{remaining:5.0f} s left' if math.isfinite(remaining) else ''
+        self.stream.write(
+            f'\r[{"#" * filled}{"." * (self.width - filled)}] {100 * fraction:5.1f} % '
+            f't = {t:.2f} s {eta}')
+        self.stream.flush()
+        self._drawn = True
+
+    def finish(self) -> None:
+        """End the line if the bar was drawn."""
+        if self._drawn:
+            self.stream.write('\n')
+            self.stream.flush()
+            self._drawn = False
+
+
+def driver_for(setup: ArrangementParams, rate: float, materials: Any = None) -> Driver:
+    """
+    Return the Driver of an offline run: no clock, so no skip ahead; the whole motion kept.
+
+    :raises ParameterError: a bad rate or a line that cannot be built (call it before any
+        file is written: it refuses what simulate would).
+    """
+    return Driver(setup, materials, rate=rate, history=math.inf)
+
+
+def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_RATE,
+             sinks: Sequence[Sink] = (),
+             progress: Optional[Callable[[int, int, float], None]] = None,
+             materials: Any = None) -> RunSummary:
+    """
+    Run the mooring through the streams and hand every output to the sinks.
+
+    Simulated time 0 is the first stamp; outputs fall every 1 / rate s from the first ship
+    pose to the last.
+
+    :raises ParameterError: a bad rate, or a pretension no length gives at the first pose.
+    :raises TrajectoryError, PoseError: a sample is not usable.
+    """
+    wall = time.monotonic()
+    driver = driver_for(setup, rate, materials)
+    names = driver.mooring.names
+    first_ns = min([int(streams.t_ns[0])] + [int(s[0][0]) for s in streams.bollards.values()])
+    for name, speeds in streams.winch.items():
+        driver.winch_schedules[names.index(name)] = (
+            (np.asarray(streams.t_ns) - first_ns) / 1e9, np.asarray(speeds, dtype=float))
+    order = sorted([(int(ns), 1, SHIP, i) for i, ns in enumerate(streams.t_ns.tolist())]
+                   + [(int(ns), 0, name, i) for name, (stamps, _, _) in streams.bollards.items()
+                      for i, ns in enumerate(stamps.tolist())])
+    counts = {SHIP: len(streams), **{name: len(s[0]) for name, s in streams.bollards.items()}}
+    last_ns = int(streams.t_ns[-1])
+    total = int(math.floor((last_ns - int(streams.t_ns[0])) / 1e9 * rate + 1e-9)) + 1
+    summary = RunSummary(time_step=driver.mooring.time_step,
+                         reach={line.name: line.reach for line in driver.mooring.lines})
+    tally = Tally(summary, names, streams.origin)
+
+    def take(report) -> None:
+        for published in report.outputs:
+            tally.add(published)
+            for sink in sinks:
+                sink(published)
+            if progress is not None:
+                progress(summary.rows, max(total, summary.rows), published.output.t)
+
+    for ns, _, stream, i in order:
+        if stream == SHIP:
+            driver.push_ship(ns, streams.position[i], streams.orientation[i])
+        else:
+            _, points, levers = streams.bollards[stream]
+            driver.push_bollard(stream, ns, points[i], levers[i])
+        if i == counts[stream] - 1:
+            driver.silence(stream)  # its last sample: nothing more to wait for
+        if driver.started:
+            take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
+    take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
+    summary.wall = time.monotonic() - wall
+    return summary
+
+
+def ratings(setup: ArrangementParams) -> List[Rating]:
+    """Return each line's MBL and WLL, from its material at its diameter."""
+    library = load_materials()
+    return [Rating.of(library.properties(line.params.material, line.params.diameter))
+            for line in setup.lines]
+
+
+def input_messages(setup: ArrangementParams, streams: Streams) -> Tuple[list, dict]:
+    """
+    Return the poses of the streams as the node would receive them: (stamp, topic, CDR) rows.
+
+    A bollard's pose is its point less its lever (its pose's origin), with identity
+    orientation: a re-simulation that adds the bollard's offset finds the same point.
+    """
+    layout = LAYOUTS[topics.LINE_NODE.node_name if setup.single else
+                     topics.MOORING_NODE.node_name]
+    frame_id = setup.shared.frame_id
+    rows = [(ns, layout.ship_pose, pose_stamped(ns, frame_id, p, q))
+            for ns, p, q in zip(streams.t_ns.tolist(), streams.position, streams.orientation)]
+    types = {layout.ship_pose: topics.POSE_STAMPED}
+    for name, (stamps, points, levers) in streams.bollards.items():
+        topic = layout.line_topic(name, topics.BOLLARD_POSE)
+        types[topic] = topics.POSE_STAMPED
+        rows += [(ns, topic, pose_stamped(ns, frame_id, point - lever))
+                 for ns, point, lever in zip(stamps.tolist(), points, levers)]
+    return rows, types
+
+
+def encoder_for(setup: ArrangementParams, driver: Driver) -> OutputEncoder:
+    """Return the encoder of the outputs the node of this setup's kind publishes."""
+    layout = topics.LINE_NODE if setup.single else topics.MOORING_NODE
+    return OutputEncoder(layout, driver.mooring.names,
+                         [line.payload for line in driver.mooring.lines],
+                         setup.shared.frame_id, setup.ship_frame_id)
+
+
+def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
+               rate: float = DEFAULT_RATE, bag_path=None, progress=None,
+               materials: Any = None) -> RunSummary:
+    """
+    Run a motion: OUT.csv rows and/or a bag (sinks.py).
+
+    :raises ParameterError: a bad rate or line (before any file exists).
+    :raises MotionError: a bag cannot hold negative times.
+    :raises BagError: the bag directory exists and is not empty, or recording failed.
+    :raises OSError: OUT.csv cannot be written.
+    """
+    driver = driver_for(setup, rate, materials)  # refuses a bad rate or line first
+    sinks: List[Sink] = []
+    bag = writer = None
+    if bag_path is not None:
+        if int(streams.t_ns[0]) < 0:
+            raise MotionError(
+                f'{streams.path}: data row 1, column {"t"!r}: {streams.origin!r} is negative; '
+                'a bag stamps messages with the simulated time, which must be >= 0')
+        inputs, types = input_messages(setup, streams)
+        bag = BagSink(bag_path, encoder_for(setup, driver), '', inputs, types, stored(setup))
+        sinks.append(bag)
+    try:
+        if out_path is not None:
+            lines = driver.mooring.lines
+            writer = CsvSink(out_path, driver.mooring.names, ratings(setup),
+                             payload=setup.single and lines[0].payload, origin=streams.origin)
+            sinks.insert(0, writer)
+        summary = simulate(setup, streams, rate, sinks, progress, materials)
+    except BaseException:
+        # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
+        _close_quietly(writer, bag)
+        raise
+    if writer is not None:
+        writer.close()
+    if bag is not None:
+        summary.dropped = bag.close()
+    return summary
+
+
+def _close_quietly(writer, bag) -> None:
+    try:
+        if writer is not None:
+            writer.close()
+    except OSError:
+        pass
+    if bag is not None:
+        bag.abandon()

@@ -1,0 +1,223 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+Where an offline run's outputs go: OUT.csv and a bag as the node records it.
+
+OUT.csv has one row per output. A single line's (the mooring_line node's parameters) has
+LINE_COLUMNS: the forces of the line on both ends, the largest tension at each since the
+previous row, the unstretched length and whether the line has parted, and the payload's
+position (PAYLOAD_COLUMNS) when the line ends in a free payload. An arrangement's has
+ARRANGEMENT_COLUMNS, the total force and moment of the lines on the ship (body frame,
+about its origin), then each line's EACH_LINE_COLUMNS under its name (NAME_tension, ...).
+Times are in the motion file's own time base; every number is written with Python's
+shortest exact repr, so a row read back gives the very floats that were computed.
+
+The bag holds the inputs (the poses, as the node received them) and every output on the
+topics, with the types and stamps, the node records (messages/encode.py), log time =
+publish time = the output's stamp.
+"""
+
+import csv
+import math
+import os
+import time
+from typing import Any, Mapping, Optional, Sequence, Tuple
+
+from ..bag import BagError, BagWriter, cdr
+from ..messages.encode import OutputEncoder
+from ..mooring.driver import Published
+from ..mooring.status import Rating
+
+LINE_COLUMNS = (
+    't', 'fairlead_fx', 'fairlead_fy', 'fairlead_fz', 'fairlead_tension',
+    'bollard_fx', 'bollard_fy', 'bollard_fz', 'bollard_tension', 'max_strain',
+    'fairlead_peak_tension', 'bollard_peak_tension', 'line_length', 'parted')
+# Added after LINE_COLUMNS when the line ends in a free payload (payload_mass > 0).
+PAYLOAD_COLUMNS = ('payload_x', 'payload_y', 'payload_z')
+ARRANGEMENT_COLUMNS = ('t', 'force_x', 'force_y', 'force_z', 'moment_x', 'moment_y',
+                       'moment_z')
+# Each line's columns in an arrangement's OUT.csv, after ARRANGEMENT_COLUMNS: its tensions,
+# its utilisation, and as a single line's, its peaks, its length and parted (0, 1).
+EACH_LINE_COLUMNS = ('tension', 'bollard_tension', 'utilisation', 'fairlead_peak_tension',
+                     'bollard_peak_tension', 'line_length', 'parted')
+
+
+class CsvSink:
+    """Writes OUT.csv row by row (see the module docstring); a context manager."""
+
+    def __init__(self, path, names: Sequence[str], ratings: Sequence[Rating],
+                 payload: bool = False, origin: float = 0.0) -> None:
+        """
+        Open (create or overwrite) the file and write the header.
+
+        :param names: the line names: one unnamed line gives a single line's columns.
+        :param ratings: each line's MBL and WLL (an arrangement's utilisation).
+        :param payload: a single line that ends in a payload (PAYLOAD_COLUMNS).
+        :param origin: the motion file's first time [s]: a row's t is origin plus the
+            output's simulated time.
+        :raises OSError: it cannot be written.
+        """
+        self.path = os.fspath(path)
+        self.single = list(names) == ['']
+        self.ratings = list(ratings)
+        self.payload = payload
+        self.origin = origin
+        self._file = open(self.path, 'w', newline='', encoding='utf-8')
+        self._writer = csv.writer(self._file, lineterminator='\n')
+        if self.single:
+            header = LINE_COLUMNS + (PAYLOAD_COLUMNS if payload else ())
+        else:
+            header = ARRANGEMENT_COLUMNS + tuple(f'{name}_{column}' for name in names
+                                                 for column in EACH_LINE_COLUMNS)
+        self._writer.writerow(header)
+        self.rows = 0
+
+    def __call__(self, published: Published) -> None:
+        """Append one output's row."""
+        out = published.output
+        t = self.origin + out.t if self.origin else out.t
+        if self.single:
+            numbers = [t, *out.fairlead_forces[0], out.fairlead_tensions[0],
+                       *out.bollard_forces[0], out.bollard_tensions[0], out.max_strains[0],
+                       out.fairlead_peaks[0], out.bollard_peaks[0], out.line_lengths[0],
+                       float(out.parted[0])]
+            if self.payload:
+                numbers += list(out.payload_positions[0])
+        else:
+            numbers = [t, *published.force, *published.moment]
+            for k, rating in enumerate(self.ratings):
+                fairlead, bollard = out.fairlead_tensions[k], out.bollard_tensions[k]
+                numbers += [fairlead, bollard, rating.utilisation(max(fairlead, bollard)),
+                            out.fairlead_peaks[k], out.bollard_peaks[k], out.line_lengths[k],
+                            float(out.parted[k])]
+        self._writer.writerow([repr(float(v)) for v in numbers])
+        self.rows += 1
+
+    def close(self) -> None:
+        """Close the file."""
+        self._file.close()
+
+    def __enter__(self) -> 'CsvSink':
+        """Return the open writer."""
+        return self
+
+    def __exit__(self, *exc) -> None:
+        """Close the file."""
+        self.close()
+
+
+class BagSink:
+    """
+    Records a run as the node does: the input poses and every output message.
+
+    Inputs are written in stamp order interleaved with the outputs (an input stamped at or
+    before an output is written before that output).
+    """
+
+    # Messages the writer thread may hold; write() waits for room instead of dropping.
+    QUEUE_SIZE = 20000
+
+    def __init__(self, path, encoder: OutputEncoder, namespace: str,
+                 inputs: Sequence[Tuple[int, str, bytes]], input_topics: Mapping[str, str],
+                 custom_data: Mapping[str, str], extra_topics: Optional[Mapping[str, str]] = None
+                 ) -> None:
+        """
+        Create the bag (refusing an existing non-empty directory) and its topics.
+
+        :param encoder: the outputs' topics and messages (its layout's node kind).
+        :param namespace: the namespace the topics are recorded in ('' = root).
+        :param inputs: (stamp_ns, relative topic, CDR bytes) of every input message.
+        :param input_topics: {relative topic: type} of the inputs.
+        :param custom_data: metadata.yaml's custom_data (the parameters of the run).
+        :param extra_topics: {relative topic: type} of other topics (the events).
+        :raises BagError: the directory exists and is not empty, or cannot be created.
+        """
+        self.encoder = encoder
+        self.namespace = namespace.rstrip('/')
+        self._inputs = sorted(inputs, key=lambda item: item[0])
+        self._next_input = 0
+        self._retries = 0
+        self.writer = BagWriter(path, queue_size=self.QUEUE_SIZE, custom_data=dict(custom_data))
+        topics = {**input_topics, **(extra_topics or {}), **encoder.types}
+        for topic, type_name in topics.items():
+            self.writer.add_topic(self.resolved(topic), type_name)
+
+    @property
+    def path(self) -> str:
+        """Return the bag directory."""
+        return self.writer.path
+
+    def resolved(self, relative: str) -> str:
+        """Return a relative topic's name in the bag (its namespace in front)."""
+        return relative if relative.startswith('/') else f'{self.namespace}/{relative}'
+
+    def _write(self, topic: str, message: Any, ns: int) -> None:
+        # The writer drops on a full queue (right for a live node); offline, wait instead.
+        while not self.writer.write(self.resolved(topic), message, ns):
+            if self.writer.error is not None:
+                raise self.writer.error
+            if self.writer.closed:
+                raise BagError(f'bag {self.writer.path} was closed during the run')
+            self._retries += 1  # the writer counted it as dropped
+            time.sleep(0.001)
+
+    def _write_inputs(self, until_ns: float) -> None:
+        while (self._next_input < len(self._inputs)
+               and self._inputs[self._next_input][0] <= until_ns):
+            ns, topic, message = self._inputs[self._next_input]
+            self._write(topic, message, ns)
+            self._next_input += 1
+
+    def __call__(self, published: Published, log_ns: Optional[int] = None) -> None:
+        """Record the inputs up to the output's stamp, then the output (log time log_ns)."""
+        self._write_inputs(published.stamp_ns)
+        self.write_output(published, published.stamp_ns if log_ns is None else log_ns)
+
+    def write(self, topic: str, data: bytes, log_ns: int) -> None:
+        """Record one message (CDR bytes) now, on a relative topic."""
+        self._write(topic, data, log_ns)
+
+    def write_output(self, published: Published, log_ns: int) -> None:
+        """Record one output: every line's messages, the ship's, a parted flag that changed."""
+        for topic, data in self.encoder.messages(published):
+            self._write(topic, data, log_ns)
+        for topic, flag in self.encoder.parted_changes(published.output.parted):
+            self._write(topic, cdr.boolean(flag), log_ns)
+
+    def close(self, complete: bool = True) -> int:
+        """
+        Record the remaining inputs (if complete), complete the bag, return its dropped count.
+
+        :param complete: False after an interruption: inputs stamped after the last output
+            are left out, as a recorder stopped there would have left them.
+        :raises BagError: recording failed.
+        """
+        try:
+            if complete:
+                self._write_inputs(math.inf)
+        finally:
+            self.writer.close()
+        return self.writer.dropped - self._retries
+
+    def abandon(self) -> None:
+        """
+        Close the bag after an interruption or an error: keep what was recorded so far.
+
+        A failure to close is not reported: the interruption is what the caller raises.
+        """
+        try:
+            self.close(complete=False)
+        except BagError:
+            pass

@@ -1,0 +1,808 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The one node: a mooring of one line (mooring_line) or of a ship's lines (mooring).
+
+ROS glue only. Its parameters (ros/parameters.py, from the one table) become a Driver
+(mooring/driver.py), which holds the input and output rules the offline commands use too:
+simulated time 0 at the first pose, the ropes one sample behind a live pose stream, outputs
+every 1 / publish_rate from the last (re)start, skip ahead past MAX_LAG, each output's
+torque levers. Outputs are published as soon as the ropes reach them: in the pose callback
+that lets them, or in a timer tick when no pose stream is live. Its topics are the node
+kind's (messages/topics.py): the two executables differ in their parameters and topics
+only.
+
+Inputs: the ship's pose (mooring_line: fairlead/pose, its fairlead the pose ⊕
+fairlead_offset; mooring: ship/pose, every fairlead moving with it), each line's
+bollard/pose (optional: a bollard that moves) and winch/command. Outputs per line: its
+particles, the forces on both ends, their peaks, its winch length, whether it parted
+(latched), a payload's pose; for a ship (mooring): the total wrench of the lines on it,
+markers and diagnostics. Decisions taken on the node clock (a stream taken for silent, a
+skip ahead, a restart by ~/reset or by a clock jump back, a pose dropped for its stamp or
+stamped on receipt, a parameter set and a winch commanded at run time) and partings are
+published on the events topic (std_msgs/String, one JSON object each) and recorded, so that
+`rope_sim resim` of the node's bag takes them at the same points and reproduces its outputs.
+
+Time: the ropes follow the node clock, so use_sim_time and /clock work. Under use_sim_time,
+until the first /clock message the poses alone set the pace. When a stream falls silent for
+LIVE_INPUT seconds its ends coast to a stop, the ropes go on to now and a warning says so;
+poses that come late bring the ends back onto their tracks smoothly.
+
+Inputs: a pose stamped more than STAMP_AHEAD_LIMIT ahead of the node clock or
+STAMP_BEHIND_LIMIT behind it is dropped and counted, like a non-finite one; a jump of an end
+larger than teleport_distance restarts its line there. The pose queues hold
+POSE_QUEUE_DEPTH poses; poses DDS lost before they reached the node are counted.
+
+Recording (record_path): every received pose and published message also goes to a bag
+through recorder.Recorder, which never blocks the tick; Ctrl-C and SIGTERM close the bag,
+after SIGKILL `rope_sim recover` completes it.
+"""
+
+import functools
+import gc
+import math
+import os
+from typing import Any, Dict, List, Optional
+import warnings
+
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from geometry_msgs.msg import PoseArray, PoseStamped, Wrench, WrenchStamped
+import numpy as np
+from rcl_interfaces.msg import SetParametersResult
+import rclpy
+from rclpy.clock import Clock, ClockType
+from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
+from rclpy.exceptions import ParameterException
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import (DurabilityPolicy, HistoryPolicy, QoSPolicyKind, QoSProfile,
+                       ReliabilityPolicy)
+from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions
+from std_msgs.msg import Bool, Float64, String
+from std_srvs.srv import Trigger
+from visualization_msgs.msg import MarkerArray
+
+from . import conversions
+from .mooring_display import line_diagnostics, LineMarkers
+from .outputs import OutputPublishers
+from .parameters import NodeParameters, plain, StartupError
+from .recorder import Recorder
+from .spinning import set_timer_period, signals_ignored, spin_until_shutdown
+from ..bag import BagError
+from ..messages import topics
+from ..messages.encode import OutputEncoder
+from ..messages.topics import Layout, LINE_NODE, MOORING_NODE
+from ..mooring.driver import Driver, encode_event, MAX_LAG, Published, SHIP
+from ..mooring.status import Rating
+from ..mooring.trajectory import TrajectoryError
+from ..params.arrangement import stored
+from ..params.table import ParameterError
+
+POSE_RELIABILITY = {'reliable': ReliabilityPolicy.RELIABLE,
+                    'best_effort': ReliabilityPolicy.BEST_EFFORT}
+# History depth of the pose subscriptions (KEEP_LAST). A full queue drops its oldest pose
+# without a trace (DDS reports no loss for it): at depth 50 a burst of 10,000 poses reached
+# the node as 747 to 887, a 1 kHz stream for 30 s lost 3.5 %. This holds a whole burst, or
+# 10 s at 1 kHz, for about 2.5 MB more memory per topic once full.
+POSE_QUEUE_DEPTH = 10000
+QOS_OVERRIDES_ALLOWED = ('reliability reliable or best_effort, history keep_last or keep_all, '
+                         'depth >= 1 for keep_last')
+MESSAGE_CLASSES = {topics.POSE_ARRAY: PoseArray, topics.WRENCH: Wrench,
+                   topics.POSE_STAMPED: PoseStamped, topics.FLOAT64: Float64,
+                   topics.BOOL: Bool, topics.WRENCH_STAMPED: WrenchStamped}
+# whether a line has parted is a state, not a stream: latched, so that a monitor started later
+# sees it
+PARTED_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+
+def check_pose_qos(qos: QoSProfile) -> SetParametersResult:
+    """Refuse pose subscription QoS overrides that would keep no pose or never get one."""
+    if qos.history != HistoryPolicy.KEEP_ALL and qos.depth < 1:
+        return SetParametersResult(successful=False, reason=f'depth {qos.depth} keeps no pose')
+    if qos.reliability not in POSE_RELIABILITY.values():
+        return SetParametersResult(successful=False,
+                                   reason=f'reliability {qos.reliability.name.lower()}')
+    return SetParametersResult(successful=True)
+
+
+def _fmt(point) -> str:
+    return '(' + ', '.join(f'{c:.2f}' for c in point) + ')'
+
+
+class MooringNode(Node):
+    """A mooring of one or many lines; see the module docstring and docs/ros.md."""
+
+    # A pose stream is live until the node has run this long [s] without a new sample of it:
+    # the ropes wait for its next sample instead of guessing. Counted in ticks, not from the
+    # stamps, so that a node that was itself stalled first reads the poses queued meanwhile.
+    LIVE_INPUT = 0.25
+    # Falling further behind than this [s] restarts the ropes at now instead of catching up.
+    MAX_LAG = MAX_LAG
+    # One tick or pose callback simulates and publishes at most this many output periods of
+    # a tick, so that a node catching up stays responsive (ticks and poses together catch up
+    # fast enough).
+    OUTPUTS_PER_CALL = 2
+    # The timer ticks at publish_rate, but no faster than this [Hz]; faster rates publish
+    # several outputs per tick, their stamps still 1 / rate apart. At publish_rate 1000 with
+    # 50 Hz poses the single-line node took 54 % of a core with 1 kHz ticks, 38 % with these
+    # (both delivered 1000 outputs a second).
+    MAX_TICK_RATE = 200.0
+    # A pose stamped further than this [s] ahead of the node clock is dropped. One stamped
+    # 1 h ahead froze the fairlead for the hour (every later pose was not after the newest
+    # one), one 15 s ahead for 15 s, then a 335 kN spike. Poses do not come from the future:
+    # this allows for clocks a little out of sync (NTP keeps them within milliseconds).
+    STAMP_AHEAD_LIMIT = 1.0
+    # ... or further than this [s] behind it. A late pose is mostly harmless (the ropes
+    # follow the stream, late), but a stream that late holds the outputs back as long
+    # after each silence. Poses wait for the node in transport and in its queue: the node
+    # took the last of a burst of 10,000 1.9 s after its stamp (3.7 s while recording).
+    STAMP_BEHIND_LIMIT = 10.0
+    THROTTLE = 5.0  # seconds between repeated warnings of one kind
+    DIAGNOSTICS_PERIOD = 1.0  # [s] of the node's clock
+
+    def __init__(self, layout: Layout = MOORING_NODE, **kwargs):
+        """
+        Declare the parameters, build the lines, then create the ROS interfaces.
+
+        :param layout: the node kind's topics (LINE_NODE: mooring_line, MOORING_NODE).
+        :raises StartupError: a parameter value is not allowed or a line cannot be built.
+        """
+        super().__init__(layout.node_name, **kwargs)
+        self.layout = layout
+        self._last_log: Dict[str, float] = {}
+        # per pose topic: messages taken, dropped (bad or far-off stamps) and lost before they
+        # reached the node (DDS's message_lost count)
+        self.received: Dict[str, int] = {}
+        self.dropped: Dict[str, int] = {}
+        self.lost: Dict[str, int] = {}
+        self.skips = 0  # times the ropes skipped ahead (MAX_LAG)
+        self.recorder: Optional[Recorder] = None
+        self.driver: Optional[Driver] = None
+        self.parameters = NodeParameters(layout)
+        self.add_pre_set_parameters_callback(self.parameters.coerce)
+        self.add_on_set_parameters_callback(self._validate_parameters)
+        self.add_post_set_parameters_callback(self._apply_parameters)
+        overrides = {name: plain(p.value)
+                     for name, p in getattr(self, '_parameter_overrides', {}).items()}
+        setup = self.parameters.declare(self, overrides, self.get_logger().warning)
+        try:
+            self.driver = Driver(setup)
+            warm_up(setup, self.get_logger().info)
+        except ValueError as e:  # ParameterError, MaterialError, an unstable line
+            raise StartupError(str(e)) from None
+        mooring = self.driver.mooring
+        self.names = list(mooring.names)
+        self.ratings = [Rating.of(line.material) for line in mooring.lines]
+        self.encoder = OutputEncoder(layout, self.names,
+                                     [line.payload for line in mooring.lines],
+                                     setup.shared.frame_id, setup.ship_frame_id)
+        self._quiet_ticks = {stream: 0 for stream in self.driver.streams}
+        self._told_payload = False
+        # the newest output and what the diagnostics gather between reports
+        self._latest: Optional[Published] = None
+        self._peaks = np.zeros(len(self.names))
+        self._restarted: List[Optional[str]] = [None] * len(self.names)
+        self._line_markers = LineMarkers()
+
+        self._taken = OutputPublishers(self)
+        self._outputs: Dict[str, Any] = {}
+        for topic in self.encoder.output_topics:
+            self._outputs[topic] = self._publisher(
+                MESSAGE_CLASSES[self.encoder.types[topic]], topic, 10)
+        for topic in self.encoder.parted_topics:
+            self._outputs[topic] = self._publisher(Bool, topic, PARTED_QOS)
+        self._events_pub = self._publisher(String, layout.events, 100)
+        if layout.ship_outputs:
+            self._markers_pub = self._publisher(MarkerArray, topics.MARKERS, 10)
+            self._diagnostics_pub = self._publisher(DiagnosticArray, topics.DIAGNOSTICS, 10)
+        self._pose_subs = {}
+        for stream in self.driver.streams:
+            topic = layout.stream_topic(stream)
+            self._pose_subs[stream] = self._pose_subscription(
+                topic, functools.partial(self._on_pose, stream))
+        for name in getattr(self, '_parameter_overrides', {}):
+            if name.startswith('qos_overrides.') and not self.has_parameter(name):
+                self.get_logger().warning(
+                    f'ignoring unknown parameter {name!r}: the pose subscriptions take '
+                    f'qos_overrides.{self._pose_subs[SHIP].topic_name}.subscription.'
+                    'reliability (and .history, .depth; the same for the bollard poses)')
+        if any(s.qos_profile.reliability == ReliabilityPolicy.RELIABLE
+               for s in self._pose_subs.values()):
+            # rclpy's incompatible-QoS event was missed in 1 of 6 start-ups; the graph is
+            # not. On the steady clock: under use_sim_time there may be no /clock yet.
+            self._qos_timer = self.create_timer(
+                1.0, self._check_pose_publishers, clock=Clock(clock_type=ClockType.STEADY_TIME))
+        # without event handlers: rclpy's Python executor walks every handler at every
+        # wake-up (on the events executor of spin_until_shutdown they cost nothing idle)
+        self._winch_subs = [self.create_subscription(
+            Float64, layout.line_topic(name, topics.WINCH_COMMAND),
+            functools.partial(self._on_winch_command, name), 10,
+            event_callbacks=SubscriptionEventCallbacks(use_default_callbacks=False))
+            for name in self.names]
+        self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
+        rate = setup.shared.publish_rate
+        self._timer = self.create_timer(self._tick_period(rate), self._on_tick)
+        if layout.ship_outputs:
+            self._markers_timer = self.create_timer(1.0 / setup.marker_rate, self._on_markers)
+            self._diagnostics_timer = self.create_timer(self.DIAGNOSTICS_PERIOD,
+                                                        self._on_diagnostics)
+        self._start_recording()
+        self.get_logger().info(self._started_text())
+
+    def _started_text(self) -> str:
+        """Say what was built and what the node waits for."""
+        mooring = self.driver.mooring
+        waiting = f'waiting for the first pose on {self._pose_subs[SHIP].topic_name}'
+        if self.parameters.single:
+            line = mooring.lines[0]
+            p, props = line.params, line.props
+            return (f'{p.material} line, {p.diameter * 1e3:g} mm, {props.length:g} m, '
+                    f'{props.segments} segments, MBL {line.material.mbl / 1e3:.0f} kN, '
+                    f'{p.integrator} step {line.time_step * 1e3:.4g} ms; {waiting}')
+        shared = self.driver.arrangement.shared
+        return (f'{len(self.names)} lines ({", ".join(self.names)}), {shared.integrator} '
+                f'step {mooring.time_step * 1e3:.4g} ms, {self.driver.rate:g} Hz; {waiting}')
+
+    def _publisher(self, cls, topic: str, qos):
+        """
+        Create an output's publisher, its subscribers counted (OutputPublishers.taken).
+
+        Without rclpy's default incompatible-QoS handler: the outputs are reliable and
+        volatile (the parted flag transient-local), which every subscriber's QoS takes.
+        """
+        return self._taken.create(cls, topic, qos, default_events=False)
+
+    # -- parameters -----------------------------------------------------------------------
+
+    def _validate_parameters(self, parameters: List[Parameter]) -> SetParametersResult:
+        """On-set callback: refuse a value outside its range, or one a line cannot take."""
+        try:
+            for line, values in self.parameters.changes(parameters).items():
+                if self.driver is not None and values:
+                    self.driver.check_update(line, values)
+        except (ParameterError, ValueError) as e:
+            return SetParametersResult(successful=False, reason=str(e))
+        return SetParametersResult(successful=True)
+
+    def _apply_parameters(self, parameters: List[Parameter]) -> None:
+        """Post-set callback: hand run-time changes to the lines at once."""
+        if self.driver is None:  # still declaring
+            return
+        for p in parameters:
+            if p.name == 'marker_rate' and self.layout.ship_outputs:
+                set_timer_period(self._markers_timer, 1.0 / float(p.value))
+                self.get_logger().info(f'set marker_rate = {p.value}')
+        for line, values in self.parameters.changes(parameters).items():
+            try:
+                self.driver.update(line, values)
+            except ValueError as e:  # validated already: the lines should never refuse
+                self.get_logger().error(f'could not apply {values}: {e}')
+                continue
+            self._event('set', line=line, values=values)
+            if 'publish_rate' in values:
+                # the driver re-anchored the outputs; the ticks follow the rate
+                set_timer_period(self._timer, self._tick_period(self.driver.rate))
+            self.get_logger().info(f'set {line + "." if line else ""}' + ', '.join(
+                f'{k} = {v}' for k, v in values.items()))
+
+    # -- inputs ---------------------------------------------------------------------------
+
+    def _pose_subscription(self, topic: str, callback):
+        """
+        Subscribe to a pose topic: pose_reliability, POSE_QUEUE_DEPTH, losses counted.
+
+        The standard parameters qos_overrides.<topic>.subscription.reliability / history /
+        depth (read-only, <topic> resolved, e.g. /line_1/fairlead/pose) override them.
+
+        :raises StartupError: an override is not a valid QoS value.
+        """
+        reliability = POSE_RELIABILITY[self.driver.arrangement.shared.pose_reliability]
+        qos = QoSProfile(depth=POSE_QUEUE_DEPTH, reliability=reliability)
+        overrides = QoSOverridingOptions(
+            (QoSPolicyKind.RELIABILITY, QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH),
+            callback=check_pose_qos)
+        # Only the ship's stream keeps rclpy's default incompatible-QoS handlers: rclpy's
+        # Python executor walks every handler at every wake-up (16 lines' bollard streams
+        # tripled its walk), and one warning for a best-effort ship pose publisher tells the
+        # story.
+        events = SubscriptionEventCallbacks(
+            message_lost=functools.partial(self._on_lost, topic),
+            use_default_callbacks=topic == self.layout.ship_pose)
+        self.received[topic] = self.lost[topic] = 0
+        try:
+            with warnings.catch_warnings():  # rclpy warns of depth 0; check_pose_qos says it
+                warnings.simplefilter('ignore', UserWarning)
+                return self.create_subscription(PoseStamped, topic, callback, qos,
+                                                event_callbacks=events,
+                                                qos_overriding_options=overrides)
+        except (InvalidQosOverridesError, ParameterException, RuntimeError) as e:
+            # rclpy says 'Unexpected QoS override for policy `reliability`: `fast`'
+            raise StartupError(f'qos_overrides of {self.resolve_topic_name(topic)}: {e}; '
+                               f'allowed: {QOS_OVERRIDES_ALLOWED}') from None
+
+    def _on_lost(self, topic: str, info: QoSMessageLostInfo) -> None:
+        """Count and report poses DDS lost before they reached this node (message_lost)."""
+        self.lost[topic] = info.total_count
+        self._warn(f'{topic}: lost', f'{topic}: {info.total_count_change} pose(s) lost on the '
+                   f'way ({info.total_count} so far): the queue of their publisher overflowed '
+                   'before they were sent, or the network dropped them (a deeper publisher '
+                   'queue or a lower rate keeps them)')
+
+    def _check_pose_publishers(self) -> None:
+        """Warn of best-effort pose publishers: they cannot reach a reliable subscription."""
+        for topic in (s.topic_name for s in self._pose_subs.values()
+                      if s.qos_profile.reliability == ReliabilityPolicy.RELIABLE):
+            if any(info.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
+                   for info in self.get_publishers_info_by_topic(topic)):
+                self._warn(f'{topic}: qos', f'{topic}: a best-effort publisher cannot reach '
+                           'this reliable subscription, so its poses never arrive: set '
+                           'pose_reliability:=best_effort')
+
+    def _on_pose(self, stream: str, msg: PoseStamped) -> None:
+        """Take a pose of a stream: record it, check it, push it, advance."""
+        topic = self.layout.stream_topic(stream)
+        self.received[topic] += 1
+        stamp_ns = self._stamp(topic, stream, msg)  # its events go to the bag before the pose
+        self.record(topic, msg)
+        if stamp_ns is None:
+            return
+        frame_id = self.driver.arrangement.shared.frame_id
+        if msg.header.frame_id and msg.header.frame_id != frame_id:
+            self._warn(f'{topic}: frame', f'{topic}: header.frame_id is '
+                       f'{msg.header.frame_id!r}, not {frame_id!r}: taken as {frame_id!r} '
+                       '(no tf lookup)')
+        if stream == SHIP:
+            self._on_ship(topic, stamp_ns, msg)
+        else:
+            self._on_bollard(topic, stream, stamp_ns, msg)
+
+    def _on_ship(self, topic: str, stamp_ns: int, msg: PoseStamped) -> None:
+        p, o = msg.pose.position, msg.pose.orientation
+        try:
+            norm = conversions.unit_quaternion(o)[1]
+            event = self.driver.push_ship(stamp_ns, (p.x, p.y, p.z), (o.x, o.y, o.z, o.w))
+        except ParameterError as e:  # a pretension no length gives at this pose
+            self._warn('start', f'cannot start the lines at this ship pose: {e}')
+            return
+        except (conversions.PoseError, TrajectoryError) as e:
+            self._drop(topic, e)
+            return
+        self._check_norm(topic, norm)
+        self._quiet_ticks[SHIP] = 0
+        mooring = self.driver.mooring
+        if 'start' in event:
+            if self.parameters.single:
+                point = mooring.free_ends(0, [mooring.time])[0][0, 1]
+                self.get_logger().info(
+                    f'first fairlead pose: rope started on the catenary to {_fmt(point)}')
+            else:
+                chosen = ', '.join(f'{self.names[k]} {length:.3f} m' for k, length
+                                   in event['start'].items())
+                self.get_logger().info('first ship pose: lines started at rest' + (
+                    f'; lengths for their pretension: {chosen}' if chosen else ''))
+        elif event.get('teleport'):
+            # Not throttled: each jump is a restart, a step in the published tension. The
+            # ropes restarted at the state time, the last output's: the next output shows it.
+            if self.parameters.single:
+                line = mooring.lines[0]
+                point = mooring.free_ends(0, [mooring.time])[0][0, 1]
+                self.get_logger().warning(
+                    f'fairlead jumped {mooring.last_jumps[0]:.2f} m, more than '
+                    f'teleport_distance ({line.params.teleport_distance:g} m), to '
+                    f'{_fmt(point)}: rope restarted on the catenary there')
+            else:
+                self.get_logger().warning(
+                    'the ship jumped more than teleport_distance: restarted at rest '
+                    + ', '.join(self.names[k] for k in event['teleport']))
+        self._advance()
+
+    def _on_bollard(self, topic: str, name: str, stamp_ns: int, msg: PoseStamped) -> None:
+        k = self.names.index(name)
+        offset = self.driver.mooring.lines[k].params.bollard_offset
+        try:
+            point = conversions.pose_point(msg.pose, offset)
+            event = self.driver.push_bollard(name, stamp_ns, point.point, point.lever)
+        except (conversions.PoseError, TrajectoryError) as e:
+            self._drop(topic, e)
+            return
+        if event == 'ignored':
+            if not self._told_payload:  # once: every bollard pose is ignored alike
+                self._told_payload = True
+                line = self.driver.mooring.lines[k]
+                self.get_logger().warning(
+                    f'{topic}: ignored: the bollard end{" of " + name if name else ""} is a '
+                    f'free payload (payload_mass {line.params.payload_mass:g} kg > 0), see '
+                    f'{self.layout.line_topic(name, topics.PAYLOAD_POSE)}')
+            return
+        self._check_norm(topic, point.quaternion_norm)
+        self._quiet_ticks[name] = 0
+        if event == 'teleport':
+            line = self.driver.mooring.lines[k]
+            self.get_logger().warning(
+                f'{name + ": " if name else ""}bollard jumped '
+                f'{self.driver.mooring.last_jumps[k]:.2f} m, more than teleport_distance '
+                f'({line.params.teleport_distance:g} m), to {_fmt(point.point)}: '
+                f'{"line" if name else "rope"} restarted on the catenary there')
+        if self.driver.started:
+            self._advance()
+
+    def _check_norm(self, topic: str, norm: float) -> None:
+        if abs(norm - 1.0) > 1e-3:
+            self._warn(f'{topic}: norm', f'{topic}: normalised a non-unit quaternion '
+                       f'(|q| = {norm:.4g})')
+
+    def _stamp(self, topic: str, stream: str, msg: PoseStamped) -> Optional[int]:
+        """
+        Return the sample stamp [ns] of a pose, or None if its stamp is too far off the clock.
+
+        Both decisions depend on the node clock: they are events (see _event).
+        """
+        stamp_ns = conversions.stamp_to_ns(msg.header.stamp)
+        now_ns = self.get_clock().now().nanoseconds
+        if stamp_ns == 0 and now_ns:  # (a bag replayed from time 0 has both at 0 at first)
+            stamp_ns = now_ns
+            self._event('restamp', stream=stream, stamp=now_ns)
+            self._warn(f'{topic}: unstamped', f'{topic}: header.stamp is zero: using the '
+                       'receive time as the sample time')
+        # Under use_sim_time the clock reads 0 until the first /clock: nothing to compare.
+        skew = (stamp_ns - now_ns) * 1e-9
+        if now_ns and not -self.STAMP_BEHIND_LIMIT <= skew <= self.STAMP_AHEAD_LIMIT:
+            side, limit = (('ahead of', self.STAMP_AHEAD_LIMIT) if skew > 0
+                           else ('behind', self.STAMP_BEHIND_LIMIT))
+            self._event('drop', stream=stream, stamp=stamp_ns)
+            self._drop(topic, ValueError(
+                f'stamp {side} the node clock by {abs(skew):.3f} s, more than {limit:g} s: '
+                'are the clocks in sync (use_sim_time)?'))
+            return None
+        return stamp_ns
+
+    def _drop(self, topic: str, reason: Exception) -> None:
+        count = self.dropped[topic] = self.dropped.get(topic, 0) + 1
+        kind = ' '.join(str(reason).split()[:2])  # e.g. 'zero quaternion'
+        self._warn(f'{topic}: {kind}', f'{topic}: dropped a message: {reason} '
+                   f'({count} dropped on {topic} so far)')
+
+    def _on_winch_command(self, name: str, msg: Float64) -> None:
+        """Take a winch speed for one line [m/s] (+ pays out); refuse a non-finite one."""
+        topic = self.layout.line_topic(name, topics.WINCH_COMMAND)
+        try:
+            self.driver.command_winch(name, msg.data)
+        except ParameterError as e:
+            self._warn(f'{topic}: bad', f'{topic}: {e}; ignored')
+            return
+        self._event('winch', line=name, t=self.driver.time if self.driver.started else 0.0,
+                    speed=msg.data)
+        mode = self.driver.mooring.lines[self.names.index(name)].params.winch_mode
+        if mode != 'speed':
+            setting = f'{name}.winch_mode' if name else 'winch_mode'
+            self._warn(f'{topic}: mode', f'{topic} {msg.data:g} m/s kept: it acts while '
+                       f"{setting} is 'speed' (now '{mode}')")
+
+    # -- time -----------------------------------------------------------------------------
+
+    def _tick_period(self, rate: float) -> float:
+        """Return the timer period [s] at publish_rate `rate` (see MAX_TICK_RATE)."""
+        return 1.0 / min(rate, self.MAX_TICK_RATE)
+
+    def _on_tick(self) -> None:
+        """Count a tick without poses for each stream, then advance."""
+        if not self.driver.started:
+            return
+        live_ticks = max(2, math.ceil(self.LIVE_INPUT / self._tick_period(self.driver.rate)))
+        for stream in self.driver.streams:
+            self._quiet_ticks[stream] += 1
+            if self.driver.live(stream) and self._quiet_ticks[stream] >= live_ticks:
+                self.driver.silence(stream)
+                self._event('silent', stream=stream, t=self.driver.time)
+                topic = self.layout.stream_topic(stream)
+                if self.parameters.single:
+                    what = 'the fairlead' if stream == SHIP else 'the bollard'
+                    rest = 'the rope goes'
+                else:
+                    what = 'the ship' if stream == SHIP else f"{stream}'s bollard"
+                    rest = 'the lines go'
+                self._warn(f'{stream}: silent', f'{topic}: no new pose for '
+                           f'{self.LIVE_INPUT:g} s: {what} coasts to a stop and {rest} on with '
+                           f'the clock from t = {self.driver.time:.3f} s')
+        self._advance()
+
+    def _advance(self) -> None:
+        """
+        Advance the ropes towards the clock, publishing each output they reach (the Driver).
+
+        Outputs go out as soon as the input reaches them: from a pose callback when a pose
+        stream is live, else from the tick. One call publishes at most OUTPUTS_PER_CALL
+        ticks' worth of them, so that a node catching up stays responsive; a node further
+        behind than MAX_LAG skips ahead instead of catching up.
+        """
+        driver = self.driver
+        clock_ns = self.get_clock().now().nanoseconds
+        # With use_sim_time the clock reads 0 until the first /clock message: until then
+        # the poses alone say how far the ropes may go.
+        now = driver.seconds(clock_ns) if clock_ns and driver.epoch_ns is not None else math.inf
+        if not clock_ns and driver.last_sample(SHIP) > self.LIVE_INPUT:
+            self._warn('no clock', 'use_sim_time is true but no /clock message has come: '
+                       'the ropes follow the pose stamps alone')
+        rate = driver.rate
+        report = driver.advance(now, self.OUTPUTS_PER_CALL * math.ceil(
+            rate * self._tick_period(rate) - 1e-9), self.MAX_LAG)
+        if report.clock_back:
+            self._event('clock_back', back=report.clock_back)
+            self.get_logger().warning(
+                f'clock jumped back by {report.clock_back:.2f} s: waiting for the next '
+                f'{self.layout.ship_pose} pose to restart the ropes')
+            return
+        if report.skipped:
+            self.skips += 1
+            self._event('skip', t=report.skip_to)
+            # Not throttled: each skip is a restart, a step in the published tension, and
+            # there is at most one per MAX_LAG.
+            self.get_logger().warning(
+                f'simulation fell {report.skipped:.2f} s behind the clock: skipped ahead and '
+                f'restarted the ropes at rest (skips so far: {self.skips})')
+        for t in report.faults:
+            self.get_logger().error(f'non-finite output at t = {t:.3f} s: not published; '
+                                    'ropes restarted')
+        for published in report.outputs:
+            self._report(published)
+            self._publish(published)
+
+    def _report(self, published: Published) -> None:
+        """Log what the advance to an output did to the lines; keep it for the diagnostics."""
+        advance = published.advance
+        if advance is None:
+            return
+        mooring = self.driver.mooring
+        for k, parting in advance.parted.items():
+            name = self.names[k]
+            self._event('parted', line=name, t=parting.t, segment=parting.segment,
+                        break_load=parting.break_load)
+            self.get_logger().error(
+                f'{name or "the line"} parted at t = {parting.t:.3f} s, segment '
+                f'{parting.segment} of {mooring.lines[k].props.segments} (0 at the bollard): '
+                f'its tension passed the break load of {parting.break_load / 1e3:.0f} kN. '
+                'Both pieces go on; ~/reset restores every line')
+        for k, distance in advance.beyond_reach.items():
+            self._warn(f'reach {k}', f'{self.names[k] or "the line"}: its ends are '
+                       f'{distance:.1f} m apart, beyond its reach of '
+                       f'{mooring.lines[k].reach:.1f} m (length x (1 + max_strain)): its '
+                       'fairlead is held at the reach')
+        for k, why in advance.restarted.items():
+            self._restarted[k] = why
+            log = (self.get_logger().warning if why == 'back within reach'
+                   else self.get_logger().error)
+            log(f'{self.names[k] or "the line"}: {why} at t = {self.driver.time:.3f} s: '
+                'restarted at rest on its catenary')
+
+    def _on_reset(self, request: Trigger.Request, response: Trigger.Response):
+        if not self.driver.started:
+            response.success = False
+            response.message = (f'no pose received on {self._pose_subs[SHIP].topic_name} yet: '
+                                'nothing to reset')
+            return response
+        self.driver.reset()
+        self._event('reset', t=self.driver.time)
+        self._restarted = ['reset'] * len(self.names)
+        self._publish_parted(np.zeros(len(self.names), dtype=bool))
+        response.success = True
+        what = ('rope restarted on the catenary' if self.parameters.single
+                else 'every line restarted at rest')
+        response.message = f'{what} at t = {self.driver.time:.3f} s'
+        self.get_logger().info(response.message)
+        return response
+
+    # -- outputs --------------------------------------------------------------------------
+
+    def _publish(self, published: Published) -> None:
+        """
+        Publish (and record) one output: every line's topics, then the ship's wrenches.
+
+        An output nobody subscribes to (and no bag records) is neither built nor published:
+        a ship simulator takes ship/mooring_wrench only, and the 16 lines' 96 other messages
+        would go to nobody 100 times a second. A subscriber gets the outputs from the first
+        one after its subscription is matched, as from any volatile publisher.
+        """
+        wanted = self._taken.taken_among(self.encoder.output_topics, self.recorder)
+        for topic, data in self.encoder.messages(published, wanted):
+            self._outputs[topic].publish(data)
+            # a message with a header is recorded with its stamp for a publish time, one
+            # without it at its log time, as received
+            self.record(topic, data,
+                        published.stamp_ns if self.encoder.has_header(topic) else None)
+        self._publish_parted(published.output.parted)
+        self._latest = published
+        self._peaks = np.maximum(self._peaks, published.output.peaks)  # every step's
+
+    def _publish_parted(self, parted) -> None:
+        """Publish (and record) on each line's parted topic whether it has parted, if new."""
+        for topic, flag in self.encoder.parted_changes(parted):
+            msg = Bool(data=flag)
+            self._outputs[topic].publish(msg)
+            self.record(topic, msg)
+
+    def _on_markers(self) -> None:
+        """Publish the lines as markers, coloured by their utilisation (mooring_display)."""
+        published = self._latest
+        if published is None or not self._taken.subscribed(topics.MARKERS):
+            return  # nobody looks: not built (16 strips of 51 points)
+        out = published.output
+        msg = self._line_markers(
+            self.driver.arrangement.shared.frame_id, published.stamp_ns, self.names,
+            out.positions, np.maximum(out.fairlead_tensions, out.bollard_tensions),
+            self.ratings, out.parted, np.array([p[-1] for p in out.positions]),
+            np.array([p[0] for p in out.positions]))
+        self._markers_pub.publish(msg)
+
+    def _on_diagnostics(self) -> None:
+        """Publish one status per line; its peak and restarts count from the last report."""
+        published = self._latest
+        prefix = self.get_fully_qualified_name().lstrip('/')
+        if published is None:
+            msg = DiagnosticArray(status=[DiagnosticStatus(
+                level=DiagnosticStatus.STALE, name=f'{prefix}: {name}', hardware_id=name,
+                message=f'waiting for the first pose on {self._pose_subs[SHIP].topic_name}',
+                values=[KeyValue(key='state', value='not started')]) for name in self.names])
+            msg.header.stamp = conversions.ns_to_stamp(self.get_clock().now().nanoseconds)
+        else:
+            out = published.output
+            msg = line_diagnostics(
+                published.stamp_ns, self.names,
+                np.maximum(out.fairlead_tensions, out.bollard_tensions), self._peaks,
+                out.max_strains, self.ratings, out.parted, self._restarted, prefix)
+            self._peaks = np.zeros(len(self.names))
+            self._restarted = [None] * len(self.names)
+        self._diagnostics_pub.publish(msg)
+
+    def _event(self, kind: str, stream: Optional[str] = None, line: Any = (), **fields: Any):
+        """Publish and record a decision taken on the node clock (see the module docstring)."""
+        if stream is not None:
+            fields.update(self.layout.event_stream(stream))
+        if line != ():
+            fields.update(self.layout.line_field(line))
+        msg = String(data=encode_event(kind, **fields))
+        self._events_pub.publish(msg)
+        self.record(self.layout.events, msg)
+
+    # -- recording ------------------------------------------------------------------------
+
+    def _start_recording(self) -> None:
+        """
+        Start recording to record_path, if it is set: the poses, every output, the events.
+
+        The bag stores the parameters at start-up as `rope_sim run` does (metadata.yaml's
+        custom_data), so `rope_sim resim` and `rope_sim plot` use them.
+
+        :raises StartupError: record_path exists and is not an empty directory, or it
+            cannot be created or written.
+        """
+        setup = self.driver.arrangement
+        path = setup.shared.record_path
+        if not path:
+            return
+        try:
+            recorder = Recorder(path, stored(setup), self.get_logger())
+        except (BagError, OSError) as e:
+            raise StartupError(f'record_path: {e}') from None
+        for stream, subscription in self._pose_subs.items():
+            # Stored with the QoS its publishers offer, as `ros2 bag record` does.
+            recorder.add_topic(self.layout.stream_topic(stream), subscription.topic_name,
+                               topics.POSE_STAMPED, offered_qos=functools.partial(
+                                   self._offered_qos, subscription.topic_name))
+        for topic, publisher in self._outputs.items():
+            recorder.add_topic(topic, publisher.topic_name, self.encoder.types[topic],
+                               publisher.qos_profile)
+        recorder.add_topic(self.layout.events, self._events_pub.topic_name, topics.STRING,
+                           self._events_pub.qos_profile)
+        self.recorder = recorder
+        self.get_logger().info(f'recording the poses, every output and the events to '
+                               f'{os.path.abspath(recorder.path)}')
+
+    def _offered_qos(self, topic: str) -> List[QoSProfile]:
+        """Return the QoS profiles the publishers of a topic offer (from the graph)."""
+        return [info.qos_profile for info in self.get_publishers_info_by_topic(topic)]
+
+    def record(self, topic: str, msg: Any, stamp_ns: Optional[int] = None) -> None:
+        """
+        Pass a received or published message to the recorder (the recording hook).
+
+        :param topic: the topic name relative to the node's namespace.
+        :param msg: the message, or its CDR bytes.
+        :param stamp_ns: the publish time of CDR bytes with a header [ns] (see
+            Recorder.write).
+        """
+        if self.recorder is not None:
+            self.recorder.write(topic, msg, self.get_clock().now().nanoseconds, stamp_ns)
+
+    def destroy_node(self) -> None:
+        """Destroy the node, then close the bag (if recording)."""
+        # In this order the closing lines are not sent to /rosout, whose publisher is gone
+        # after a signal shut the context down (rcl would complain about each line).
+        super().destroy_node()
+        self.get_logger().info('poses: ' + ('; '.join(
+            f'{topic}: {count} received, {self.dropped.get(topic, 0)} dropped, '
+            f'{self.lost[topic]} lost on the way'
+            for topic, count in self.received.items() if count or self.lost[topic])
+            or 'none received'))
+        if self.recorder is not None:
+            self.recorder.close()
+
+    # -- logging --------------------------------------------------------------------------
+
+    def _warn(self, key: str, text: str) -> None:
+        """Log a warning, at most once per THROTTLE seconds per key."""
+        now = self.get_clock().now().nanoseconds * 1e-9
+        last = self._last_log.get(key)
+        if last is None or not 0.0 <= now - last < self.THROTTLE:
+            self._last_log[key] = now
+            self.get_logger().warning(text)
+
+
+def warm_up(setup, say=None) -> None:
+    """
+    Run a few steps of a throw-away line, so the compiled kernels load before spinning.
+
+    The build leaves them compiled in numba's cache (0.4 s to load); where it could not
+    (read-only install, pip install), numba compiles them here, one to three minutes:
+    say(message) tells when that starts and ends.
+    """
+    from ..mooring.precompile import announce_compilation, exercise
+    with announce_compilation(say):
+        exercise(setup.lines[0].params.as_dict())
+
+
+def run(layout: Layout, args=None) -> int:
+    """
+    Run a node of this kind until Ctrl-C or SIGTERM, then close its bag (if recording).
+
+    Ctrl-C and SIGTERM end the spin (spin_until_shutdown) or the start-up alike: the same
+    clean shutdown, exit code 0.
+
+    :returns: 0, or 2 when a parameter is not allowed or record_path cannot be used.
+    """
+    rclpy.init(args=args)
+    try:
+        node = MooringNode(layout)
+    except StartupError as e:
+        rclpy.logging.get_logger(layout.node_name).error(str(e))
+        rclpy.try_shutdown()
+        return 2
+    except KeyboardInterrupt:
+        rclpy.try_shutdown()
+        return 0
+    except Exception:
+        if rclpy.ok():
+            raise
+        return 0  # SIGTERM during start-up: rclpy shut the context down under us
+    # What start-up allocated (rclpy, numpy, numba: ~1e5 objects) lives as long as the node:
+    # keep it out of the cyclic collector, whose full passes over it took ~45 ms mid-run.
+    gc.freeze()
+    try:
+        if rclpy.ok():  # else SIGTERM came between start-up and spinning
+            spin_until_shutdown(node)
+    finally:
+        with signals_ignored():  # a second Ctrl-C must not cut the bag short
+            node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+def main_line(args=None) -> int:
+    """Run the mooring_line node: one line between a bollard and a fairlead."""
+    return run(LINE_NODE, args)
+
+
+def main_mooring(args=None) -> int:
+    """Run the mooring node: a ship's whole mooring arrangement."""
+    return run(MOORING_NODE, args)
