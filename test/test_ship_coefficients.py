@@ -1,0 +1,333 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+OCIMF-form wind and current loads: the formula by hand, the angle convention, the CSV files.
+
+The hand checks use tables written here with chosen values; the shipped wind table
+(config/ship/wind_coefficients_tanker_loaded.csv) is checked for its signs, its symmetry and
+for being exactly the output of the script that computes it from Blendermann (1994)
+(test/data/ship_coefficients/blendermann_tanker_loaded.py).
+"""
+
+import importlib.util
+import math
+from pathlib import Path
+import warnings
+
+import numpy as np
+import pytest
+
+from rope_sim_ros.model.ship.coefficients import (
+    CoefficientFileError, CoefficientTable, flow_angle_deg, ocimf_loads,
+    parse_coefficient_csv)
+
+REPO = Path(__file__).resolve().parent.parent
+WIND_TABLE = REPO / 'config' / 'ship' / 'wind_coefficients_tanker_loaded.csv'
+WIND_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'blendermann_tanker_loaded.py'
+
+RHO_AIR = 1.225  # kg/m^3
+# A table with round numbers, so that the interpolated coefficients are easy by hand.
+SQUARE = CoefficientTable(angles_deg=[0.0, 90.0, 180.0, 270.0],
+                          cx=[-1.0, 0.0, 0.5, 0.0],
+                          cy=[0.0, -0.8, 0.0, 0.8],
+                          cmz=[0.1, 0.0, -0.1, 0.0])
+
+
+def flow_from(theta_deg, speed):
+    """Return the relative fluid velocity (u_x, u_y) of a flow coming from theta [deg]."""
+    theta = math.radians(theta_deg)
+    return np.array([-speed * math.cos(theta), -speed * math.sin(theta)])
+
+
+def load_wind_script():
+    """Import the script that computes the shipped wind table."""
+    spec = importlib.util.spec_from_file_location('blendermann_tanker_loaded', WIND_SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def shipped_wind_table():
+    """Return the shipped wind table, read here (the model layer does no I/O)."""
+    return parse_coefficient_csv(WIND_TABLE.read_text(), str(WIND_TABLE))
+
+
+# ---------------------------------------------------------------------- the angle
+
+
+@pytest.mark.parametrize('velocity, theta', [
+    ((-1.0, 0.0), 0.0),      # flow toward -x: a head wind
+    ((0.0, -1.0), 90.0),     # flow toward -y: from port
+    ((1.0, 0.0), 180.0),     # from astern
+    ((0.0, 1.0), -90.0),     # from starboard (= 270)
+    ((-1.0, -1.0), 45.0),    # from the port bow
+    ((3.0, -3.0), 135.0),    # from the port quarter
+])
+def test_flow_angle_is_where_the_flow_comes_from(velocity, theta):
+    assert flow_angle_deg(velocity) == pytest.approx(theta, abs=1e-12)
+
+
+def test_ship_moving_ahead_in_still_air_feels_a_head_wind():
+    # fluid velocity 0, ship velocity (1, 0) in body axes: u = 0 - ship = (-1, 0)
+    relative = np.zeros(2) - np.array([1.0, 0.0])
+    assert flow_angle_deg(relative) == 0.0
+    fx, fy, mz = ocimf_loads(SQUARE, RHO_AIR, relative, area_front=100.0, area_side=400.0,
+                             length=50.0)
+    # 1/2 rho V^2 A_T C_x(0) with V = 1 m/s: a drag toward the stern
+    assert fx == pytest.approx(0.5 * 1.225 * 1.0 * 100.0 * -1.0, rel=1e-15)
+    assert fx < 0.0
+    assert fy == 0.0
+    assert mz == pytest.approx(0.5 * 1.225 * 1.0 * 400.0 * 50.0 * 0.1, rel=1e-15)
+
+
+def test_zero_relative_velocity_gives_exactly_zero_loads():
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')
+        loads = ocimf_loads(SQUARE, RHO_AIR, (0.0, 0.0), 100.0, 400.0, 50.0)
+        arrays = ocimf_loads(SQUARE, RHO_AIR, np.zeros((3, 2)), 100.0, 400.0, 50.0)
+    assert loads == (0.0, 0.0, 0.0)
+    for array in arrays:
+        np.testing.assert_array_equal(array, np.zeros(3))
+    assert flow_angle_deg((-0.0, -0.0)) == 0.0
+
+
+# ---------------------------------------------------------------------- the formula
+
+
+def test_loads_between_rows_by_hand():
+    # theta = 45: halfway between the rows at 0 and 90 -> C = (-0.5, -0.4, 0.05)
+    fx, fy, mz = ocimf_loads(SQUARE, RHO_AIR, flow_from(45.0, 10.0), area_front=100.0,
+                             area_side=400.0, length=50.0)
+    q = 0.5 * 1.225 * 10.0 ** 2  # 61.25 Pa
+    assert fx == pytest.approx(q * 100.0 * -0.5, rel=1e-12)  # -3062.5 N
+    assert fy == pytest.approx(q * 400.0 * -0.4, rel=1e-12)  # -9800 N
+    assert mz == pytest.approx(q * 400.0 * 50.0 * 0.05, rel=1e-12)  # 61250 N m
+    assert (fx, fy, mz) == pytest.approx((-3062.5, -9800.0, 61250.0), rel=1e-12)
+    # theta = 150 (from the port quarter): 2/3 of the way from 90 to 180
+    cx, cy, cmz = SQUARE.at(150.0)
+    assert (cx, cy, cmz) == pytest.approx((1.0 / 3.0, -0.8 / 3.0, -0.2 / 3.0), rel=1e-12)
+
+
+def test_wrap_around_between_the_last_and_the_first_row():
+    table = CoefficientTable(angles_deg=[10.0, 120.0, 250.0, 350.0],
+                             cx=[1.0, 2.0, 3.0, 5.0],
+                             cy=[-2.0, 0.0, 0.0, 2.0],
+                             cmz=[0.4, 0.0, 0.0, 0.0])
+    # 0 deg is halfway between 350 (5, 2, 0) and 370 = 10 (1, -2, 0.4)
+    assert table.at(0.0) == pytest.approx((3.0, 0.0, 0.2), rel=1e-12)
+    # 355 = 1/4 of the way from 350 to 370; -5 and 715 are the same direction
+    for theta in (355.0, -5.0, 715.0):
+        assert table.at(theta) == pytest.approx((4.0, 1.0, 0.1), rel=1e-12)
+    # 5 = 3/4 of the way; 365 is the same direction
+    for theta in (5.0, 365.0):
+        assert table.at(theta) == pytest.approx((2.0, -1.0, 0.3), rel=1e-12)
+    # on a row, its own values
+    assert table.at(250.0) == (3.0, 0.0, 0.0)
+    # the loads follow the wrapped coefficients through the formula
+    fx, fy, mz = ocimf_loads(table, 1025.0, flow_from(0.0, 2.0), 10.0, 20.0, 30.0)
+    q = 0.5 * 1025.0 * 4.0
+    assert (fx, fy, mz) == pytest.approx((q * 10.0 * 3.0, 0.0, q * 20.0 * 30.0 * 0.2),
+                                         rel=1e-12, abs=1e-9)
+
+
+def test_a_table_listing_0_and_360_closes_once():
+    table = CoefficientTable(angles_deg=[0.0, 180.0, 360.0], cx=[-1.0, 1.0, -1.0],
+                             cy=[0.0, 0.0, 0.0], cmz=[0.0, 0.0, 0.0])
+    assert table.at(270.0)[0] == pytest.approx(0.0, abs=1e-15)
+    assert table.at(90.0)[0] == pytest.approx(0.0, abs=1e-15)
+    assert table.at(360.0)[0] == -1.0
+    with pytest.raises(ValueError, match='same direction'):
+        CoefficientTable(angles_deg=[0.0, 180.0, 360.0], cx=[-1.0, 1.0, -0.9],
+                         cy=[0.0, 0.0, 0.0], cmz=[0.0, 0.0, 0.0])
+
+
+def test_loads_are_vectorised_over_velocities():
+    velocities = np.array([flow_from(theta, speed) for theta, speed in
+                           [(0.0, 1.0), (30.0, 5.0), (200.0, 12.0), (300.0, 0.5)]])
+    fx, fy, mz = ocimf_loads(SQUARE, RHO_AIR, velocities, 100.0, 400.0, 50.0)
+    assert fx.shape == fy.shape == mz.shape == (4,)
+    for index, velocity in enumerate(velocities):
+        single = ocimf_loads(SQUARE, RHO_AIR, velocity, 100.0, 400.0, 50.0)
+        assert (fx[index], fy[index], mz[index]) == pytest.approx(single, rel=1e-14)
+    # loads go with the square of the speed
+    doubled = ocimf_loads(SQUARE, RHO_AIR, 2.0 * velocities, 100.0, 400.0, 50.0)
+    np.testing.assert_allclose(doubled[1], 4.0 * fy, rtol=1e-14)
+
+
+# ---------------------------------------------------------------------- bad input
+
+
+@pytest.mark.parametrize('kwargs, match', [
+    (dict(angles_deg=[0.0, 90.0, 90.0], cx=[0, 0, 0], cy=[0, 0, 0], cmz=[0, 0, 0]),
+     'strictly increasing'),
+    (dict(angles_deg=[0.0, 200.0, 370.0], cx=[0, 0, 0], cy=[0, 0, 0], cmz=[0, 0, 0]),
+     'span at most 360'),
+    (dict(angles_deg=[0.0, 90.0], cx=[0, 0, 0], cy=[0, 0], cmz=[0, 0]), 'cx has 3 rows'),
+    (dict(angles_deg=[0.0, 90.0], cx=[0, math.nan], cy=[0, 0], cmz=[0, 0]), 'cx must hold'),
+    (dict(angles_deg=[0.0], cx=[0], cy=[0], cmz=[0]), 'at least 2 rows'),
+])
+def test_bad_tables_are_refused(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        CoefficientTable(**kwargs)
+
+
+@pytest.mark.parametrize('argument, value', [
+    ('density', 0.0), ('density', -1.0), ('density', math.nan), ('area_front', 0.0),
+    ('area_side', math.inf), ('length', -5.0)])
+def test_bad_load_arguments_are_refused(argument, value):
+    kwargs = dict(density=RHO_AIR, area_front=1.0, area_side=1.0, length=1.0)
+    kwargs[argument] = value
+    with pytest.raises(ValueError, match=argument):
+        ocimf_loads(SQUARE, relative_velocity_body_xy=(1.0, 0.0), **kwargs)
+
+
+def test_bad_velocities_are_refused():
+    with pytest.raises(ValueError, match='relative_velocity_body_xy'):
+        ocimf_loads(SQUARE, RHO_AIR, (math.nan, 0.0), 1.0, 1.0, 1.0)
+    with pytest.raises(ValueError, match='relative_velocity_body_xy'):
+        ocimf_loads(SQUARE, RHO_AIR, (1.0, 0.0, 0.0), 1.0, 1.0, 1.0)
+
+
+# ---------------------------------------------------------------------- the CSV reader
+
+
+GOOD_CSV = """\
+# a comment
+angle_deg,cx,cy,cmz
+0,-1.0,0.0,0.1
+
+90,0.0,-0.8,0.0
+# a comment between rows
+180,0.5,0.0,-0.1
+270,0.0,0.8,0.0
+"""
+
+
+def test_parse_reads_rows_and_skips_comments():
+    table = parse_coefficient_csv(GOOD_CSV, 'good.csv')
+    np.testing.assert_array_equal(table.angles_deg, [0.0, 90.0, 180.0, 270.0])
+    np.testing.assert_array_equal(table.cy, [0.0, -0.8, 0.0, 0.8])
+    assert table.at(45.0) == SQUARE.at(45.0)
+    # column order is free, extra columns are ignored
+    shuffled = 'cmz,source,cy,cx,angle_deg\n0.1,a,0,-1,0\n0,b,-0.8,0,90\n'
+    other = parse_coefficient_csv(shuffled, 'shuffled.csv')
+    np.testing.assert_array_equal(other.cx, [-1.0, 0.0])
+    np.testing.assert_array_equal(other.cmz, [0.1, 0.0])
+
+
+@pytest.mark.parametrize('text, line, column, words', [
+    ('# c\nangle_deg,cx,cmz\n0,1,2\n', 2, 'cy', 'missing column'),
+    ('angle_deg,cx,cy,cmz\n0,1,2,3\n90,1,x,3\n', 3, 'cy', "'x' is not a number"),
+    ('angle_deg,cx,cy,cmz\n0,1,2,3\n90,1,2,nan\n', 3, 'cmz', 'not finite'),
+    ('angle_deg,cx,cy,cmz\n0,1,2,3\n\n0,1,2,3\n', 4, 'angle_deg', 'does not increase'),
+    ('angle_deg,cx,cy,cmz\n0,1,2,3\n90,1,2\n', 3, 'cy', '3 fields'),
+    ('angle_deg,cx,cy,cmz\n0,1,2,3\n200,1,2,3\n361,1,2,3\n', 4, 'angle_deg', 'span'),
+    ('angle_deg,cx,cy,cmz\n0,1,2,3\n', 1, 'angle_deg', 'at least 2 data rows'),
+    ('# only comments\n\n', 1, 'angle_deg', 'no header'),
+])
+def test_parse_errors_name_file_line_and_column(text, line, column, words):
+    with pytest.raises(CoefficientFileError) as caught:
+        parse_coefficient_csv(text, 'config/ship/bad.csv')
+    message = str(caught.value)
+    assert isinstance(caught.value, ValueError)
+    assert message.startswith(f'config/ship/bad.csv: line {line}, column {column}: ')
+    assert words in message
+    assert '\n' not in message
+
+
+# ---------------------------------------------------------------------- the shipped table
+
+
+def test_shipped_wind_table_is_the_output_of_its_script():
+    assert WIND_TABLE.read_text() == load_wind_script().csv_text()
+
+
+def test_shipped_wind_table_signs():
+    table = shipped_wind_table()
+    # a head wind pushes the ship astern
+    cx, cy, cmz = table.at(0.0)
+    assert cx == pytest.approx(-0.90, abs=1e-12)  # -CD_l,AF(0) of Blendermann's tanker
+    assert cy == 0.0 and cmz == 0.0
+    # a beam wind from port pushes it to starboard: F_y < 0
+    fx, fy, mz = ocimf_loads(table, RHO_AIR, flow_from(90.0, 20.0), area_front=1000.0,
+                             area_side=5000.0, length=320.0)
+    assert fy == pytest.approx(0.5 * 1.225 * 400.0 * 5000.0 * -0.70, rel=1e-12)  # CD_t 0.70
+    assert fy < 0.0
+    assert fx == pytest.approx(0.0, abs=1e-9) and mz == pytest.approx(0.0, abs=1e-9)
+    # from starboard the other way; from astern the push is forward (CD_l,AF(180) = 0.55)
+    assert table.at(270.0)[1] == pytest.approx(0.70, abs=1e-12)
+    assert table.at(180.0)[0] == pytest.approx(0.55, abs=1e-12)
+    # a wind from the port bow turns the bow to starboard (negative yaw moment, z up)
+    assert table.at(30.0)[2] < 0.0
+
+
+def test_shipped_wind_table_is_port_starboard_symmetric():
+    table = shipped_wind_table()
+    angles = np.arange(0.0, 360.0, 5.0)
+    cx, cy, cmz = table.at(angles)
+    mirror = table.at(360.0 - angles)
+    np.testing.assert_allclose(mirror[0], cx, atol=1e-12)
+    np.testing.assert_allclose(mirror[1], -cy, atol=1e-12)
+    np.testing.assert_allclose(mirror[2], -cmz, atol=1e-12)
+
+
+def test_wind_script_reproduces_blendermann_at_a_row_by_hand():
+    # theta = 40 deg, the script's constants: CD_t 0.70, CD_l,AF 0.90, delta 0.40,
+    # A_F/A_L = 58/320, s_L = 0, converted with cy = -CY and cmz = -CN.
+    gamma = math.radians(40.0)
+    den = 1.0 - 0.5 * 0.40 * (1.0 - 0.90 * (58.0 / 320.0) / 0.70) * math.sin(2 * gamma) ** 2
+    cx = -0.90 * math.cos(gamma) / den
+    cy = -(0.70 * math.sin(gamma) / den)
+    cmz = (0.0 - 0.18 * (gamma - math.pi / 2)) * cy
+    assert shipped_wind_table().at(40.0) == pytest.approx((cx, cy, cmz), abs=5e-7)
+    assert (cx, cy, cmz) == pytest.approx((-0.809931, -0.528588, -0.083030), abs=5e-7)
+
+
+# ---------------------------------------------------------------------- a published example
+
+
+def test_ufc_4_159_03_table_4_6_transverse_current_on_ffg7():
+    # UFC 4-159-03 "Design: Moorings" (US DoD, 3 October 2005), section 4-5.1, Table 4-6
+    # (page 87): transverse current force on an FFG-7 for a current of 1.5 m/s on the beam,
+    # for five ratios of draft to water depth T/d. The force is 1/2 rho V^2 L_wL T C_yc
+    # (the OCIMF form with A_L = L_wL T) and C_yc = C0 + (C1 - C0) (T/d)^K, with C1 = 3.2 and
+    # K = 2 (its equation 11). The ship's L_wL and C0 are on a page not read for this work,
+    # so they are fitted to the deepest and the shallowest rows; the three rows between are
+    # then predictions, and must match the published forces to their printed digits.
+    published = {0.096: 0.55e6, 0.288: 0.66e6, 0.576: 1.03e6, 0.72: 1.30e6, 0.96: 1.90e6}
+    deep, shallow = 0.096, 0.96
+    ratio = published[shallow] / published[deep]
+    c0 = 3.2 * (ratio * deep ** 2 - shallow ** 2) / ((1 - shallow ** 2) - ratio * (1 - deep ** 2))
+    assert c0 == pytest.approx(0.8514, abs=1e-4)
+
+    def c_yc(t_over_d):
+        return c0 + (3.2 - c0) * t_over_d ** 2
+
+    rho, speed = 1025.0, 1.5
+    area = published[deep] / (0.5 * rho * speed ** 2 * c_yc(deep))  # L_wL T [m^2]
+    # the fitted area is the FFG-7's: T = 0.096 * 45.7 m = 4.39 m, so L_wL = 124.5 m
+    assert area == pytest.approx(546.3, abs=0.1)
+    assert area / (0.096 * 45.7) == pytest.approx(124.5, abs=0.1)
+    for t_over_d, force in published.items():
+        # a current from port (theta = 90) pushes to starboard: C_y(90) = -C_yc
+        table = CoefficientTable(angles_deg=[0.0, 90.0, 180.0, 270.0],
+                                 cx=[0.0, 0.0, 0.0, 0.0],
+                                 cy=[0.0, -c_yc(t_over_d), 0.0, c_yc(t_over_d)],
+                                 cmz=[0.0, 0.0, 0.0, 0.0])
+        fx, fy, mz = ocimf_loads(table, rho, flow_from(90.0, speed), area_front=area,
+                                 area_side=area, length=area / 4.39)
+        assert fy < 0.0
+        # published to 0.01 MN
+        assert -fy == pytest.approx(force, abs=0.005e6)
