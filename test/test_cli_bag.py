@@ -244,8 +244,9 @@ def encoded(ns, frame_id, points, force, lever) -> dict:
         fairlead_peaks=np.zeros(1), fairlead_tensions=np.zeros(1),
         bollard_tensions=np.zeros(1), bollard_peaks=np.zeros(1), line_lengths=np.zeros(1),
         winch_speeds=np.zeros(1))
+    # the ship at the origin, unturned: the fairlead's offset is its lever
     published = Published(ns, output, np.zeros(3), np.array([0.0, 0.0, 0.0, 1.0]),
-                          np.array([lever]), zeros, np.zeros(3), np.zeros(3), None)
+                          np.array([lever]), zeros, None)
     encoder = OutputEncoder(topics.LINE_NODE, [''], [False], frame_id)
     return dict(encoder.messages(published, [topics.PARTICLES, topics.FAIRLEAD_TENSION]))
 

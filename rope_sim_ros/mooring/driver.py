@@ -51,11 +51,11 @@ from collections import deque
 from dataclasses import dataclass, field
 import json
 import math
-from typing import Any, Dict, List, NamedTuple, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .mooring import Mooring, mooring_wrench, MooringAdvance, MooringOutput, to_world
+from .mooring import Mooring, mooring_wrench, MooringAdvance, MooringOutput
 from ..model.frames import rotation_matrix
 from ..params.arrangement import ArrangementParams
 from ..params.table import ParameterError
@@ -89,36 +89,69 @@ def decode_event(text: str) -> Dict[str, Any]:
     return event
 
 
-class Published(NamedTuple):
+class Published:
     """
-    One output of the mooring.
+    One output of the mooring; its levers and wrench are worked out when first asked for.
 
     :ivar stamp_ns: its stamp [ns] (epoch + simulated time).
     :ivar output: the lines' state (output.t is the simulated time [s]).
     :ivar ship_position: the ship pose's origin at the output [m] (see the module docstring).
     :ivar ship_orientation: its unit quaternion (x, y, z, w).
-    :ivar fairlead_levers: each fairlead minus the ship's origin, in frame_id axes (L, 3) [m]:
-        the torque arm of its force.
     :ivar bollard_levers: each bollard minus its pose's origin (L, 3) [m] (zeros: a fixed
         bollard).
-    :ivar force: total force of the lines on the ship, body frame (3,) [N].
-    :ivar moment: their total moment about the ship's origin, body frame (3,) [N m].
     :ivar advance: the Mooring advance that reached it; None for a fresh output.
     """
 
-    stamp_ns: int
-    output: MooringOutput
-    ship_position: np.ndarray
-    ship_orientation: np.ndarray
-    fairlead_levers: np.ndarray
-    bollard_levers: np.ndarray
-    force: np.ndarray
-    moment: np.ndarray
-    advance: Optional[MooringAdvance]
+    __slots__ = ('stamp_ns', 'output', 'ship_position', 'ship_orientation', 'bollard_levers',
+                 'advance', '_offsets', '_rotation', '_wrench')
+
+    def __init__(self, stamp_ns: int, output: MooringOutput, ship_position: np.ndarray,
+                 ship_orientation: np.ndarray, offsets: np.ndarray, bollard_levers: np.ndarray,
+                 advance: Optional[MooringAdvance]):
+        """Keep an output and what its levers and wrench are made from."""
+        self.stamp_ns = stamp_ns
+        self.output = output
+        self.ship_position = ship_position
+        self.ship_orientation = ship_orientation
+        self.bollard_levers = bollard_levers
+        self.advance = advance
+        self._offsets = offsets
+        self._rotation = None
+        self._wrench = None
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """Return the ship's orientation as a rotation matrix R (body to frame_id axes)."""
+        if self._rotation is None:
+            self._rotation = rotation_matrix(self.ship_orientation)
+        return self._rotation
+
+    @property
+    def fairlead_levers(self) -> np.ndarray:
+        """Return each fairlead minus the ship's origin in frame_id axes (L, 3) [m]."""
+        return self._offsets @ self.rotation.T
+
+    def _body_wrench(self) -> Tuple[np.ndarray, np.ndarray]:
+        if self._wrench is None:
+            self._wrench = mooring_wrench(self.output.fairlead_forces, self._offsets,
+                                          self.rotation)
+        return self._wrench
+
+    @property
+    def force(self) -> np.ndarray:
+        """Return the total force of the lines on the ship, body frame (3,) [N]."""
+        return self._body_wrench()[0]
+
+    @property
+    def moment(self) -> np.ndarray:
+        """Return their total moment about the ship's origin, body frame (3,) [N m]."""
+        return self._body_wrench()[1]
 
     def world_wrench(self) -> tuple:
         """Return the force and the moment about the ship's origin in frame_id axes."""
-        return to_world(self.ship_orientation, self.force, self.moment)
+        rotation = self.rotation
+        force, moment = self._body_wrench()
+        return rotation @ force, rotation @ moment
 
 
 @dataclass
@@ -365,10 +398,10 @@ class Driver:
         out = mooring.output()
         position, orientation = mooring.ship_pose(out.t)
         mooring.forget_ship()
-        offsets = mooring.offsets
-        force, moment = mooring_wrench(out.fairlead_forces, offsets, orientation)
         bollard_levers = self._bollard_levers_at(out.t)
-        if not (out.finite() and math.isfinite(float(force.sum()) + float(moment.sum()))):
+        # the levers and the wrench are made of the forces, the offsets and the pose: finite
+        # with them
+        if not out.finite:
             mooring.restart()
             self._fresh = True
             report.faults.append(out.t)
@@ -376,9 +409,8 @@ class Driver:
         if self._fresh:  # (re)started ropes: the next outputs are due from here
             self._fresh = False
             self._origin, self._count = out.t, 0
-        report.outputs.append(Published(
-            self.stamp_ns(out.t), out, position, orientation,
-            offsets @ rotation_matrix(orientation).T, bollard_levers, force, moment, advance))
+        report.outputs.append(Published(self.stamp_ns(out.t), out, position, orientation,
+                                        mooring.offsets, bollard_levers, advance))
 
     def _bollard_levers_at(self, t: float) -> np.ndarray:
         """Return each bollard's lever at time t (its newest sample's at or before it)."""

@@ -86,7 +86,7 @@ END_BLEND_TIME = 1.0  # see trajectory.py for what it costs
 
 
 def mooring_wrench(fairlead_forces: np.ndarray, offsets: np.ndarray,
-                   orientation: Sequence[float]) -> Tuple[np.ndarray, np.ndarray]:
+                   orientation) -> Tuple[np.ndarray, np.ndarray]:
     """
     Return the total force and moment of the lines on the ship, in its body frame.
 
@@ -94,10 +94,13 @@ def mooring_wrench(fairlead_forces: np.ndarray, offsets: np.ndarray,
 
     :param fairlead_forces: force of each line on its fairlead (L, 3) [N], in frame_id.
     :param offsets: each fairlead in the ship's body frame (L, 3) [m].
-    :param orientation: the ship's orientation (x, y, z, w), a unit quaternion.
+    :param orientation: the ship's orientation: a unit quaternion (x, y, z, w), or its
+        rotation matrix R (3, 3).
     """
-    body = np.asarray(fairlead_forces, dtype=float).reshape(-1, 3) @ rotation_matrix(
-        orientation)  # R^T F, row by row
+    rotation = np.asarray(orientation, dtype=float)
+    if rotation.shape != (3, 3):
+        rotation = rotation_matrix(rotation)
+    body = np.asarray(fairlead_forces, dtype=float).reshape(-1, 3) @ rotation  # R^T F
     moments = cross_rows(np.asarray(offsets, dtype=float).reshape(-1, 3), body)
     return body.sum(axis=0), moments.sum(axis=0)
 
@@ -113,17 +116,6 @@ def divide_run(start: float, times: Sequence[float], parts: int) -> np.ndarray:
     """Return the times of the steps from start to times' last, each of times' cut in parts."""
     count = len(times) * parts
     return start + (times[-1] - start) * np.arange(1, count + 1) / count
-
-
-def take_peaks(system: System) -> np.ndarray:
-    """
-    Return the lines' peak end tensions since the previous output, (L, 2) [N]; clear them.
-
-    Every step's largest (System.take_peaks), and the tension now: an output's peak is never
-    below its own tension.
-    """
-    forces = system.loads()[0]
-    return np.maximum(system.take_peaks(), np.sqrt((forces * forces).sum(axis=2)))
 
 
 @dataclass(frozen=True)
@@ -145,6 +137,7 @@ class MooringOutput:
     :ivar bollard_peaks: each line's largest bollard (or payload) tension likewise (L,) [N].
     :ivar line_lengths: each line's unstretched length now (L,) [m] (its winch changes it).
     :ivar winch_speeds: the speed each line's winch paid out at in the last step (L,) [m/s].
+    :ivar finite: every number of the output is finite (their sum is: an overflow is not).
     """
 
     t: float
@@ -160,19 +153,12 @@ class MooringOutput:
     bollard_peaks: np.ndarray
     line_lengths: np.ndarray
     winch_speeds: np.ndarray
+    finite: bool = True
 
     @property
     def peaks(self) -> np.ndarray:
         """Return each line's largest tension at either end since the previous output (L,)."""
         return np.maximum(self.fairlead_peaks, self.bollard_peaks)
-
-    def finite(self) -> bool:
-        """Tell whether every number of the output is a finite one (their sum is)."""
-        total = (float(np.concatenate(self.positions).sum()) + float(self.fairlead_forces.sum())
-                 + float(self.bollard_forces.sum()) + float(self.fairlead_peaks.sum())
-                 + float(self.bollard_peaks.sum()) + float(self.line_lengths.sum())
-                 + sum(float(p.sum()) for p in self.payload_positions if p is not None))
-        return math.isfinite(total)
 
 
 @dataclass(frozen=True)
@@ -256,6 +242,8 @@ class _Group:
         self.rules: Optional[GroupRules] = None
         self.fine = np.empty(len(members))  # scratch: each line's fine step
         self.plan = (None, None)  # how its ends are driven (Mooring._drive_plan)
+        self.index = np.array(members, dtype=np.int64)  # members, to index arrays with
+        self.winches = (None, [])  # (j, k) of its lines with a winch, and of when
 
 
 class Mooring:
@@ -287,6 +275,7 @@ class Mooring:
         self._history = history
         self.compiled = compiled
         self.lines = [self._line(setup.name, setup.params) for setup in arrangement.lines]
+        self._payloads = [line.payload for line in self.lines]
         self.time = math.nan
         # ship poses (t, position, unit quaternion): the newest at or before an output
         # gives its orientation (the fairleads' levers and the wrench's rotation)
@@ -589,10 +578,11 @@ class Mooring:
             drive_v[:, 2 * j:2 * j + 2] = velocities
         if len(shared):
             beyond = drive_lines(drive_x, drive_v, distances, *self._fairleads.sample(times),
-                                 shared, bollards, reach[shared[:, 0]])
-            for j, _ in shared[beyond]:
-                hold_beyond_reach(drive_x[:, 2 * j:2 * j + 2], drive_v[:, 2 * j:2 * j + 2],
-                                  distances[:, j], reach[j])
+                                 shared, bollards, reach)
+            if beyond.any():
+                for j, _ in shared[beyond]:
+                    hold_beyond_reach(drive_x[:, 2 * j:2 * j + 2],
+                                      drive_v[:, 2 * j:2 * j + 2], distances[:, j], reach[j])
         return drive_x, drive_v, distances
 
     def _drive_plan(self, group: _Group) -> tuple:
@@ -627,7 +617,7 @@ class Mooring:
         late samples then moved the trajectory under the rope. The offline runner's ends are
         always on their trajectories: its numbers never change here.
         """
-        if not self._off_track[group.members].any():
+        if not self._off_track[group.index].any():
             return  # the common case, and the offline runner's only one
         for j, k in enumerate(group.members):
             if not self._off_track[k]:
@@ -788,7 +778,7 @@ class Mooring:
     def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
         """Take the steps of one group to `times`: held at the reach, back within it."""
         drive_x, drive_v, distances = self._drive_group(group, times)
-        held = self.held[group.members]
+        held = self.held[group.index]
         beyond = distances > group.rules.reach
         if not (beyond.any() or held.any()):  # the common case
             self._step(group, times, drive_x, drive_v, done)
@@ -811,7 +801,7 @@ class Mooring:
             if i + 1 < len(times):
                 self._advance_group(group, times[i + 1:], done)
             return
-        self.held[group.members] = beyond[-1]
+        self.held[group.index] = beyond[-1]
         self._step(group, times, drive_x, drive_v, done)
 
     def _step(self, group: _Group, times: np.ndarray, drive_x: np.ndarray,
@@ -870,12 +860,15 @@ class Mooring:
                     done: MooringAdvance) -> None:
         """Take in what a run of steps of dt from the group's time did: lengths, partings."""
         changed = False
-        for j, k in enumerate(group.members):
+        if group.winches[0] != self._ends_version:  # (parameters changed: a winch mode)
+            group.winches = (self._ends_version, [
+                (j, k) for j, k in enumerate(group.members)
+                if self.lines[k].params.winch_mode != 'none'])
+        for j, k in group.winches[1]:
             line = self.lines[k]
-            if line.params.winch_mode != 'none':
-                length = group.system.unstretched_length(j)
-                changed |= length != line.length
-                line.length = length
+            length = group.system.unstretched_length(j)
+            changed |= length != line.length
+            line.length = length
         for j, at in parted:
             k = group.members[j]
             line = self.lines[k]
@@ -987,28 +980,44 @@ class Mooring:
         The peaks are those since the previous output (this call clears them).
         """
         count = len(self.lines)
-        forces, strains = np.empty((count, 2, 3)), np.empty(count)
-        peaks = np.empty((count, 2))
-        winch_speeds = np.empty(count)
+        single = len(self.groups) == 1
         positions: List[Optional[np.ndarray]] = [None] * count
         payloads: List[Optional[np.ndarray]] = [None] * count
+        if not single:
+            forces, strains = np.empty((count, 2, 3)), np.empty(count)
+            tensions, peaks = np.empty((count, 2)), np.empty((count, 2))
+            winch_speeds = np.empty(count)
+        total = 0.0
         for group in self.groups:
             system = group.system
-            forces[group.members], strains[group.members] = system.loads()
-            peaks[group.members] = take_peaks(system)
+            members = group.members
+            group_forces, group_strains = system.loads()
+            group_tensions = np.sqrt((group_forces * group_forces).sum(axis=2))
+            # every step's largest, and the tension now: never below its own tension
+            group_peaks = np.maximum(system.take_peaks(), group_tensions)
             x = system.x.copy()  # one copy; each line's particles are a view of it
-            winch_speeds[group.members] = system.line_real[:, WINCH_SPEED]
-            for j, k in enumerate(group.members):
-                positions[k] = x[group.starts[j]:group.starts[j + 1]]
-                if self.lines[k].payload:
+            total += float(x.sum()) + float(group_forces.sum()) + float(group_peaks.sum())
+            if single:
+                forces, strains, tensions, peaks = (group_forces, group_strains,
+                                                    group_tensions, group_peaks)
+                winch_speeds = system.line_real[:, WINCH_SPEED].copy()
+            else:
+                forces[members], strains[members] = group_forces, group_strains
+                tensions[members], peaks[members] = group_tensions, group_peaks
+                winch_speeds[members] = system.line_real[:, WINCH_SPEED]
+            starts = group.starts
+            for j, k in enumerate(members):
+                positions[k] = x[starts[j]:starts[j + 1]]
+                if self._payloads[k]:
                     payloads[k] = system.point_x[system.lines[j].ends[0]].copy()
-        tensions = np.sqrt((forces * forces).sum(axis=2))
+                    total += float(payloads[k].sum())
         parted = np.array([line.parting is not None for line in self.lines])
         lengths = np.array([line.length for line in self.lines])
+        total += float(lengths.sum())
         return MooringOutput(
             self.time, tuple(positions), forces[:, 1], forces[:, 0], strains, tuple(payloads),
             parted, peaks[:, 1], tensions[:, 1], tensions[:, 0], peaks[:, 0], lengths,
-            winch_speeds)
+            winch_speeds, math.isfinite(total))
 
 
 def hold_beyond_reach(ends: np.ndarray, velocities: np.ndarray, distance: np.ndarray,

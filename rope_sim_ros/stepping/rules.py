@@ -306,7 +306,7 @@ def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bol
 
     :param shared: (j, k) of each such line: its line in the System (points 2 j, 2 j + 1),
         its column of fairlead_x, fairlead_v (n, K, 3); its bollard (3,) is in bollards.
-    :param reach: each one's reach [m].
+    :param reach: the reach [m] of every line of the System (L,), by j.
     :returns: which of them are beyond their reach at some step (to be held there).
     """
     beyond = np.zeros(len(shared), dtype=np.bool_)
@@ -319,7 +319,7 @@ def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bol
             drive_v[n, 2 * j + 1] = fairlead_v[n, k]
         apart = end_distances(drive_x[:, 2 * j:2 * j + 2])
         distances[:, j] = apart
-        beyond[i] = apart.max() > reach[i]
+        beyond[i] = apart.max() > reach[j]
     return beyond
 
 
