@@ -25,10 +25,11 @@ Two sets of lines: sixteen 64 mm polyester lines, and a mix (64 mm polyester hea
 lines, 64 mm nylon breasts, 44 mm HMPE springs, whose stiffness asks for a shorter step).
 For each, CPU seconds per simulated second (one core = 100 %) of:
 
-- the mooring's simulation as its node runs it (mooring_driver.MooringDriver: every line
-  in one process, one kernel call per step group);
-- the same sixteen lines as sixteen single-line drivers (line_driver.LineDriver) in one
-  process: what sixteen mooring_line nodes simulate, without their ROS overhead;
+- the mooring's simulation as its node runs it (mooring.driver.Driver: every line in one
+  process, one kernel call per step group);
+- the same sixteen lines as sixteen single-line drivers (a Driver of a mooring of one line,
+  params.arrangement.single_line, each) in one process, fed the same ship poses: what
+  sixteen mooring_line nodes simulate, without their ROS overhead;
 - MoorDyn 2.7.2 with the same sixteen lines in one system (its RK2 at a quarter of the
   stiffest line's segment wave time, coupled every 10 ms), over a shorter run.
 
@@ -57,10 +58,10 @@ import time
 
 import installed_node
 import numpy as np
-from rope_sim_ros.line_driver import FAIRLEAD, LineDriver
 from rope_sim_ros.model.frames import pose_point
-from rope_sim_ros.mooring_driver import MooringDriver
+from rope_sim_ros.mooring.driver import Driver
 from rope_sim_ros.params import arrangement
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import SPECS
 
 RATE = 100.0  # ship poses and outputs per second
@@ -112,7 +113,7 @@ def run_mooring(values: dict, duration: float, paced: bool = False) -> tuple:
 
     :param paced: take each pose at its time on the wall clock, as a live node does.
     """
-    driver = MooringDriver(arrangement.from_values(values), rate=RATE)
+    driver = Driver(arrangement.from_values(values), rate=RATE)
     outputs = 0
     cpu = 0.0
     for i in range(int(round(duration * RATE)) + 1):
@@ -128,8 +129,13 @@ def run_mooring(values: dict, duration: float, paced: bool = False) -> tuple:
 
 
 def run_separate(setup, duration: float, paced: bool = False) -> float:
-    """Return CPU seconds of the same lines as single-line drivers, each fed its fairlead."""
-    drivers = [LineDriver(line.params, rate=RATE) for line in setup.lines]
+    """
+    Return CPU seconds of the same lines as single-line drivers, each fed the ship's poses.
+
+    Each line's fairlead is the pose ⊕ its fairlead_offset, the very point the mooring's
+    driver gives it; its length the one the mooring chose for its pretension.
+    """
+    drivers = [Driver(single_line(line.params), rate=RATE) for line in setup.lines]
     cpu = 0.0
     for i in range(int(round(duration * RATE)) + 1):
         t = i / RATE
@@ -139,8 +145,7 @@ def run_separate(setup, duration: float, paced: bool = False) -> float:
         if paced and i:
             _wait_until(start + t)
         for driver in drivers:
-            point = pose_point(position, orientation, driver.params.fairlead_offset)
-            driver.push(FAIRLEAD, T0 + round(t * 1e9), point.point, point.lever)
+            driver.push_ship(T0 + round(t * 1e9), position, orientation)
             driver.advance(math.inf, max_lag=math.inf)
     return time.process_time() - cpu
 
@@ -172,26 +177,26 @@ def _quiet():
             os.close(saved)
 
 
-def run_moordyn(driver: MooringDriver, duration: float) -> tuple:
+def run_moordyn(driver: Driver, duration: float) -> tuple:
     """Return MoorDyn's wall seconds over `duration`, its init seconds and its step."""
     import moordyn  # a benchmark dependency only
-    sims = driver.mooring.sims
+    lines = driver.mooring.lines  # (their lengths the ones chosen for their pretensions)
     depth = np.array([0.0, 0.0, -100.0])  # MoorDyn's water surface is z = 0: lift the air
-    types, points, lines = [], [], []
+    types, points, rows = [], [], []
     position, orientation = ship_pose(0.0)
-    for k, sim in enumerate(sims):
-        p = sim.props
+    for k, line in enumerate(lines):
+        p = line.props
         types.append(f'type{k} {p.diameter} {p.mass_per_length} {p.axial_stiffness} '
                      f'{p.axial_damping} 0.0 {p.normal_drag} {p.normal_added_mass} '
                      f'{p.tangential_drag} {p.tangential_added_mass}')
-        bollard = np.asarray(sim.params.bollard_position) + depth
-        fairlead = pose_point(position, orientation, sim.params.fairlead_offset).point + depth
+        bollard = np.asarray(line.params.bollard_position) + depth
+        fairlead = pose_point(position, orientation, line.params.fairlead_offset).point + depth
         points.append(f'{2 * k + 1} Fixed {bollard[0]} {bollard[1]} {bollard[2]} 0 0 0 0')
         points.append(f'{2 * k + 2} Coupled {fairlead[0]} {fairlead[1]} {fairlead[2]} 0 0 0 0')
-        lines.append(f'{k + 1} type{k} {2 * k + 1} {2 * k + 2} {p.length} {p.segments} -')
-    step = min(0.25 * sim.props.segment_length
-               * math.sqrt(sim.props.mass_per_length / sim.props.axial_stiffness)
-               for sim in sims)
+        rows.append(f'{k + 1} type{k} {2 * k + 1} {2 * k + 2} {p.length} {p.segments} -')
+    step = min(0.25 * line.props.segment_length
+               * math.sqrt(line.props.mass_per_length / line.props.axial_stiffness)
+               for line in lines)
     step = float(f'{step:.1e}')
     text = (MOORDYN_HEAD + '\n'.join(types) + '\n'
             '---------------------- POINT PROPERTIES --------------------------------\n'
@@ -201,7 +206,7 @@ def run_moordyn(driver: MooringDriver, duration: float) -> tuple:
             '---------------------- LINES ----------------------------------------\n'
             'ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs\n'
             '(#)  (name)     (#)      (#)      (m)       (-)      (-)\n'
-            + '\n'.join(lines) + '\n'
+            + '\n'.join(rows) + '\n'
             '---------------------- OPTIONS -----------------------------------------\n'
             f'0 writeLog\n{step} dtM\n9.81 g\n1.225 WtrDnsty\n1000 WtrDpth\nRK2 tScheme\n'
             '0 ICgenDynamic\n1 disableOutput\n1 disableOutTime\n'
@@ -213,11 +218,11 @@ def run_moordyn(driver: MooringDriver, duration: float) -> tuple:
 
         def fairleads(t):
             position, orientation = ship_pose(t)
-            return [c for sim in sims for c in
-                    pose_point(position, orientation, sim.params.fairlead_offset).point + depth]
+            return [c for line in lines for c in
+                    pose_point(position, orientation, line.params.fairlead_offset).point + depth]
 
         start = time.perf_counter()
-        moordyn.Init(system, fairleads(0.0), [0.0] * (3 * len(sims)))
+        moordyn.Init(system, fairleads(0.0), [0.0] * (3 * len(lines)))
         init = time.perf_counter() - start
         coupling = 1.0 / RATE
         start = time.perf_counter()

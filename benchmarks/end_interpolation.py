@@ -28,10 +28,12 @@ import math
 
 import numpy as np
 
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])
+LEVEL = (0.0, 0.0, 0.0, 1.0)  # the ship's orientation: its fairlead is position + offset
 DURATION = 60.0
 OUTPUT = 0.01
 
@@ -48,14 +50,14 @@ def tension(integrator, interpolation, sample_interval):
         segments=20, mass_per_length=25.467341 / 9.81, axial_stiffness=5e7,
         axial_damping=2903.43, bending_stiffness_ratio=0.0, bending_damping_ratio=0.0,
         integrator=integrator, end_interpolation=interpolation))
-    sim = Simulator(params, history=math.inf, output_interval=OUTPUT)
+    mooring = Mooring(single_line(params), history=math.inf, output_interval=OUTPUT)
     for t in np.arange(0.0, DURATION + 2 * sample_interval, sample_interval):
-        sim.push_fairlead(float(t), fairlead(t))
-    sim.start(0.0)
+        mooring.push_ship(float(t), fairlead(t) - params.fairlead_offset, LEVEL)
+    mooring.start(0.0)
     out = []
     for t in np.arange(OUTPUT, DURATION, OUTPUT):
-        sim.advance_to(t)
-        out.append(sim.output().fairlead_tension)
+        mooring.advance_to(t)
+        out.append(mooring.output().fairlead_tensions[0])
     return np.array(out)
 
 

@@ -52,9 +52,10 @@ import rclpy  # noqa: E402
 from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rclpy.qos import QoSProfile  # noqa: E402
 from rclpy.signals import SignalHandlerOptions  # noqa: E402
-from rope_sim_ros.demo import overlay_environment  # noqa: E402
-from rope_sim_ros.params.table import load_params  # noqa: E402
-from rope_sim_ros.simulator import Simulator  # noqa: E402
+from rope_sim_ros.mooring.mooring import Mooring  # noqa: E402
+from rope_sim_ros.offline.demo import overlay_environment  # noqa: E402
+from rope_sim_ros.params.arrangement import single_line  # noqa: E402
+from rope_sim_ros.params.files import load_params  # noqa: E402
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])
 CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
@@ -206,8 +207,9 @@ def main(argv=None) -> int:
         thread.start()
         bench.spin_until(lambda: not thread.is_alive(), args.count / args.rate + 60.0)
         bench.spin_until(lambda: False, 0.5)  # the last outputs
-        time_step = Simulator(line, output_interval=1.0 / line.publish_rate).time_step
-        code = analyse(bench, args.rate, line.publish_rate, time_step)
+        # the node's step: a mooring of its one line, outputs every 1 / publish_rate
+        mooring = Mooring(single_line(line), output_interval=1.0 / line.publish_rate)
+        code = analyse(bench, args.rate, line.publish_rate, mooring.time_step)
     finally:
         bench.node.destroy_node()
         rclpy.try_shutdown(context=context)

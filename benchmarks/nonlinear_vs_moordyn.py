@@ -41,13 +41,15 @@ import time
 import numpy as np
 
 from rope_sim_ros.model.materials import MaterialLibrary
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 DATA = Path(__file__).resolve().parent.parent / 'test' / 'data' / 'winch'
 LINEAR_EA = 1.66054e6  # nonlinear_static.csv's linsec: the secant at the 42 m span
 COUPLING = 1.0e-3
 MOORDYN_STEP = 1.0e-4  # its input file's dtM
+LEVEL = (0.0, 0.0, 0.0, 1.0)  # the ship's orientation: a line's fairlead is position + offset
 
 
 def rows(name):
@@ -80,15 +82,16 @@ def run_ours(reference, nodes, integrator, load_extension):
         bending_damping_ratio=0.0, integrator=integrator, bollard_position=[0.0, 0.0, 0.0]))
     t = reference['t_s']
     start = time.perf_counter()
-    sim = Simulator(params, library(), history=math.inf)
+    mooring = Mooring(single_line(params), library(), history=math.inf)
     for ti, x, z in zip(t, reference['xB_m'], reference['zB_m']):
-        sim.push_fairlead(float(ti), [x, 0.0, z])
-    sim.start(0.0, np.column_stack([nodes['x_m'], nodes['y_m'], nodes['z_m']]))
+        mooring.push_ship(float(ti), np.subtract([x, 0.0, z], params.fairlead_offset), LEVEL)
+    mooring.start(0.0)
+    mooring.place_line(0, np.column_stack([nodes['x_m'], nodes['y_m'], nodes['z_m']]))
     force = []
     for ti in t:
-        sim.advance_to(float(ti))
-        force.append(sim.output().fairlead_tension)
-    return np.array(force), time.perf_counter() - start, sim.time_step
+        mooring.advance_to(float(ti))
+        force.append(mooring.output().fairlead_tensions[0])
+    return np.array(force), time.perf_counter() - start, mooring.time_step
 
 
 @contextlib.contextmanager

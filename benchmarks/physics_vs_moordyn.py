@@ -57,9 +57,10 @@ import time
 import numpy as np
 
 from rope_sim_ros.model.rope import critical_axial_damping
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.materials import load_materials
 from rope_sim_ros.params.table import from_values, INTEGRATORS, MATERIALS
-from rope_sim_ros.simulator import Simulator
 
 FAIRLEAD = np.array([36.0, 0.0, 8.0])
 CHORD = FAIRLEAD / np.linalg.norm(FAIRLEAD)
@@ -69,6 +70,7 @@ GRAVITY = 9.81
 COUPLING = 0.001  # MoorDyn's coupling step
 SAMPLES = 0.01  # our input samples
 OUTPUT = 0.01
+LEVEL = (0.0, 0.0, 0.0, 1.0)  # the ship's orientation: a line's fairlead is position + offset
 
 
 def _case(name):
@@ -80,6 +82,11 @@ def _case(name):
     props = load_materials().properties('hmpe', 0.048)
     ba = critical_axial_damping(LENGTH, props.mass_per_length, props.axial_stiffness)
     return 0.048, props.mass_per_length, props.axial_stiffness, ba
+
+
+def push_fairlead(mooring, t, point):
+    """Give a mooring of one line the ship pose that puts its fairlead at point at time t."""
+    mooring.push_ship(t, np.subtract(point, mooring.lines[0].params.fairlead_offset), LEVEL)
 
 
 def fairlead_motion(t):
@@ -100,23 +107,23 @@ def run_ours(case, segments, integrator, duration):
         air_density=AIR, normal_drag_coefficient=1.2, tangential_drag_coefficient=0.008,
         normal_added_mass_coefficient=1.0, tangential_added_mass_coefficient=0.0,
         volume_diameter=diameter))
-    sim = Simulator(params, output_interval=OUTPUT)
+    mooring = Mooring(single_line(params), output_interval=OUTPUT)
     samples = np.arange(0.0, duration + 2 * SAMPLES, SAMPLES)
     positions = fairlead_motion(samples)
     outputs = np.arange(OUTPUT, duration + 1e-9, OUTPUT)
-    sim.push_fairlead(0.0, positions[0])
-    sim.start(0.0)
+    push_fairlead(mooring, 0.0, positions[0])
+    mooring.start(0.0)
     force = np.empty(len(outputs))
     pushed = 1
     start = time.perf_counter()
     for k, t in enumerate(outputs):
         # samples arrive as in a live stream: up to one sample ahead of the output
         while pushed < len(samples) and samples[pushed] <= t + SAMPLES + 1e-12:
-            sim.push_fairlead(samples[pushed], positions[pushed])
+            push_fairlead(mooring, samples[pushed], positions[pushed])
             pushed += 1
-        sim.advance_to(t)
-        force[k] = sim.output().fairlead_tension
-    return force, time.perf_counter() - start, sim.time_step
+        mooring.advance_to(t)
+        force[k] = mooring.output().fairlead_tensions[0]
+    return force, time.perf_counter() - start, mooring.time_step
 
 
 MOORDYN_INPUT = """--------------------- MoorDyn Input File ------------------------------------
@@ -257,9 +264,9 @@ def surge_params(material, segments=50):
     return from_values(dict(material=material, segments=segments))
 
 
-def run_surge(sims, duration):
+def run_surge(moorings, duration):
     """
-    Drive simulators with a 2 m, 8 s surge (50 Hz samples, 100 Hz outputs); return CPU s.
+    Drive moorings of one line with a 2 m, 8 s surge (50 Hz samples, 100 Hz outputs); CPU s.
 
     Each sample is given two sample periods ahead of the outputs: the cubic end curve between
     two samples needs the one after them, and fed just in time every new sample bent the curve
@@ -268,19 +275,19 @@ def run_surge(sims, duration):
     """
     samples = np.arange(0.0, duration + 0.05, 0.02)
     surge = 2.0 * np.sin(2.0 * np.pi * samples / 8.0) * np.minimum(samples / 8.0, 1.0)
-    for sim, fairlead in sims:
-        sim.push_fairlead(0.0, fairlead)
-        sim.start(0.0)
+    for mooring, fairlead in moorings:
+        push_fairlead(mooring, 0.0, fairlead)
+        mooring.start(0.0)
     pushed = 1
     cpu = time.process_time()
     for t in np.arange(OUTPUT, duration + 1e-9, OUTPUT):
         while pushed < len(samples) and samples[pushed] <= t + 0.04 + 1e-9:
-            for sim, fairlead in sims:
-                sim.push_fairlead(samples[pushed], fairlead + [surge[pushed], 0.0, 0.0])
+            for mooring, fairlead in moorings:
+                push_fairlead(mooring, samples[pushed], fairlead + [surge[pushed], 0.0, 0.0])
             pushed += 1
-        for sim, _ in sims:
-            sim.advance_to(t)
-            sim.output()
+        for mooring, _ in moorings:
+            mooring.advance_to(t)
+            mooring.output()
     return time.process_time() - cpu
 
 
@@ -292,9 +299,9 @@ def presets(duration):
     print('| material | step [s] | CPU s / sim s | real-time factor |')
     print('|---|---|---|---|')
     for material in MATERIALS:
-        sim = Simulator(surge_params(material), output_interval=OUTPUT)
-        cpu = run_surge([(sim, FAIRLEAD)], duration)
-        print(f'| {material} | {sim.time_step:.1e} | {cpu / duration:.4f} | '
+        mooring = Mooring(single_line(surge_params(material)), output_interval=OUTPUT)
+        cpu = run_surge([(mooring, FAIRLEAD)], duration)
+        print(f'| {material} | {mooring.time_step:.1e} | {cpu / duration:.4f} | '
               f'{duration / cpu:.0f} |', flush=True)
     print()
 
@@ -312,14 +319,15 @@ ARRANGEMENT = (  # (name, material, bollard, fairlead): one ship's lines, 50 seg
 
 
 def arrangement(duration):
-    """Eight lines of one ship in one process."""
-    sims = []
+    """Eight lines of one ship in one process, each a mooring of its own."""
+    moorings = []
     for _, material, bollard, fairlead in ARRANGEMENT:
         chord = np.linalg.norm(np.subtract(fairlead, bollard))
         params = from_values(dict(material=material, segments=50, length=1.02 * chord,
                                   bollard_position=list(bollard)))
-        sims.append((Simulator(params, output_interval=OUTPUT), np.array(fairlead)))
-    cpu = run_surge(sims, duration)
+        moorings.append((Mooring(single_line(params), output_interval=OUTPUT),
+                         np.array(fairlead)))
+    cpu = run_surge(moorings, duration)
     print(f'## Arrangement: 8 lines x 50 segments (2 each of polyester, nylon, HMPE, wire), '
           f'{duration:g} s surge, 100 Hz output')
     print()
@@ -336,15 +344,15 @@ def jerk_peak(integrator, step=0.0):
     """Peak fairlead tension [N] and CPU s of the slack polyester line jerked taut."""
     params = from_values(dict(material='polyester', segments=50, integrator=integrator,
                               time_step=step))
-    sim = Simulator(params, output_interval=OUTPUT)
+    mooring = Mooring(single_line(params), output_interval=OUTPUT)
     for t, x in JERK:
-        sim.push_fairlead(t, [x, 0.0, 0.0])
-    sim.start(0.0)
+        push_fairlead(mooring, t, [x, 0.0, 0.0])
+    mooring.start(0.0)
     peak = 0.0
     cpu = time.process_time()
     for t in np.arange(OUTPUT, 2.0, OUTPUT):
-        sim.advance_to(t)
-        peak = max(peak, sim.output().fairlead_peak)  # every step's largest, held
+        mooring.advance_to(t)
+        peak = max(peak, mooring.output().fairlead_peaks[0])  # every step's largest, held
     return peak, time.process_time() - cpu
 
 
@@ -377,17 +385,17 @@ def snatch_peaks(integrator):
         axial_stiffness=1.0e8, axial_damping=2.0 * 0.01 * 50.0 * math.sqrt(6.5e8) / math.pi,
         bending_stiffness_ratio=0.0, bending_damping_ratio=0.0, gravity=[0.0, 0.0, -GRAVITY],
         air_density=0.0, integrator=integrator, parting=False))
-    sim = Simulator(params, history=math.inf)
+    mooring = Mooring(single_line(params), history=math.inf)
     for t in np.arange(0.0, 6.51, 0.001):
         ramped = 0.5 * (1.0 - math.cos(math.pi * t / ramp)) if t < ramp else 1.0
-        sim.push_fairlead(float(t), [0.0, 0.0, amplitude * math.sin(2 * math.pi * t / period)
-                                     * ramped])
-    sim.start(0.0)
+        push_fairlead(mooring, float(t), [0.0, 0.0, amplitude
+                                          * math.sin(2 * math.pi * t / period) * ramped])
+    mooring.start(0.0)
     times = np.array([r['t_s'] for r in _rows('payload_snatch.csv') if r['t_s'] <= 6.5])
     force = []
     for t in times:
-        sim.advance_to(t)
-        force.append(sim.output().fairlead_tension)
+        mooring.advance_to(t)
+        force.append(mooring.output().fairlead_tensions[0])
     force = np.array(force)
     errors = []
     for peak in _rows('payload_snatch_peaks.csv'):
@@ -413,9 +421,9 @@ def snap_load(duration):
     for integrator in INTEGRATORS:
         peak, cpu = jerk_peak(integrator)
         snatches = ' / '.join(f'{100 * e:+.1f} %' for e in snatch_peaks(integrator))
-        sim = Simulator(from_values(dict(material='polyester', segments=50,
-                                         integrator=integrator)), output_interval=OUTPUT)
-        ship = run_surge([(sim, FAIRLEAD)], duration)
+        mooring = Mooring(single_line(from_values(dict(
+            material='polyester', segments=50, integrator=integrator))), output_interval=OUTPUT)
+        ship = run_surge([(mooring, FAIRLEAD)], duration)
         print(f'| {integrator} | {peak:.0f} | {100 * (peak / converged - 1.0):+.1f} % | '
               f'{snatches} | {cpu / 2.0:.3f} | {duration / ship:.0f} |', flush=True)
     print(f'\nConverged jerk peak: {converged:.0f} N.')

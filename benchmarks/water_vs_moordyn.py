@@ -55,8 +55,9 @@ import time
 
 import numpy as np
 
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values, INTEGRATORS
-from rope_sim_ros.simulator import Simulator
 
 REPO = Path(__file__).resolve().parent.parent
 INPUTS = REPO / 'test' / 'data' / 'water' / 'moordyn_inputs'
@@ -64,6 +65,7 @@ FAIRLEAD = np.array([36.0, 0.0, 8.0])
 OFFSET = np.array([0.0, 0.0, -100.0])  # our frame to MoorDyn's (surface at z = 0 there)
 CURRENT = [0.0, 1.0, 0.0]
 OUTPUT = 0.01
+LEVEL = (0.0, 0.0, 0.0, 1.0)  # the ship's orientation: a line's fairlead is position + offset
 HOLD_COUPLING = 0.01  # MoorDyn's Step while the ends are held
 MOTION_COUPLING = 0.001  # ... while the fairlead moves
 LINES = {  # MoorDyn's line types of these cases: d, m, EA, BA
@@ -73,6 +75,11 @@ LINES = {  # MoorDyn's line types of these cases: d, m, EA, BA
                       axial_stiffness=5.0e7, axial_damping=2903.43),
 }
 DTM = {20: 1e-4, 50: 5e-5}  # MoorDyn's RK2 step of these files
+
+
+def push_fairlead(mooring, t, point):
+    """Give a mooring of one line the ship pose that puts its fairlead at point at time t."""
+    mooring.push_ship(t, np.subtract(point, mooring.lines[0].params.fairlead_offset), LEVEL)
 
 
 def heave_motion(t):
@@ -151,19 +158,21 @@ def water_params(line, segments, integrator, current=(0.0, 0.0, 0.0)):
 
 def run_ours(params, motion, duration, shape=None):
     """|F_B| at OUTPUT intervals, wall seconds and the step of this model."""
-    sim = Simulator(params, output_interval=OUTPUT, history=math.inf)
+    mooring = Mooring(single_line(params), output_interval=OUTPUT, history=math.inf)
     samples = np.arange(0.0, duration + 3 * OUTPUT, OUTPUT)
     positions = motion(samples)
     for t, p in zip(samples, positions):
-        sim.push_fairlead(float(t), p)
-    sim.start(0.0, shape)
+        push_fairlead(mooring, float(t), p)
+    mooring.start(0.0)
+    if shape is not None:  # MoorDyn's initial node positions
+        mooring.place_line(0, shape)
     outputs = np.arange(1, int(round(duration / OUTPUT)) + 1) * OUTPUT
     force = np.empty(len(outputs))
     start = time.perf_counter()
     for k, t in enumerate(outputs):
-        sim.advance_to(float(t))
-        force[k] = sim.output().fairlead_tension
-    return force, time.perf_counter() - start, sim.time_step
+        mooring.advance_to(float(t))
+        force[k] = mooring.output().fairlead_tensions[0]
+    return force, time.perf_counter() - start, mooring.time_step
 
 
 def range_error(series, reference):
@@ -219,23 +228,23 @@ def seabed_line(duration):
         ramp = np.minimum(t / 12.0, 1.0)
         return fairlead + (4.0 * np.sin(2.0 * np.pi * t / 12.0) * ramp)[..., None] * [1, 0, 0]
 
-    sim = Simulator(params, output_interval=OUTPUT, history=math.inf)
+    mooring = Mooring(single_line(params), output_interval=OUTPUT, history=math.inf)
     samples = np.arange(0.0, duration + 3 * OUTPUT, 0.02)
     for t, p in zip(samples, surge(samples)):
-        sim.push_fairlead(float(t), p)
-    sim.start(0.0)
+        push_fairlead(mooring, float(t), p)
+    mooring.start(0.0)
     cpu = time.process_time()
     for t in np.arange(1, int(round(duration / OUTPUT)) + 1) * OUTPUT:
-        sim.advance_to(float(t))
-        out = sim.output()
+        mooring.advance_to(float(t))
+        out = mooring.output()
     cpu = time.process_time() - cpu
-    lying = int(np.sum(out.positions[:, 2] < -20.0 + 0.01))
+    lying = int(np.sum(out.positions[0][:, 2] < -20.0 + 0.01))
     print(f'## A 50-segment wire with water, current and seabed on (default integrator, '
           f'{params.integrator}), {duration:g} s surge, 100 Hz output')
     print()
     print('| step [s] | CPU s / sim s | real-time factor | particles on the seabed at the end |')
     print('|---|---|---|---|')
-    print(f'| {sim.time_step:.1e} | {cpu / duration:.4f} | {duration / cpu:.0f} | '
+    print(f'| {mooring.time_step:.1e} | {cpu / duration:.4f} | {duration / cpu:.0f} | '
           f'{lying} of 51 |')
     print()
 

@@ -38,10 +38,12 @@ from matplotlib.figure import Figure
 import numpy as np
 
 from rope_sim_ros.model.tension_curve import TensionCurve
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 RISE = 8.0
+LEVEL = (0.0, 0.0, 0.0, 1.0)  # the ship's orientation: the fairlead is position + offset
 # per material: the spans drawn, those printed, and the strains drawn [%] (a new polyester
 # rope's published curve ends at 6 % strain, half its MBL; nylon's reaches MBL at 25 %)
 CASES = {
@@ -53,11 +55,11 @@ CASES = {
 
 def settled_force(material, load_extension, span):
     """Return the fairlead force [N] of the default line of `material` at rest at a span."""
-    sim = Simulator(from_values({'material': material, 'load_extension': load_extension}),
-                    history=math.inf)
-    sim.push_fairlead(0.0, [span, 0.0, RISE])
-    sim.start(0.0)
-    return sim.output().fairlead_tension, sim.props
+    params = from_values({'material': material, 'load_extension': load_extension})
+    mooring = Mooring(single_line(params), history=math.inf)
+    mooring.push_ship(0.0, np.subtract([span, 0.0, RISE], params.fairlead_offset), LEVEL)
+    mooring.start(0.0)
+    return mooring.output().fairlead_tensions[0], mooring.lines[0].props
 
 
 def main():

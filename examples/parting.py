@@ -36,10 +36,12 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 import numpy as np
 
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 START = np.array([38.0, 0.0, 8.0])
+LEVEL = (0.0, 0.0, 0.0, 1.0)  # the ship's orientation: the fairlead is position + offset
 PULL = 6.0  # [m] over 1 s, from 0.5 s
 OUTPUT = 0.02  # [s]: 50 Hz, the node's default
 DURATION = 3.0  # [s]
@@ -54,19 +56,19 @@ def fairlead_at(t: float) -> np.ndarray:
 def run() -> tuple:
     """Run the line; return times, tensions, peaks, shapes and the parting."""
     params = from_values(dict(diameter=0.024, length=40.0, segments=40))
-    sim = Simulator(params, history=math.inf)
+    mooring = Mooring(single_line(params), history=math.inf)  # the line alone: line 0
     for t in np.arange(0.0, DURATION + 0.5, 0.01):
-        sim.push_fairlead(float(t), fairlead_at(float(t)))
-    sim.start(0.0)
+        mooring.push_ship(float(t), fairlead_at(float(t)) - params.fairlead_offset, LEVEL)
+    mooring.start(0.0)
     rows, shapes, parting = [], {}, None
     for t in np.arange(OUTPUT, DURATION + 1e-9, OUTPUT):
-        advance = sim.advance_to(float(t))
-        out = sim.output()
-        parting = parting or advance.parted
-        rows.append((out.t, out.fairlead_tension, out.fairlead_peak, out.bollard_tension,
-                     out.bollard_peak))
-        shapes[round(out.t, 2)] = out.positions
-    return np.array(rows), shapes, parting, sim.props.mbl
+        advance = mooring.advance_to(float(t))
+        out = mooring.output()
+        parting = parting or advance.parted.get(0)
+        rows.append((out.t, out.fairlead_tensions[0], out.fairlead_peaks[0],
+                     out.bollard_tensions[0], out.bollard_peaks[0]))
+        shapes[round(out.t, 2)] = out.positions[0]
+    return np.array(rows), shapes, parting, mooring.lines[0].props.mbl
 
 
 def plot(rows, shapes, parting, mbl, out: Path) -> None:

@@ -21,7 +21,7 @@ with a friction coefficient of 0.5. As the ship surges 4 m back and forth (12 s 
 ramped in over the first period) the wire lifts off the ground up to 60 m from the anchor
 and lays down again to 90 m, and the tensions swing with it. The ripples as it lays down
 and is pulled taut again are the line's first axial modes (about 9 Hz): MoorDyn shows the
-same, to a few per cent, on this case. The offline Simulator runs 60 s and the picture
+same, to a few per cent, on this case. A Mooring of the one line runs 60 s and the picture
 shows the wire's shape at eight instants of the last period, the tensions at both ends, and
 where the wire leaves the seabed.
 
@@ -39,8 +39,9 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 import numpy as np
 
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values
-from rope_sim_ros.simulator import Simulator
 
 WATER_LEVEL = 0.0
 SEABED = -20.0
@@ -49,6 +50,7 @@ FAIRLEAD = np.array([110.0, 0.0, 3.0])
 SURGE = 4.0  # amplitude [m]
 PERIOD = 12.0  # [s]
 OUTPUT = 0.05  # [s]
+LEVEL = (0.0, 0.0, 0.0, 1.0)  # the ship's orientation: the fairlead is position + offset
 
 
 def fairlead_at(t):
@@ -65,19 +67,19 @@ def simulate(duration):
         material='steel_wire', diameter=0.040, segments=50, length=120.0,
         bollard_position=ANCHOR.tolist(), water_level=WATER_LEVEL, seabed_level=SEABED,
         current=[-0.5, 0.0, 0.0], seabed_friction=0.5))
-    sim = Simulator(params, output_interval=OUTPUT, history=math.inf)
+    mooring = Mooring(single_line(params), output_interval=OUTPUT, history=math.inf)
     samples = np.arange(0.0, duration + 0.1, 0.02)  # a ship's pose stream at 50 Hz
-    for t, position in zip(samples, fairlead_at(samples)):
-        sim.push_fairlead(float(t), position)
-    sim.start(0.0)  # at rest on the catenary that knows the water and the seabed
+    for t, fairlead in zip(samples, fairlead_at(samples)):
+        mooring.push_ship(float(t), fairlead - params.fairlead_offset, LEVEL)
+    mooring.start(0.0)  # at rest on the catenary that knows the water and the seabed
     times = np.arange(0, int(round(duration / OUTPUT)) + 1) * OUTPUT
     shapes = np.empty((len(times), params.segments + 1, 3))
     tensions = np.empty((len(times), 2))
     for k, t in enumerate(times):
-        sim.advance_to(float(t))
-        out = sim.output()
-        shapes[k] = out.positions
-        tensions[k] = out.fairlead_tension, out.bollard_tension
+        mooring.advance_to(float(t))
+        out = mooring.output()
+        shapes[k] = out.positions[0]
+        tensions[k] = out.fairlead_tensions[0], out.bollard_tensions[0]
     return times, shapes, tensions
 
 
