@@ -54,7 +54,7 @@ def test_a_slack_line_jerked_taut_peaks_as_the_converged_run(converged_jerk):
     """A 40 m polyester line sagging between ends 38 m apart, its fairlead pulled 1.5 m."""
     peak, sim = _jerk()  # default settings: the adaptive integrator
     assert sim.params.integrator == 'adaptive'
-    # +0.1 % measured (converged 101.26 kN); implicit_euler at the same 5 ms: -30.9 %
+    # -0.1 % measured (converged 101.26 kN); implicit_euler at the same 5 ms: -30.9 %
     assert peak == pytest.approx(converged_jerk, rel=0.05)
     assert _jerk('implicit_euler')[0] < 0.8 * converged_jerk
 

@@ -34,8 +34,10 @@ segment after every step (parting.check_segments). A step in which
   its stretch rate: the impact of a slack line caught, before it is caught),
 
 is taken again from its start with improved Euler at its stable step, and improved Euler
-goes on for HOLD_TIME; then implicit steps try again. Taken again, not corrected: the implicit
-step's damped wave never reaches an output, and the peak is the explicit one.
+goes on until the line has been calm for HOLD_TIME: no improved Euler step in that time
+changed a spring tension by more than CALM_TOLERANCE of the scale per implicit step (nor
+moved a slack segment as above). Then implicit steps try again. Taken again, not corrected:
+the implicit step's damped wave never reaches an output, and the peak is the explicit one.
 
 The scale is the line's largest segment tension in the step, and never less than
 model/parting.py's SNAP_FLOOR_WEIGHT times its weight nor SNAP_FLOOR_MBL of its MBL: on a
@@ -47,6 +49,37 @@ was seen late (3.8 % low), at 0.5 % not (0.2 %).
 Why a change per step: an implicit step damps a motion that changes the tension by a
 fraction r of the scale per step by the order of r times its amplitude, so a change below
 SNAP_TOLERANCE bounds what it takes off a peak to a few per cent of the scale.
+
+Why until calm, not for a fixed time: a snap leaves the line vibrating, and the vibration
+carries load. A line driven slack and taut again and again (test_slack_taut.py: 50 m of
+48 mm HMPE in air, its fairlead surging 1 m at 8 s about 0.8 m short of taut) whips across
+as its sag is pulled out, and in air, with only its axial dampers on it, goes on vibrating
+across through the whole taut phase (+-0.3 m at mid-span in one such case), which stretches
+it (a transverse vibration of energy E adds about EA E / (L T) to a taut line's tension T)
+and drives an axial ringing (+-10 kN on 320 kN). Implicit steps damp it: Newmark's
+(gamma - 1/2) w h / 2 of critical grows with the mode, and in that case the vibration's
+kinetic energy fell tenfold within the taut phase where improved Euler's kept it. Held for a
+fixed 0.1 s after each snap, the test's line spent 21 % of its time in improved Euler and
+its mean tension came 2.9 % and its cycle peaks 2.8-5.4 % below improved_euler's at 2e-5 s;
+held until calm, 45 % of its time, within 0.3 % and 1.3 %. On 28 such cases (20-50
+segments, surges of 0.15-1 m at 3-15 s, in air and in water) the mean came within 1.4 %
+(before: up to 2.9 % low) and every cycle's peak within 3.7 % (before: up to 11 % low), at
+1.0-2.6 times the CPU of the fixed hold, about improved_euler's or less. In water the drag
+damps the vibration: there the fixed hold was already right, and nothing changed. A line
+that does not snap is never held, and pays nothing.
+
+CALM_TOLERANCE: the ringing a hold leaves changes the tension by about this much per step,
+and it is what implicit steps then take off a peak. At 2 % the cases' cycle peaks came up
+to 4.7 % low, at 1 % 3.7 %. A tension rising with the ship changes by far less (a few
+tenths of a per cent per step on those springs), so holds end once the ringing has died.
+
+Measured and left: less numerical damping instead (gamma 0.50-0.51) still left cycle peaks
+from 7 % low to 4.6 % high, the first implicit step after a hold being implicit Euler's
+(Newmark's needs the accelerations of the step before); starting that step from the state's
+own accelerations, gamma 0.5 and 0.502 gained energy (peaks up to 21 % high). A fixed hold
+of 2 s still left a cycle peak 4.1 % low, and costs every snap 2 s of improved Euler. A
+SNAP_TOLERANCE of 0.02 still left cycle peaks 4-6 % low, and improved Euler wherever a slack
+segment moved changed nothing: the snap itself was caught; what went missing came after it.
 
 The improved Euler steps take the driven ends along the cubic Hermite curve through the
 implicit steps' samples (positions and velocities), which is the end's own cubic within one
@@ -60,6 +93,7 @@ from .kernels import run_kernel
 from ..model.layout import HISTORY, PARTED, PARTED_STEP, SLACK_IMPACT, TENSION_CHANGE
 
 SNAP_TOLERANCE = 0.05
+CALM_TOLERANCE = 0.01
 HOLD_TIME = 0.1  # [s]
 GAMMA = 0.55
 NEWMARK = (GAMMA, 0.25 * (GAMMA + 0.5) ** 2)
@@ -127,6 +161,7 @@ def _step(system, dt, step_x, step_v, k, fine_steps, together, max_iterations,
                max_iterations, implicit_bending, compiled, whole, snapped)
     real[:, HISTORY] = ~fine
     system.fine_left[fine] -= dt
+    system.fine_left[fine & snapped] = HOLD_TIME  # not calm yet: the hold starts again
 
 
 def _take_fine(system, dt, step_x, step_v, k, fine, fine_steps, together, saved, implicit,
@@ -169,13 +204,15 @@ def _take(system, integrator, dt, drive_x, drive_v, first, parts, max_iterations
     """
     Take one kernel run from a cleared watch; set `snapped` to the lines that snapped in it.
 
-    A parting's step is put in the run's steps of parts * dt from `first`. Returns whether
-    any line snapped.
+    A run of improved Euler steps is judged against CALM_TOLERANCE: `snapped` are then the
+    lines not calm yet. A parting's step is put in the run's steps of parts * dt from
+    `first`. Returns whether any line snapped.
     """
     _clear_watch(system.line_real, whole)
     run_kernel(system, integrator, dt, drive_x, drive_v, max_iterations, implicit_bending,
                compiled, newmark)
-    return _read_watch(system.line_real, whole, first, parts, snapped)
+    tolerance = SNAP_TOLERANCE if integrator == 'implicit_euler' else CALM_TOLERANCE
+    return _read_watch(system.line_real, whole, first, parts, snapped, tolerance)
 
 
 @numba.njit(cache=True)
@@ -188,20 +225,20 @@ def _clear_watch(line_real, whole):
 
 
 @numba.njit(cache=True)
-def _read_watch(line_real, whole, first, parts, snapped):
+def _read_watch(line_real, whole, first, parts, snapped, tolerance):
     """
     Set `snapped` to the lines whose tensions changed faster than implicit steps follow.
 
-    In a step of the run, a spring tension changing by more than SNAP_TOLERANCE of the line's
+    In a step of the run, a spring tension changing by more than `tolerance` of the line's
     scale (parts improved Euler steps count as one implicit step), or a slack segment that
-    would come taut with more than that. Also times the partings of the run. Returns whether
-    any line snapped.
+    would come taut with more than SNAP_TOLERANCE. Also times the partings of the run.
+    Returns whether any line snapped.
     """
     anything = False
     for k in range(line_real.shape[0]):
         if whole[k] and line_real[k, PARTED] >= 0.0:
             line_real[k, PARTED_STEP] = first + (line_real[k, PARTED_STEP] + 1.0) / parts - 1.0
-        snapped[k] = (line_real[k, TENSION_CHANGE] * parts > SNAP_TOLERANCE
+        snapped[k] = (line_real[k, TENSION_CHANGE] * parts > tolerance
                       or line_real[k, SLACK_IMPACT] > SNAP_TOLERANCE)
         anything |= snapped[k]
     return anything
