@@ -289,6 +289,24 @@ def test_length_for_tension_inverts_the_catenary():
         length_for_tension(props, bollard, fairlead, 1e9)
 
 
+def test_length_for_tension_follows_the_lines_curve():
+    """A nylon line on its strain-tension curve starts at its pretension, not at EA's."""
+    values = berth_values()
+    values['head_1'] = {**values['head_1'], 'material': 'nylon', 'load_extension': 'curve'}
+    driver = Driver(arrangement.from_values(values), rate=RATE)
+    props = driver.mooring.lines[0].props
+    assert props.curve is not None
+    bollard, fairlead = np.array([0.0, 0.0, 0.0]), np.array([40.0, 5.0, 9.0])
+    for tension in (50.0e3, 300.0e3):
+        length = length_for_tension(props, bollard, fairlead, tension)
+        got = solve_catenary(math.hypot(40.0, 5.0), 9.0, length, props.weight_per_length,
+                             props.axial_stiffness, props.curve).tension_b
+        assert got == pytest.approx(tension, rel=1e-9)
+        linear = solve_catenary(math.hypot(40.0, 5.0), 9.0, length, props.weight_per_length,
+                                props.axial_stiffness).tension_b
+        assert abs(linear / tension - 1.0) > 0.05  # EA alone would start it elsewhere
+
+
 # ------------------------------------------------------------------ refusals
 
 

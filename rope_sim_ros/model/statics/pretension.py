@@ -35,12 +35,13 @@ def length_for_tension(props: RopeProperties, bollard, fairlead, tension: float)
     Return the unstretched length whose elastic catenary pulls the fairlead with `tension`.
 
     The catenary in air (the line's weight less the air's buoyancy, props.weight_per_length)
-    between the bollard and the fairlead; a weightless line is a straight elastic bar. The
+    between the bollard and the fairlead, stretched by the line's strain-tension curve where
+    it has one (else EA); a weightless line is a straight elastic bar. The
     fairlead tension falls as the line grows, down to the least it can have hanging between
     its ends; bisection between the line at its reach and that.
 
-    :raises PretensionError: the tension is more than the line pulls at its reach (EA times
-        max_strain) or less than the least it can have between these ends.
+    :raises PretensionError: the tension is more than the line pulls at its reach (its
+        limit_tension) or less than the least it can have between these ends.
     """
     up = -np.asarray(props.gravity, dtype=float)
     g = float(np.linalg.norm(up))
@@ -50,20 +51,20 @@ def length_for_tension(props: RopeProperties, bollard, fairlead, tension: float)
     rise = float(chord @ up)
     span = math.sqrt(max(distance * distance - rise * rise, 0.0))
     ea, w = props.axial_stiffness, props.weight_per_length
-    strongest = ea * props.max_strain
+    strongest = props.limit_tension
     if not distance > 0.0:
         raise PretensionError('pretension needs the fairlead away from the bollard: they are '
                               'at one place at the first ship pose')
     if tension >= strongest:
         raise PretensionError(f'pretension {tension:.0f} N is not below what the line pulls at '
-                              f'its reach (EA x max_strain = {strongest:.0f} N)')
+                              f'its reach ({strongest:.0f} N at its strain limit)')
     if not w > 0.0:
-        return distance / (1.0 + tension / ea)
+        return distance / (1.0 + float(props.strain_at(tension)))
 
     def fairlead_tension(length: float) -> float:
-        return solve_catenary(span, rise, length, w, ea).tension_b
+        return solve_catenary(span, rise, length, w, ea, props.curve).tension_b
 
-    low, high = distance / (1.0 + props.max_strain), distance
+    low, high = distance / (1.0 + props.strain_limit), distance
     try:
         least = fairlead_tension(high)
         while least > tension:  # longer lines until one pulls less, or the tension grows
