@@ -162,6 +162,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/config',
          glob('config/*.yaml') + glob('config/*.json') + glob('config/*.rviz')),
+        ('share/' + package_name + '/config/ship', glob('config/ship/*.csv')),
         ('share/' + package_name + '/launch', glob('launch/*.launch.py')),
     ],
     install_requires=['setuptools'],

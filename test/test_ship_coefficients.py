@@ -18,7 +18,9 @@ OCIMF-form wind and current loads: the formula by hand, the angle convention, th
 The hand checks use tables written here with chosen values; the shipped wind table
 (config/ship/wind_coefficients_tanker_loaded.csv) is checked for its signs, its symmetry and
 for being exactly the output of the script that computes it from Blendermann (1994)
-(test/data/ship_coefficients/blendermann_tanker_loaded.py).
+(test/data/ship_coefficients/blendermann_tanker_loaded.py); the shipped current table
+(config/ship/current_coefficients_tanker_loaded.csv) likewise against DNV-ST-0111 (December
+2021) [3.6] (test/data/ship_coefficients/dnv_current_tanker_loaded.py).
 """
 
 import importlib.util
@@ -36,8 +38,12 @@ from rope_sim_ros.model.ship.coefficients import (
 REPO = Path(__file__).resolve().parent.parent
 WIND_TABLE = REPO / 'config' / 'ship' / 'wind_coefficients_tanker_loaded.csv'
 WIND_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'blendermann_tanker_loaded.py'
+CURRENT_TABLE = REPO / 'config' / 'ship' / 'current_coefficients_tanker_loaded.csv'
+CURRENT_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'dnv_current_tanker_loaded.py'
+UFC_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'ufc_current_tanker_loaded.py'
 
 RHO_AIR = 1.225  # kg/m^3
+RHO_WATER = 1026.0  # kg/m^3, the value DNV-ST-0111 uses
 # A table with round numbers, so that the interpolated coefficients are easy by hand.
 SQUARE = CoefficientTable(angles_deg=[0.0, 90.0, 180.0, 270.0],
                           cx=[-1.0, 0.0, 0.5, 0.0],
@@ -51,17 +57,27 @@ def flow_from(theta_deg, speed):
     return np.array([-speed * math.cos(theta), -speed * math.sin(theta)])
 
 
-def load_wind_script():
-    """Import the script that computes the shipped wind table."""
-    spec = importlib.util.spec_from_file_location('blendermann_tanker_loaded', WIND_SCRIPT)
+def load_script(path):
+    """Import one of the scripts under test/data/ship_coefficients/ as a module."""
+    spec = importlib.util.spec_from_file_location(path.stem, path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
 
 
+def load_wind_script():
+    """Import the script that computes the shipped wind table."""
+    return load_script(WIND_SCRIPT)
+
+
 def shipped_wind_table():
     """Return the shipped wind table, read here (the model layer does no I/O)."""
     return parse_coefficient_csv(WIND_TABLE.read_text(), str(WIND_TABLE))
+
+
+def shipped_current_table():
+    """Return the shipped current table, read here (the model layer does no I/O)."""
+    return parse_coefficient_csv(CURRENT_TABLE.read_text(), str(CURRENT_TABLE))
 
 
 # ---------------------------------------------------------------------- the angle
@@ -293,6 +309,120 @@ def test_wind_script_reproduces_blendermann_at_a_row_by_hand():
     cmz = (0.0 - 0.18 * (gamma - math.pi / 2)) * cy
     assert shipped_wind_table().at(40.0) == pytest.approx((cx, cy, cmz), abs=5e-7)
     assert (cx, cy, cmz) == pytest.approx((-0.809931, -0.528588, -0.083030), abs=5e-7)
+
+
+# ---------------------------------------------------------------------- the shipped current table
+
+# KVLCC2, full scale, loaded (Yasukawa and Yoshimura 2015, Table 1): a ship to turn the
+# coefficients into loads; the table itself does not depend on it.
+KVLCC2_LPP, KVLCC2_BEAM, KVLCC2_DRAFT = 320.0, 58.0, 20.8  # m
+
+
+def test_shipped_current_table_is_the_output_of_its_script():
+    assert CURRENT_TABLE.read_text() == load_script(CURRENT_SCRIPT).csv_text()
+
+
+def test_shipped_current_table_parses_with_the_package_reader():
+    table = shipped_current_table()
+    np.testing.assert_array_equal(table.angles_deg, np.arange(0.0, 360.0, 10.0))
+    # every value within DNV's bounds: |cx| <= 0.07, |cy| <= 0.6, |cmz| <= 0.25 * 0.6
+    assert np.max(np.abs(table.cx)) == pytest.approx(0.07, abs=1e-12)
+    assert np.max(np.abs(table.cy)) == pytest.approx(0.6, abs=1e-12)
+    assert np.max(np.abs(table.cmz)) < 0.15
+
+
+def test_shipped_current_table_is_port_starboard_symmetric():
+    table = shipped_current_table()
+    angles = np.arange(0.0, 360.0, 2.5)  # rows and points between them
+    cx, cy, cmz = table.at(angles)
+    mirror = table.at(-angles)
+    np.testing.assert_allclose(mirror[0], cx, atol=1e-12)  # cx even in theta
+    np.testing.assert_allclose(mirror[1], -cy, atol=1e-12)  # cy odd
+    np.testing.assert_allclose(mirror[2], -cmz, atol=1e-12)  # cmz odd
+    # a symmetric ship feels no side force or moment in a head or stern current
+    assert table.at(0.0)[1:] == (0.0, 0.0)
+    assert table.at(180.0)[1:] == (0.0, 0.0)
+
+
+def test_shipped_current_table_signs():
+    table = shipped_current_table()
+    area_front = KVLCC2_BEAM * KVLCC2_DRAFT  # A_T = B T
+    area_side = KVLCC2_LPP * KVLCC2_DRAFT  # A_L = L T
+    # a current from port (theta = 90) pushes the ship to starboard: F_y < 0, with DNV's
+    # coefficient 0.6 on the side area, and no moment about midship (x_L,current = 0)
+    assert table.at(90.0) == pytest.approx((0.0, -0.6, 0.0), abs=1e-12)
+    fx, fy, mz = ocimf_loads(table, RHO_WATER, flow_from(90.0, 1.0), area_front, area_side,
+                             KVLCC2_LPP)
+    assert fy == pytest.approx(-0.5 * 1026.0 * 6656.0 * 0.6, rel=1e-12)  # -2.049 MN
+    assert fy < 0.0
+    # from starboard the other way
+    assert table.at(270.0)[1] == pytest.approx(0.6, abs=1e-12)
+    # a head current pushes the ship astern, a stern current ahead (0.07 on B T)
+    assert table.at(0.0)[0] == pytest.approx(-0.07, abs=1e-12)
+    assert table.at(180.0)[0] == pytest.approx(0.07, abs=1e-12)
+    fx, fy, mz = ocimf_loads(table, RHO_WATER, flow_from(0.0, 1.0), area_front, area_side,
+                             KVLCC2_LPP)
+    assert fx == pytest.approx(-0.5 * 1026.0 * 1206.4 * 0.07, rel=1e-12)  # -43.3 kN
+    # a current on the port bow pushes the bow to starboard (negative yaw, z up) ...
+    assert table.at(30.0)[2] < 0.0
+    # ... and one on the port quarter pushes the stern to starboard (bow to port)
+    assert table.at(150.0)[2] > 0.0
+
+
+def test_shipped_current_table_reproduces_dnv_at_two_rows_by_hand():
+    table = shipped_current_table()
+    # DNV-ST-0111 [3.6] in its own frame: beta = 30 deg, clockwise, i.e. from the starboard
+    # bow; dir = pi/6, lever min(0.4 (1 - 2 dir/pi), 0.25) = min(0.2667, 0.25) = 0.25.
+    # For A_T = B T, A_L = L T (A_L,current = L T) and x_L,current = 0 the coefficients are
+    # F_X/(q B T) = -0.07 cos 30, F_Y/(q L T) = 0.6 sin 30, M_Z/(q L T L) = 0.25 F_Y/(q L T),
+    # all in axes with y to port; the project's angle is 360 - 30 = 330.
+    beta = math.radians(30.0)
+    expected = (-0.07 * math.cos(beta), 0.6 * math.sin(beta), 0.25 * 0.6 * math.sin(beta))
+    assert expected == pytest.approx((-0.060622, 0.3, 0.075), abs=5e-7)
+    assert table.at(330.0) == pytest.approx(expected, abs=5e-7)
+    # beta = 240 deg (from the port quarter): dir = 2 pi - 4 pi/3 = 2 pi/3, unclipped lever
+    # 0.4 (1 - 4/3) = -0.1333; project angle 360 - 240 = 120.
+    beta = math.radians(240.0)
+    sway = 0.6 * math.sin(beta)
+    expected = (-0.07 * math.cos(beta), sway, 0.4 * (1.0 - 4.0 / 3.0) * sway)
+    assert expected == pytest.approx((0.035, -0.519615, 0.069282), abs=5e-7)
+    assert table.at(120.0) == pytest.approx(expected, abs=5e-7)
+    # the same as loads on KVLCC2 in a 1.5 m/s current, moment about midship
+    q = 0.5 * RHO_WATER * 1.5 ** 2
+    fx, fy, mz = ocimf_loads(table, RHO_WATER, flow_from(120.0, 1.5),
+                             KVLCC2_BEAM * KVLCC2_DRAFT, KVLCC2_LPP * KVLCC2_DRAFT,
+                             KVLCC2_LPP)
+    lever = -0.4 / 3.0 * KVLCC2_LPP  # -42.67 m: the force acts aft of midship
+    assert fx == pytest.approx(q * KVLCC2_BEAM * KVLCC2_DRAFT * 0.035, rel=1e-5)
+    assert fy == pytest.approx(q * KVLCC2_LPP * KVLCC2_DRAFT * sway, rel=1e-5)
+    assert mz == pytest.approx(fy * lever, rel=1e-5)
+
+
+def test_shipped_current_table_interpolation_error_is_bounded():
+    # Between rows the table is linear; the formula is not, and its lever has kinks at 33.75
+    # and 135 deg. The script's MAX_INTERPOLATION_ERROR states the largest departure.
+    script = load_script(CURRENT_SCRIPT)
+    table = shipped_current_table()
+    angles = np.arange(0.0, 360.0, 0.05)
+    interpolated = np.array(table.at(angles))
+    exact = np.array([script.coefficients(angle) for angle in angles]).T
+    error = np.max(np.abs(interpolated - exact), axis=1)
+    assert error[0] < 3e-4  # cx
+    assert error[1] < 2.5e-3  # cy
+    assert 5.0e-3 < error[2] <= script.MAX_INTERPOLATION_ERROR  # cmz, at the 135 deg kink
+    assert script.coefficients(135.0)[2] == pytest.approx(-0.2 * -0.6 * math.sin(math.radians(
+        135.0)), abs=1e-12)
+
+
+def test_dnv_beam_current_coefficient_agrees_with_ufc_4_159_03_for_kvlcc2():
+    # Two independent sources for the sway coefficient: UFC 4-159-03 eqs. 11-13 for KVLCC2 in
+    # deep water (T/d = 0: C_yc = C0 = 0.22 sqrt(chi), chi = L^2 A_m / (B V) = 6.81) give
+    # 0.574; DNV-ST-0111 gives 0.6 for every monohull. They agree within 5 %.
+    ufc = load_script(UFC_SCRIPT)
+    c_yc = ufc.transverse_coefficient(0.0)
+    assert c_yc == pytest.approx(0.5743, abs=1e-4)
+    dnv = -shipped_current_table().at(90.0)[1]
+    assert abs(dnv - c_yc) / c_yc < 0.05
 
 
 # ---------------------------------------------------------------------- a published example

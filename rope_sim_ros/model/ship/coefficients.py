@@ -28,8 +28,8 @@ With V = |u| and rho the fluid density::
 
 A_T is the front (transverse) projected area, A_L the side (lateral) projected area and L the
 length between perpendiculars; the table says which areas its coefficients go with (the
-wind tables in config/ship/ use the windage areas; current tables in the OCIMF form use
-L T for both areas, so a caller passes area_front = area_side = L T there).
+wind tables in config/ship/ use the windage areas above water, the current tables the
+areas below it: beam x draft in front and length x draft at the side).
 
 theta is the direction the fluid comes FROM, in degrees, measured in the body frame from the
 bow (+x) toward port (+y): theta = 0 is a head wind (fluid moving toward -x), theta = 90
