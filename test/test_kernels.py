@@ -20,6 +20,7 @@ import numpy as np
 from one_line import OneLine
 import pytest
 
+from rope_sim_ros.model import linalg
 from rope_sim_ros.model.rope import RopeProperties
 from rope_sim_ros.params.table import from_values
 from rope_sim_ros.stepping import kernels
@@ -72,7 +73,7 @@ def test_dense_cholesky_solves_the_point_system():
     a = a @ a.T + 9.0 * np.eye(9)
     b = rng.normal(size=9)
     expected = np.linalg.solve(a, b)
-    kernels.dense_cholesky_solve(a.copy(), b)
+    linalg.dense_cholesky_solve(a.copy(), b)
     assert b == pytest.approx(expected, rel=1e-10)
 
 

@@ -57,10 +57,22 @@ fixed number of columns keeps every kernel's arguments as they are; 32 points (M
 at most 30 from its table files, plus the (0, 0) it leaves implied) cost a line 0.8 kB. The
 curve comes last so that its size can change without moving any other column.
 
-POINT table (Q, POINT_COLUMNS): KIND (FIXED, DRIVEN or FREE), OWN_MASS [kg], TOTAL_MASS (own
-mass plus the half segments of every line end on it [kg]); a free point's VOLUME [m^3],
+POINT table (Q, POINT_COLUMNS): KIND (FIXED, DRIVEN, FREE or CARRIED), OWN_MASS [kg], TOTAL_MASS
+(own mass plus the half segments of every line end on it [kg]); a free point's VOLUME [m^3],
 DRAG_AREA (CdA [m^2]), ADDED_MASS (coefficient Ca_p), SIZE (V^(1/3): its surface ramp's width
-and contact width and length [m]) and POINT_SINK (its contact's damping ramp depth [m]).
+and contact width and length [m]) and POINT_SINK (its contact's damping ramp depth [m]); a
+carried point's POINT_BODY (its body's row) and POINT_OFFSET (3: where it sits on the body, from
+the body's centre of gravity, in body axes [m]).
+
+BODY table (B, BODY_COLUMNS): a rigid body in six degrees of freedom (a free ship), its state
+first (the step writes it), then what it is (forces/body.py says how each term acts). Its
+reference point is its centre of gravity; velocities, loads and moments are in world axes,
+the mass, damping and restoring it is given in body axes.
+
+FENDER table (F, FENDER_COLUMNS): a fender on the quay that a body's hull side pushes on: its
+face's place and its outward normal (out of the quay, toward the ship), the friction
+coefficient against the hull, the body it touches, and its load-compression curve as
+FENDER_POINTS (compression [m], reaction [N]) pairs from (0, 0) (forces/fender.py).
 """
 
 MASS = 0
@@ -148,11 +160,44 @@ DRAG_AREA = 4
 ADDED_MASS = 5
 SIZE = 6
 POINT_SINK = 7
-POINT_COLUMNS = 8
+POINT_BODY = 8
+POINT_OFFSET = 9  # 3 entries
+POINT_COLUMNS = 12
 
 FIXED = 0
 DRIVEN = 1
 FREE = 2
+CARRIED = 3  # a point a body carries (layout.BODY table): a fairlead on a free ship
+
+BODY_POSITION = 0  # 3: state: its centre of gravity [m]
+BODY_QUATERNION = 3  # 4: state: its orientation (x, y, z, w), body to world axes
+BODY_VELOCITY = 7  # 3: state: its centre of gravity's velocity [m/s]
+BODY_OMEGA = 10  # 3: state: its angular velocity, world axes [rad/s]
+BODY_STATE = 13  # the state's columns: position, quaternion, velocity, angular velocity
+BODY_ACCEL = 13  # 6: state: the accelerations of the last implicit step (Newmark's a0)
+BODY_CLOCK = 19  # state: time since BODY_LOAD was set [s] (each step adds its own)
+BODY_MASS = 20  # [kg]
+BODY_INERTIA = 21  # 3: principal moments of inertia about the centre of gravity [kg m^2]
+BODY_ADDED = 24  # 6: added mass: surge, sway, heave [kg], roll, pitch, yaw [kg m^2]
+BODY_LINEAR_DAMPING = 30  # 6: [N per m/s], [N m per rad/s]
+BODY_QUADRATIC_DAMPING = 36  # 6: [N per (m/s)^2], [N m per (rad/s)^2]
+BODY_RESTORING = 42  # 3: hydrostatic heave [N/m], roll, pitch [N m/rad] stiffness
+BODY_REST_Z = 45  # z of its body origin (on the waterplane) where it floats freely [m]
+BODY_HULL = 46  # 3: the hull box the fenders touch: length, beam, draft [m]
+BODY_ORIGIN = 49  # 3: its body origin (the hull box's centre in plan) from the CG, body axes
+BODY_LOAD = 52  # 6: external force [N] and moment about the CG [N m], world axes, at clock 0
+BODY_LOAD_RATE = 58  # 6: their change per second of the clock
+BODY_COLUMNS = 64
+
+FENDER_POSITION = 0  # 3: the centre of its face, uncompressed [m]
+FENDER_NORMAL = 3  # 3: unit normal out of the quay, toward the ship
+FENDER_FRICTION = 6  # friction coefficient against the hull
+FENDER_BODY = 7  # the body row whose hull it touches
+FENDER_POINTS = 8  # points of its curve (the first (0, 0))
+FENDER_CAPACITY = 16
+FENDER_CURVE_COMPRESSION = 9
+FENDER_CURVE_REACTION = FENDER_CURVE_COMPRESSION + FENDER_CAPACITY
+FENDER_COLUMNS = FENDER_CURVE_REACTION + FENDER_CAPACITY
 
 # ENV array (ENV_COLUMNS,), float: what the lines live in (objects.Environment). A level of
 # -inf means "none" (no water, no seabed); an all-zero quay normal means no quay.

@@ -20,15 +20,17 @@ The objects of a mooring system, each owning its state, as MoorDyn has them.
 - Environment: gravity, air, water (level, density, a uniform current), a flat seabed and an
   optional quay block (forces/fluid.py and forces/contact.py say how they act).
 - Point: where line ends meet. FIXED (never moves), DRIVEN (its position and velocity are set
-  every substep from outside: a fairlead on a ship, a crane tip) or FREE (a lumped body with a
+  every substep from outside: a fairlead on a ship, a crane tip), FREE (a lumped body with a
   mass, a volume, a drag area and an added-mass coefficient: a payload, a shackle joining
-  lines).
+  lines) or CARRIED (a point of a rigid Body: a fairlead on a free ship).
+- Body and Fender (body.py): a rigid body in six degrees of freedom and the fenders it rests
+  on.
 - Winch: how one end of a line pays out or heaves in (winch.py).
 - Line: a LineType, N segments with a rest length each (its winch changes them), the N+1
   particles' positions and velocities, the two points its ends sit on, its break load and,
   once it has parted (parting.py), which segment parted.
-- System: any number of lines and points, stepped together by one integrator
-  (stepping/step.py).
+- System: any number of lines, points, bodies and fenders, stepped together by one
+  integrator (stepping/step.py).
 
 A line's end particle coincides with its point: the point sets it, and the line returns to
 the point its end force (springs and dampers, plus the weight, buoyancy, drag and contact of
@@ -51,24 +53,28 @@ from typing import List, Sequence
 import numpy as np
 
 from . import parting, winch
+from .body import Body, Fender
 from .forces import assembly
+from .forces.body import place_points
 from .layout import (ADDED_MASS, ADJUST, AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST,
-                     BEND_STIFFNESS, BENDING, DAMPING, DIAMETER, DRAG, DRAG_AREA, DRIVEN, END_A,
-                     END_B, ENV_AIR_DENSITY, ENV_COLUMNS, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_DEPTH,
-                     ENV_QUAY_EDGE, ENV_QUAY_NORMAL, ENV_SEABED_DAMPING, ENV_SEABED_FRICTION,
-                     ENV_SEABED_LEVEL, ENV_SEABED_STIFFNESS, ENV_WATER_DENSITY, ENV_WATER_LEVEL,
-                     FIRST, FIXED, FLUID, FREE, INV_MASS, KIND, LAST, LENGTH, LINE_COLUMNS,
-                     LINE_REAL_COLUMNS, MASS, MAX_STRAIN, NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS,
-                     PARTICLE_COLUMNS, POINT_COLUMNS, POINT_SINK, REST, SINK, SIZE, STIFFNESS,
-                     TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS, TENSION, TENSION_BEFORE,
-                     TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
+                     BEND_STIFFNESS, BENDING, BODY_COLUMNS, BODY_OMEGA, BODY_POSITION,
+                     BODY_QUATERNION, BODY_VELOCITY, CARRIED, DAMPING, DIAMETER, DRAG, DRAG_AREA,
+                     DRIVEN, END_A, END_B, ENV_AIR_DENSITY, ENV_COLUMNS, ENV_CURRENT, ENV_GRAVITY,
+                     ENV_QUAY_DEPTH, ENV_QUAY_EDGE, ENV_QUAY_NORMAL, ENV_SEABED_DAMPING,
+                     ENV_SEABED_FRICTION, ENV_SEABED_LEVEL, ENV_SEABED_STIFFNESS,
+                     ENV_WATER_DENSITY, ENV_WATER_LEVEL, FENDER_COLUMNS, FIRST, FIXED, FLUID, FREE,
+                     INV_MASS, KIND, LAST, LENGTH, LINE_COLUMNS, LINE_REAL_COLUMNS, MASS,
+                     MAX_STRAIN, NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS, PARTICLE_COLUMNS,
+                     POINT_BODY, POINT_COLUMNS, POINT_OFFSET, POINT_SINK, REST, SINK, SIZE,
+                     STIFFNESS, TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG, TANGENTS, TENSION,
+                     TENSION_BEFORE, TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
 from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, SNAP_FLOOR, UNSTRETCHED,
                      WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND, WINCH_END,
                      WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
                      WINCH_RESPONSE, WINCH_SPEED)
 from .tension_curve import check_curve, TensionCurve
 
-KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE}
+KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE, 'carried': CARRIED}
 STANDARD_GRAVITY = 9.80665  # [m/s^2]
 SMALLEST_SINK = 1e-4  # [m]: the contact damping's ramp depth at least (a buoyant line's)
 
@@ -302,8 +308,10 @@ class Point:
     """
     A point line ends attach to.
 
-    :ivar kind: 'fixed', 'driven' or 'free'.
+    :ivar kind: 'fixed', 'driven', 'free' or 'carried'.
     :ivar mass: own mass [kg] (a free point's; 0 for the others).
+    :ivar body: a carried point's body (its index in the System); offset: where it sits on
+        it, from its centre of gravity in body axes [m] (its position follows from them).
     :ivar position: (3,) [m], a view into the System's state once packed.
     :ivar velocity: (3,) [m/s], likewise.
     :ivar volume: the water (or air) it displaces when wholly in it [m^3] (a free point's).
@@ -312,7 +320,8 @@ class Point:
     """
 
     def __init__(self, kind: str, position, mass: float = 0.0, velocity=None,
-                 volume: float = 0.0, drag_area: float = 0.0, added_mass: float = 0.0):
+                 volume: float = 0.0, drag_area: float = 0.0, added_mass: float = 0.0,
+                 body: int = -1, offset=(0.0, 0.0, 0.0)):
         """Make a point of `kind` at `position` (a free point needs mass or a line)."""
         if kind not in KINDS:
             raise ValueError(f'point kind {kind!r} is not one of {", ".join(KINDS)}')
@@ -329,6 +338,10 @@ class Point:
         self.position = np.array(position, dtype=float).reshape(3)
         self.velocity = (np.zeros(3) if velocity is None
                          else np.array(velocity, dtype=float).reshape(3))
+        if kind == 'carried' and body < 0:
+            raise ValueError('a carried point needs its body')
+        self.body = int(body)
+        self.offset = tuple(float(c) for c in offset)
 
 
 class Line:
@@ -415,6 +428,8 @@ class System:
         self.environment = environment
         self.points: List[Point] = []
         self.lines: List[Line] = []
+        self.bodies: List[Body] = []
+        self.fenders: List[Fender] = []
         self.gravity = np.asarray(environment.gravity, dtype=float)
         self.env = environment.array()  # what the kernels read (set_current writes in it)
         self._packed = False
@@ -425,6 +440,18 @@ class System:
         self.points.append(point)
         self._packed = False
         return len(self.points) - 1
+
+    def add_body(self, body: Body) -> int:
+        """Add a rigid body (its carried points name it by this index); return the index."""
+        self.bodies.append(body)
+        self._packed = False
+        return len(self.bodies) - 1
+
+    def add_fender(self, fender: Fender) -> int:
+        """Add a fender that touches one of the bodies; return its index."""
+        self.fenders.append(fender)
+        self._packed = False
+        return len(self.fenders) - 1
 
     def add_line(self, line: Line) -> int:
         """Add a line whose ends sit on points already added; return its index."""
@@ -459,10 +486,33 @@ class System:
         for q, point in enumerate(self.points):
             point.position = self.point_x[q]
             point.velocity = self.point_v[q]
+        self._pack_bodies()
         self._starts = starts
         self._packed = True
         self.refresh()
+        place_points(self.body_table, self.points_table, self.point_x, self.point_v)
         assembly.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)
+
+    def _pack_bodies(self) -> None:
+        """Build the BODY and FENDER tables; each Body's state becomes a view of its row."""
+        for point in self.points:
+            if point.kind == 'carried' and not 0 <= point.body < len(self.bodies):
+                raise ValueError(f'carried point on body {point.body}: the system has '
+                                 f'{len(self.bodies)} bodies')
+        for fender in self.fenders:
+            if not 0 <= fender.body < len(self.bodies):
+                raise ValueError(f'fender on body {fender.body}: the system has '
+                                 f'{len(self.bodies)} bodies')
+        self.body_table = np.array([body.row() for body in self.bodies],
+                                   dtype=float).reshape(-1, BODY_COLUMNS)
+        for b, body in enumerate(self.bodies):
+            row = self.body_table[b]
+            body.position = row[BODY_POSITION:BODY_POSITION + 3]
+            body.quaternion = row[BODY_QUATERNION:BODY_QUATERNION + 4]
+            body.velocity = row[BODY_VELOCITY:BODY_VELOCITY + 3]
+            body.omega = row[BODY_OMEGA:BODY_OMEGA + 3]
+        self.fender_table = np.array([fender.row() for fender in self.fenders],
+                                     dtype=float).reshape(-1, FENDER_COLUMNS)
 
     def refresh(self) -> None:
         """
@@ -479,7 +529,7 @@ class System:
             self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]] = kept
         # what every step passes after the state, built once: a step runs at kHz
         self.tables = (self.particles, self.lines_table, self.line_real, self.points_table,
-                       self.env)
+                       self.env, self.body_table, self.fender_table)
         # the accelerations of the last implicit step (P, 3), (Q, 3), and the step count at
         # which they are the state's (-1: they are not); each line's improved Euler time left
         # in the adaptive integrator [s]
@@ -509,6 +559,8 @@ class System:
             self.points_table[q, ADDED_MASS] = point.added_mass
             size = point.volume ** (1.0 / 3.0)
             self.points_table[q, SIZE] = size
+            self.points_table[q, POINT_BODY] = point.body
+            self.points_table[q, POINT_OFFSET:POINT_OFFSET + 3] = point.offset
             # its static sink into the ground under its submerged weight
             sinking = (point.mass - point.volume * self._ground_density()) * env.g
             self.points_table[q, POINT_SINK] = self._ramp(sinking, size * size)
@@ -642,6 +694,16 @@ class System:
         """Return the indices of the free points."""
         return np.flatnonzero(self.points_table[:, KIND] == FREE)
 
+    @property
+    def carried_points(self) -> np.ndarray:
+        """Return the indices of the points a body carries."""
+        return np.flatnonzero(self.points_table[:, KIND] == CARRIED)
+
+    @property
+    def has_bodies(self) -> bool:
+        """Tell whether a rigid body moves with the lines."""
+        return len(self.bodies) > 0
+
     def lumped_mass(self, q: int) -> float:
         """Return a point's own mass plus the half segments of the line ends on it [kg]."""
         return float(self.points_table[q, TOTAL_MASS])
@@ -672,7 +734,7 @@ class System:
         """Return a copy of everything a step changes (load_state puts it back)."""
         return (self.x.copy(), self.v.copy(), self.point_x.copy(), self.point_v.copy(),
                 self.particles.copy(), self.line_real.copy(), self.accel.copy(),
-                self.point_accel.copy())
+                self.point_accel.copy(), self.body_table.copy())
 
     def load_state(self, saved: tuple) -> None:
         """Put back what save_state copied, in place (the Lines' and Points' views see it)."""
@@ -682,7 +744,7 @@ class System:
     def load_line_state(self, saved: tuple, k: int) -> None:
         """Put back line k's part of what save_state copied: its particles and table rows."""
         rows = slice(self.lines_table[k, FIRST], self.lines_table[k, LAST] + 1)
-        x, v, _, _, particles, line_real, accel, _ = saved
+        x, v, _, _, particles, line_real, accel, _, _ = saved
         self.x[rows] = x[rows]
         self.v[rows] = v[rows]
         self.accel[rows] = accel[rows]
@@ -696,7 +758,7 @@ class System:
     def _state(self) -> tuple:
         """Return the arrays save_state copies, in its order."""
         return (self.x, self.v, self.point_x, self.point_v, self.particles, self.line_real,
-                self.accel, self.point_accel)
+                self.accel, self.point_accel, self.body_table)
 
     def _follow_line_changes(self) -> list:
         """
@@ -746,9 +808,10 @@ class System:
         Everything of the line is taken: its particles' state, its type and rest lengths, its
         winch (and the speed it ran at), break load and parting, its held peaks; and the
         positions and velocities of the points its ends sit on. The two lines must have as
-        many segments, and their points be of the same kinds. The other lines and points go
-        on untouched. This is how a line started at rest in a System of its own (relaxed
-        alone) takes its place in a System it shares with others.
+        many segments, and their points be of the same kinds (a carried point takes its
+        body's motion instead). The other lines and points go on untouched. This is how a
+        line started at rest in a System of its own (relaxed alone) takes its place in a
+        System it shares with others.
         """
         line, other = self.lines[k], source.lines[j]
         if line.segments != other.segments:
@@ -765,6 +828,9 @@ class System:
         self.refresh()
         self.line_real[k, [WINCH_SPEED, PEAK_A, PEAK_B]] = \
             source.line_real[j, [WINCH_SPEED, PEAK_A, PEAK_B]]
+        if self.bodies:  # a carried end moves with its body, whatever the source's did
+            place_points(self.body_table, self.points_table, self.point_x, self.point_v)
+            assembly.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)
 
     def line_loads(self) -> np.ndarray:
         """
@@ -822,7 +888,11 @@ class System:
 
     def energy(self) -> tuple:
         """
-        Return (kinetic, potential, elastic) energy of the lines and free points [J].
+        Return (kinetic, potential, elastic) energy of the lines, free points and bodies [J].
+
+        A body's: kinetic with its mass and added mass, potential of its hydrostatic
+        restoring, 1/2 (k_heave dz^2 + k_roll phi^2 + k_pitch theta^2) about where it floats
+        freely (forces/body.py; exact for small angles).
 
         Kinetic of every particle (a line end on a free point counted with the point, once),
         potential of every lumped mass in gravity less the air it displaces (0 at the
@@ -861,6 +931,10 @@ class System:
                         if line.ends[e] == q:
                             lifted -= m[row] - net[row]
             potential -= lifted * float(self.point_x[q] @ g)
+        for body in self.bodies:
+            k_body, p_body = body.energy()
+            kinetic += k_body
+            potential += p_body
         for k in range(len(self.lines)):
             first, last = self.lines_table[k, FIRST], self.lines_table[k, LAST]
             rows = self.particles[first:last + 1]
@@ -944,13 +1018,15 @@ class System:
 
 class LineView:
     """
-    One line of a System whose lines all end on driven or fixed points, as a System of it.
+    One line of a System whose lines end on driven, fixed or carried points, as a System of it.
 
     Its particle rows and its line_real row are views of the System's: a kernel run of the
     view steps that line in the System, and no other. Its points are copies (ends: their
-    indices in the System); put them back with store_points. The adaptive integrator takes
-    a snapping line's improved Euler steps so, at the cost of that line alone. Make it anew
-    after anything rebuilds the System's tables (refresh).
+    indices in the System); put them back with store_points. A carried point is a driven one
+    here: the view moves the line, not the body, whose motion comes from the step the whole
+    System took (the drive arrays the caller gives). The adaptive integrator takes a snapping
+    line's improved Euler steps so, at the cost of that line alone. Make it anew after
+    anything rebuilds the System's tables (refresh).
     """
 
     def __init__(self, system: System, k: int):
@@ -966,8 +1042,10 @@ class LineView:
         lines_table = system.lines_table[k:k + 1].copy()
         lines_table[0, [FIRST, LAST]] -= first
         lines_table[0, [END_A, END_B]] = (0, 1)
-        self.tables = (system.particles[first:last], lines_table, self.line_real,
-                       system.points_table[self.ends], system.env)
+        points = system.points_table[self.ends]  # a copy
+        points[points[:, KIND] == CARRIED, KIND] = DRIVEN
+        self.tables = (system.particles[first:last], lines_table, self.line_real, points,
+                       system.env, system.body_table[:0], system.fender_table[:0])
 
     def drive(self, drive_x: np.ndarray, drive_v: np.ndarray) -> tuple:
         """Return the view's points' rows of a System's drive arrays (n, Q, 3): (n, 2, 3) twice."""

@@ -311,6 +311,31 @@ class Driver:
             (t, np.zeros(3) if lever is None else np.array(lever, dtype=float)))
         return event
 
+    def start_free(self, stamp_ns: int) -> Dict[int, float]:
+        """
+        Start a free ship's mooring at this stamp (simulated time 0 if none is set yet).
+
+        A free ship needs no pose to start: it floats at rest at its start pose.
+
+        :returns: {line index: length chosen} of the pretensioned lines.
+        :raises ParameterError: a pretension no length gives at the start pose.
+        """
+        if self.epoch_ns is None:
+            self.epoch_ns = int(stamp_ns)
+        lengths = self.mooring.start(self.seconds(stamp_ns))
+        self._fresh = True
+        return lengths
+
+    def set_external_load(self, force, moment, body_axes: bool) -> None:
+        """
+        Hold an external load on a free ship until the next one (ship/external_wrench).
+
+        :param force, moment: [N], [N m] about the ship's origin, in the ship's body axes
+            (they turn with it) or in frame_id axes.
+        :raises ValueError: a number that is not finite.
+        """
+        self.mooring.set_external_load(force, moment, body_axes)
+
     def silence(self, stream: str) -> bool:
         """Take a stream for silent (no longer holding the ropes); return if it was live."""
         was = self._live[stream]

@@ -56,6 +56,13 @@ Each line's rules, for every step (Simulator.advance_to of earlier releases, lin
 The total load on the ship (mooring_wrench) is the sum of the fairlead forces and of their
 moments about the ship's origin: in the ship's body frame, F = R^T sum F_k and
 M = sum o_k x (R^T F_k), with o_k the fairlead offsets and R the ship's orientation.
+
+A free ship (ship_mode free) is a rigid body in the lines' System instead of a pose: every
+line is in one group, whose System holds the body (mooring/ship.py builds it from the ship.*
+parameters) and the fenders, each fairlead a point the body carries; the kernels step them
+together. Its pose is then an output (ship_pose), and the loads on it besides its lines and
+fenders (an external wrench, a schedule of them) are set per advance: their value at its
+start and their rate to its end, about the centre of gravity in world axes.
 """
 
 from collections import deque
@@ -66,9 +73,14 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .line import MooringLine, Parting
+from .ship import fenders, ship_body
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
+from ..model.forces.body import place_points
+from ..model.forces.fender import fender_force
 from ..model.frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
-from ..model.layout import WINCH_SPEED
+from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
+                            BODY_POSITION, BODY_QUATERNION, BODY_STATE, BODY_VELOCITY,
+                            FENDER_COLUMNS, WINCH_SPEED)
 from ..model.objects import Line, Point, System
 from ..model.statics.pretension import length_for_tension, PretensionError
 from ..model.superelastic import MAX_ITERATIONS
@@ -119,6 +131,22 @@ def divide_run(start: float, times: Sequence[float], parts: int) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+class ShipState:
+    """
+    A free ship's motion at one instant (its body origin's).
+
+    :ivar position: the body origin [m]; orientation: unit quaternion (x, y, z, w).
+    :ivar velocity: the body origin's velocity [m/s]; omega: angular velocity [rad/s]; both
+        in frame_id axes.
+    """
+
+    position: np.ndarray
+    orientation: np.ndarray
+    velocity: np.ndarray
+    omega: np.ndarray
+
+
+@dataclass(frozen=True)
 class MooringOutput:
     """
     What every line looks like at one instant.
@@ -138,6 +166,10 @@ class MooringOutput:
     :ivar line_lengths: each line's unstretched length now (L,) [m] (its winch changes it).
     :ivar winch_speeds: the speed each line's winch paid out at in the last step (L,) [m/s].
     :ivar finite: every number of the output is finite (their sum is: an overflow is not).
+    :ivar ship: a free ship's motion; None for a driven ship.
+    :ivar fender_compressions: each fender's compression [m] (F,) (<= 0: not touched).
+    :ivar fender_forces: each fender's force on the ship (F, 3) [N], frame_id axes, at
+        fender_points (F, 3) [m] (the contact points; the fender's centre when untouched).
     """
 
     t: float
@@ -154,6 +186,10 @@ class MooringOutput:
     line_lengths: np.ndarray
     winch_speeds: np.ndarray
     finite: bool = True
+    ship: Optional[ShipState] = None
+    fender_compressions: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    fender_forces: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    fender_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
 
     @property
     def peaks(self) -> np.ndarray:
@@ -292,6 +328,21 @@ class Mooring:
         self.last_jumps = np.zeros(count)  # how far each line's newest end sample jumped [m]
         self._ends_version = 0  # counts the changes of how the ends are driven
         self._last_fairleads: Optional[np.ndarray] = None  # every fairlead's newest point
+        # a free ship: the body the lines' System steps, its fenders, the loads on it
+        self.free = arrangement.ship.free
+        # a free ship's body, which the lines' System steps; a driven ship's stands in for it
+        # where the fenders meet the hull, placed at each output's ship pose
+        self.body = ship_body(arrangement)
+        self._start_row = self.body.row()
+        self.fenders = fenders(arrangement)
+        self._fender_rows = np.array([fender.row() for fender in self.fenders]).reshape(
+            len(self.fenders), FENDER_COLUMNS)
+        # force, moment about the ship's origin, held until set again: in world axes, and in
+        # the ship's body axes (turning with it)
+        self.external_load = np.zeros(6)
+        self.body_load = np.zeros(6)
+        # offline: (times (n,), loads (n, 6)) as external_load, linear between the times
+        self.load_schedule: Optional[Tuple[np.ndarray, np.ndarray]] = None
         self._group()
 
     def _line(self, name: str, params) -> MooringLine:
@@ -352,7 +403,18 @@ class Mooring:
         return group.system.lines[j]
 
     def _group(self) -> None:
-        """Put the lines with equal steps and bending treatment in one group each."""
+        """
+        Put the lines with equal steps and bending treatment in one group each.
+
+        A free ship's lines are one group (one System holds the body): at the smallest of
+        their steps, with the bending springs in the implicit step if any line needs them.
+        """
+        if self.free:
+            dt = min(line.time_step for line in self.lines)
+            bending = any(implicit_bending(line.props, dt) for line in self.lines)
+            self.groups = [_Group(list(range(len(self.lines))), dt, bending)]
+            self._group_of = {k: self.groups[0] for k in range(len(self.lines))}
+            return
         keys: Dict[tuple, List[int]] = {}
         for k, line in enumerate(self.lines):
             key = (line.time_step, implicit_bending(line.props, line.time_step))
@@ -381,10 +443,18 @@ class Mooring:
         for group in self.groups:
             members = [(sources[k], indices[k]) for k in group.members]
             system = System(members[0][0].environment)
+            if self.free:
+                system.add_body(self.body)
+                for fender in self.fenders:
+                    system.add_fender(fender)
             for j, (source, i) in enumerate(members):
                 rope = source.lines[i]
-                for q in rope.ends:
+                for e, q in enumerate(rope.ends):
                     point = source.points[q]
+                    if e == 1 and self.free:  # the fairlead: on the ship
+                        system.add_point(Point('carried', point.position.copy(), body=0,
+                                               offset=self._from_gravity(group.members[j])))
+                        continue
                     system.add_point(Point(point.kind, point.position.copy(), point.mass,
                                            point.velocity.copy(), point.volume,
                                            point.drag_area, point.added_mass))
@@ -400,6 +470,10 @@ class Mooring:
 
     # -- inputs ---------------------------------------------------------------------------
 
+    def _from_gravity(self, k: int) -> np.ndarray:
+        """Return line k's fairlead from the free ship's centre of gravity, body axes [m]."""
+        return np.asarray(self.offsets[k]) - np.asarray(self.arrangement.ship.center_of_gravity)
+
     def push_ship(self, t: float, position, orientation) -> List[int]:
         """
         Take a ship pose: every fairlead gets its sample, pose ⊕ fairlead_offset.
@@ -411,8 +485,12 @@ class Mooring:
 
         :returns: the lines a jump restarted.
         :raises PoseError: non-finite pose or zero quaternion (nothing changed).
-        :raises TrajectoryError: not after the newest ship pose (nothing changed).
+        :raises TrajectoryError: not after the newest ship pose, or the ship is free (nothing
+            changed).
         """
+        if self.free:
+            raise TrajectoryError('the ship is free (ship_mode free): its pose is an output '
+                                  'of the mooring, not an input')
         q, _ = unit_quaternion(orientation)
         points = pose_points(position, orientation, self.offsets)
         if self._ship and t <= self._ship[-1][0]:
@@ -491,7 +569,13 @@ class Mooring:
         return ''
 
     def ship_pose(self, t: float) -> Tuple[np.ndarray, np.ndarray]:
-        """Return (position, unit quaternion) of the newest ship pose at or before t."""
+        """
+        Return (position, unit quaternion) of the newest ship pose at or before t.
+
+        A free ship's: its body origin's pose now (t is the state time at an output).
+        """
+        if self.free:
+            return self.body.origin_pose()
         chosen = self._ship[0]
         for sample in self._ship:
             if sample[0] > t:
@@ -529,7 +613,9 @@ class Mooring:
         ends = np.empty((len(times), 2, 3))
         velocities = np.zeros((len(times), 2, 3))
         own = self._own_fairlead[k]
-        if own is not None:
+        if self.free:  # where the ship carries it now
+            ends[:, 1], velocities[:, 1] = self._carried_fairlead(k)
+        elif own is not None:
             ends[:, 1], velocities[:, 1] = own.sample(times)
         else:
             shared_x, shared_v = self._fairleads.sample(times)
@@ -543,6 +629,12 @@ class Mooring:
             ends[:, 0] = fixed
         return ends, velocities
 
+    def _carried_fairlead(self, k: int) -> Tuple[np.ndarray, np.ndarray]:
+        """Return line k's fairlead on the free ship now: position [m], velocity [m/s]."""
+        body = self.body
+        lever = rotation_matrix(body.quaternion) @ self._from_gravity(k)
+        return body.position + lever, body.velocity + np.cross(body.omega, lever)
+
     def drive(self, k: int, times: np.ndarray) -> tuple:
         """
         Return what drives line k's ends at `times`.
@@ -552,7 +644,7 @@ class Mooring:
             to hold).
         """
         ends, velocities = self.free_ends(k, times)
-        if self.lines[k].payload:
+        if self.lines[k].payload or self.free:  # nothing to hold (a ship is not held)
             return ends, velocities, np.zeros(len(ends))
         distances = end_distances(ends)
         hold_beyond_reach(ends, velocities, distances, self.lines[k].reach)
@@ -598,7 +690,7 @@ class Mooring:
             shared, bollards, others = [], [], []
             for j, k in enumerate(group.members):
                 fixed = self._fixed_bollard(k)
-                if fixed is not None and self._own_fairlead[k] is None:
+                if fixed is not None and self._own_fairlead[k] is None and not self.free:
                     shared.append((j, k))
                     bollards.append(fixed)
                 else:
@@ -656,7 +748,7 @@ class Mooring:
         :returns: {line index: the length chosen [m]} of the pretensioned lines.
         :raises ParameterError: a pretension no length gives (named with its line).
         """
-        if not self._ship:
+        if not self._ship and not self.free:
             raise TrajectoryError('cannot start the lines before the first ship pose')
         lengths = self._resolve_pretensions(t)
         alone = {}
@@ -734,11 +826,22 @@ class Mooring:
             self.restart_line(k, t)
 
     def restore(self) -> None:
-        """Give every line back its length and its whole rope, at rest at the state time."""
+        """
+        Give every line back its length and its whole rope, at rest at the state time.
+
+        A free ship goes back to its start pose, at rest, first.
+        """
         for line in self.lines:
             line.restore()
+        if self.started and self.free:
+            self._reset_ship(self.groups[0].system)
         if self.started:
             self.restart()
+
+    def _reset_ship(self, system: System) -> None:
+        """Put the free ship back at its start pose, at rest (no acceleration kept)."""
+        system.body_table[0, :BODY_CLOCK] = self._start_row[:BODY_CLOCK]
+        place_points(system.body_table, system.points_table, system.point_x, system.point_v)
 
     def command_winch(self, k: int, speed: float) -> None:
         """
@@ -777,6 +880,8 @@ class Mooring:
 
     def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
         """Take the steps of one group to `times`: held at the reach, back within it."""
+        if self.free:
+            self._set_body_loads(group.system, group.time, float(times[-1]))
         drive_x, drive_v, distances = self._drive_group(group, times)
         held = self.held[group.index]
         beyond = distances > group.rules.reach
@@ -879,6 +984,58 @@ class Mooring:
         if changed:
             group.rules.refresh([self.lines[k] for k in group.members])
 
+    def load_at(self, t: float) -> np.ndarray:
+        """
+        Return the load on the free ship at t besides its lines and fenders (6,).
+
+        The external wrench (external_load, body_load turned with the ship) plus the
+        schedule's (load_schedule) at t: force [N] and moment about the ship's origin [N m],
+        world axes.
+        """
+        load = self.external_load.copy()
+        if self.body_load.any():
+            rotation = rotation_matrix(self.body.quaternion)
+            load[:3] += rotation @ self.body_load[:3]
+            load[3:] += rotation @ self.body_load[3:]
+        if self.load_schedule is not None:
+            times, loads = self.load_schedule
+            load += [np.interp(t, times, loads[:, c]) for c in range(6)]
+        return load
+
+    def set_external_load(self, force, moment, body_axes: bool) -> None:
+        """
+        Hold an external load on the free ship from now on (it replaces the one before).
+
+        :param force, moment: [N], [N m] about the ship's origin; in its body axes (they
+            turn with it) or in frame_id axes.
+        :raises ValueError: a number that is not finite.
+        """
+        load = np.concatenate([np.asarray(force, dtype=float).reshape(3),
+                               np.asarray(moment, dtype=float).reshape(3)])
+        if not np.isfinite(load).all():
+            raise ValueError(f'external load {load.tolist()} must be finite numbers')
+        self.external_load = np.zeros(6) if body_axes else load
+        self.body_load = load if body_axes else np.zeros(6)
+
+    def _set_body_loads(self, system: System, start: float, end: float) -> None:
+        """
+        Give the body its loads from start to end [s]: their value at start, their rate to end.
+
+        Taken about the centre of gravity where the ship is at start: over one output interval
+        it turns far too little for that to matter.
+        """
+        lever = self.body.position - self.body.origin_pose()[0]  # from the origin to the CG
+        row = system.body_table[0]
+        values = []
+        for t in (start, end):
+            load = self.load_at(t)
+            load[3:] -= np.cross(lever, load[:3])  # the moment about the CG
+            values.append(load)
+        row[BODY_LOAD:BODY_LOAD + 6] = values[0]
+        row[BODY_LOAD_RATE:BODY_LOAD_RATE + 6] = (
+            (values[1] - values[0]) / (end - start) if end > start else 0.0)
+        row[BODY_CLOCK] = 0.0
+
     def _set_group_time(self, group: _Group, t: float) -> None:
         group.time = t
 
@@ -894,6 +1051,11 @@ class Mooring:
         :param end_speeds: each line's largest end speed over the steps just taken [m/s].
         """
         system = group.system
+        if self.free and not np.isfinite(system.body_table[:, :BODY_STATE]).all():
+            self._reset_ship(system)  # numbers overflowed somewhere: start over
+            for k in group.members:
+                restarted[k] = 'non-finite state'
+                self.restart_line(k)
         finite, largest = system.largest_load()
         rules = group.rules
         bounds = rules.bound_at_rest + rules.bound_per_speed * end_speeds
@@ -1014,10 +1176,49 @@ class Mooring:
         parted = np.array([line.parting is not None for line in self.lines])
         lengths = np.array([line.length for line in self.lines])
         total += float(lengths.sum())
+        ship = self._ship_state() if self.free else None
+        compressions, fender_forces, points = self._fender_states()
         return MooringOutput(
             self.time, tuple(positions), forces[:, 1], forces[:, 0], strains, tuple(payloads),
             parted, peaks[:, 1], tensions[:, 1], tensions[:, 0], peaks[:, 0], lengths,
-            winch_speeds, math.isfinite(total))
+            winch_speeds, math.isfinite(total), ship, compressions, fender_forces, points)
+
+    def _ship_state(self) -> ShipState:
+        """Return the free ship's motion now (its body origin's)."""
+        body = self.body
+        position, orientation = body.origin_pose()
+        velocity = body.velocity + np.cross(body.omega, position - body.position)
+        return ShipState(position, orientation, velocity, body.omega.copy())
+
+    def _fender_states(self) -> tuple:
+        """
+        Return each fender's compression (F,), force on the ship (F, 3) and point (F, 3).
+
+        A driven ship's hull is placed at the newest ship pose, at rest (no friction).
+        """
+        count = len(self.fenders)
+        compressions, forces = np.zeros(count), np.zeros((count, 3))
+        points = self._fender_rows[:, :3].copy() if count else np.zeros((0, 3))
+        if not count or not self.started:
+            return compressions, forces, points
+        row = self.groups[0].system.body_table[0] if self.free else self._driven_hull()
+        rotation = rotation_matrix(row[BODY_QUATERNION:BODY_QUATERNION + 4])
+        velocity = row[BODY_VELOCITY:BODY_VELOCITY + 3]
+        omega = row[BODY_OMEGA:BODY_OMEGA + 3]
+        for f in range(count):
+            compressions[f] = fender_force(self._fender_rows[f], row, rotation, velocity,
+                                           omega, forces[f], points[f])[0]
+        return compressions, forces, points
+
+    def _driven_hull(self) -> np.ndarray:
+        """Return a BODY row of the driven ship at its newest pose, at rest."""
+        position, orientation = self.ship_pose(self.time)
+        row = self._start_row.copy()
+        row[BODY_QUATERNION:BODY_QUATERNION + 4] = orientation
+        row[BODY_POSITION:BODY_POSITION + 3] = position - rotation_matrix(orientation) @ \
+            row[BODY_ORIGIN:BODY_ORIGIN + 3]
+        row[BODY_VELOCITY:BODY_OMEGA + 3] = 0.0
+        return row
 
 
 def hold_beyond_reach(ends: np.ndarray, velocities: np.ndarray, distance: np.ndarray,

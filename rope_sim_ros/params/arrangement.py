@@ -32,13 +32,15 @@ with that fairlead tension). Every error is one line naming the parameter and wh
 allowed. No ROS and no files here beyond reading a parameter file.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import re
 from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 import yaml
 
 from .files import read_params_file
+from .ship import (check_fender_names, fender_setup, FENDER_SPECS, FENDERS, FenderSetup,
+                   field_name, PASSING_SHIP, SHIP, SHIP_SPECS, ShipParams)
 from .table import allowed, check, LineParams, ParameterError, Spec, SPECS
 from .table import NODE_NAME as LINE_NODE_NAME
 
@@ -79,6 +81,8 @@ LINE_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
 LINE_NAME_RULE = ('a name starts with a letter and holds letters, digits and _ (it becomes a '
                   'parameter prefix and a topic namespace)')
 MAX_LINES = 64
+# Names a line or a fender cannot take: the prefixes of the ship's own parameters.
+RESERVED = (SHIP, PASSING_SHIP)
 # What a line must set itself (or take from a top-level default): where it is.
 REQUIRED = {
     'fairlead_offset': "m, in the ship's body frame",
@@ -111,12 +115,16 @@ class ArrangementParams:
     :ivar shared: the SHARED values (the lines' too; its other fields are the defaults).
     :ivar ship_frame_id: the ship's body frame.
     :ivar marker_rate: rate of mooring/markers [Hz].
+    :ivar ship: the ship (driven or free) and its body.
+    :ivar fenders: the fenders on the quay, in the order of `fenders`.
     """
 
     lines: Tuple[LineSetup, ...]
     shared: LineParams
     ship_frame_id: str = ARRANGEMENT_SPECS['ship_frame_id'].default
     marker_rate: float = ARRANGEMENT_SPECS['marker_rate'].default
+    ship: ShipParams = ShipParams()
+    fenders: Tuple[FenderSetup, ...] = ()
 
     @property
     def single(self) -> bool:
@@ -145,6 +153,15 @@ class ArrangementParams:
         values.update({name: getattr(self.shared, name) for name in SHARED})
         values['ship_frame_id'] = self.ship_frame_id
         values['marker_rate'] = self.marker_rate
+        for name, value in self.ship.values().items():
+            if name == 'ship_mode' or name == 'stiffness_rate':
+                values[name] = value
+            else:  # nested as the lines' settings are
+                values.setdefault(SHIP, {})[name.partition('.')[2]] = value
+        if self.fenders:
+            values[FENDERS] = [fender.name for fender in self.fenders]
+            for fender in self.fenders:
+                values[fender.name] = fender.values()
         for line in self.lines:
             own = {name: value for name, value in line.params.as_dict().items()
                    if name not in SHARED}
@@ -158,7 +175,7 @@ class ArrangementParams:
         """Return a copy with one line's parameters replaced."""
         lines = tuple(LineSetup(line.name, params, line.pretension) if line.name == name
                       else line for line in self.lines)
-        return ArrangementParams(lines, self.shared, self.ship_frame_id, self.marker_rate)
+        return replace(self, lines=lines)
 
 
 def flatten(values: Mapping[str, Any], prefix: str = '') -> Dict[str, Any]:
@@ -195,7 +212,8 @@ def check_line_names(value: Any) -> List[str]:
                                  f'{LINE_NAME_RULE}')
         if name in names:
             raise ParameterError(f'line name {name!r} appears twice in {LINES!r}')
-        if name in LINE_SPECS or name in SPECS or name in ARRANGEMENT_SPECS:
+        if name in LINE_SPECS or name in SPECS or name in ARRANGEMENT_SPECS or \
+                name in SHIP_SPECS or name in RESERVED or name == FENDERS:
             raise ParameterError(f'line name {name!r} in {LINES!r} is not allowed: it is the '
                                  'name of a parameter')
         names.append(name)
@@ -231,12 +249,34 @@ def check_top_value(name: str, value: Any) -> Any:
     """
     if name in ARRANGEMENT_SPECS:
         return check(name, value, ARRANGEMENT_SPECS)
+    if name in SHIP_SPECS:
+        return check(name, value, SHIP_SPECS)
     if name in SPECS or name in OWN_SPECS:
         return check(name, value, {**SPECS, **OWN_SPECS})
+    if name.startswith(SHIP + '.'):
+        raise ParameterError(f'unknown parameter {name!r}; the ship takes: '
+                             f'{", ".join(n for n in SHIP_SPECS if n.startswith(SHIP + "."))}')
     raise ParameterError(
         f'unknown parameter {name!r}: not a shared parameter ({", ".join(SHARED)}), a line '
-        f'setting, nor one of {LINES}, {", ".join(ARRANGEMENT_SPECS)}; a line takes its own '
+        f'setting, nor one of {LINES}, {FENDERS}, {", ".join(ARRANGEMENT_SPECS)}, '
+        f'{", ".join(n for n in SHIP_SPECS if "." not in n)}, ship.*; a line takes its own '
         'settings under its name, e.g. head_1.length')
+
+
+def check_fender_value(fender: str, name: str, value: Any) -> Any:
+    """
+    Validate one setting of a fender; return it in its canonical type.
+
+    :raises ParameterError: an unknown setting or a bad value, named with the fender.
+    """
+    if name not in FENDER_SPECS:
+        raise ParameterError(f'unknown parameter {fender}.{name}; a fender takes: '
+                             f'{", ".join(FENDER_SPECS)}')
+    try:
+        return check(name, value, FENDER_SPECS)
+    except ParameterError as e:
+        raise ParameterError(str(e).replace(f'parameter {name!r}', f'parameter '
+                                            f'{fender + "." + name!r}', 1)) from None
 
 
 def from_values(values: Mapping[str, Any]) -> ArrangementParams:
@@ -249,27 +289,34 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
     """
     flat = flatten(values)
     names = check_line_names(flat.get(LINES))
+    fender_names = check_fender_names(flat.get(FENDERS), names)
     top: Dict[str, Any] = {}
     own: Dict[str, Dict[str, Any]] = {name: {} for name in names}
+    fenders: Dict[str, Dict[str, Any]] = {name: {} for name in fender_names}
     for key, value in flat.items():
-        if key == LINES:
+        if key in (LINES, FENDERS):
             continue
         line, dot, name = key.partition('.')
-        if not dot:
+        if not dot or line == SHIP:
             top[key] = check_top_value(key, value)
         elif line in own:
             own[line][name] = check_line_value(line, name, value)
+        elif line in fenders:
+            fenders[line][name] = check_fender_value(line, name, value)
         else:
             raise ParameterError(f'parameter {key!r} is for no line: {LINES} are '
-                                 f'{", ".join(names)}')
+                                 f'{", ".join(names)}; {FENDERS}: '
+                                 f'{", ".join(fender_names) or "none"}')
     shared_values = {k: v for k, v in top.items() if k in SHARED}
     shared = LineParams().with_values(shared_values)
     setups = tuple(_line_setup(name, {k: v for k, v in top.items() if k in LINE_SPECS},
                                own[name], shared_values) for name in names)
+    ship = ShipParams(**{field_name(k): v for k, v in top.items() if k in SHIP_SPECS})
     return ArrangementParams(
         setups, shared,
         top.get('ship_frame_id', ARRANGEMENT_SPECS['ship_frame_id'].default),
-        top.get('marker_rate', ARRANGEMENT_SPECS['marker_rate'].default))
+        top.get('marker_rate', ARRANGEMENT_SPECS['marker_rate'].default), ship,
+        tuple(fender_setup(name, fenders[name]) for name in fender_names))
 
 
 def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],

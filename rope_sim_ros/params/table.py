@@ -31,6 +31,9 @@ INTEGRATORS = ('adaptive', 'improved_euler', 'implicit_euler')
 DAMPING_MODELS = ('axial', 'seed')
 LOAD_EXTENSIONS = ('linear', 'curve')
 RELIABILITIES = ('reliable', 'best_effort')
+# A table given as pairs (a fender's load-compression curve): how many pairs it may hold.
+MIN_PAIRS = 2
+MAX_PAIRS = 15
 WINCH_MODES = ('none', 'speed', 'brake', 'constant_tension')
 
 
@@ -54,6 +57,9 @@ class Spec:
         (-inf: no water; -1: the material's value), or None.
     :ivar special_meaning: what `special` means, a few words.
     :ivar horizontal: a vector whose z component must be 0.
+    :ivar size: how many numbers a list parameter holds (a vector's 3 by default).
+    :ivar pairs: a list parameter of any even length: pairs of numbers (x0, y0, x1, y1, ...),
+        the flat form ROS parameters take a table in; its first numbers of a pair rise.
     """
 
     default: Any
@@ -67,6 +73,8 @@ class Spec:
     special: Optional[float] = None
     special_meaning: str = ''
     horizontal: bool = False
+    size: int = 3
+    pairs: bool = False
 
 
 SPECS: Mapping[str, Spec] = {
@@ -257,11 +265,18 @@ def allowed(spec: Spec) -> str:
         return 'any text'
     unit = f' {spec.unit}' if spec.unit else ''
     if isinstance(spec.default, list):
+        if spec.pairs:
+            low = '' if spec.low is None else f', each >= {spec.low:g}'
+            return (f'a flat list of number pairs [x0, y0, x1, y1, ...] ({spec.unit}), at least '
+                    f'{MIN_PAIRS} and at most {MAX_PAIRS}, the first of each pair rising{low}')
         if spec.horizontal:
             return 'a list of 3 finite numbers [x, y, 0] (z must be 0)'
-        if spec.high is not None:
-            return f'a list of 3 finite numbers, each within +-{spec.high:g}{unit}'
-        return 'a list of 3 finite numbers'
+        bounds = ''
+        if spec.low is not None and spec.high is not None:
+            bounds = f', each from {spec.low:g} to {spec.high:g}{unit}'
+        elif spec.high is not None:
+            bounds = f', each within +-{spec.high:g}{unit}'
+        return f'a list of {spec.size} finite numbers{bounds}'
     if isinstance(spec.default, bool):
         return 'true or false'
     low = '' if spec.low is None else f'{">" if spec.low_open else ">="} {spec.low:g}'
@@ -306,9 +321,12 @@ def check(name: str, value: Any, specs: Mapping[str, Spec] = SPECS) -> Any:
             raise bad
         return value
     if isinstance(default, list):
-        if (not isinstance(value, (list, tuple)) or len(value) != 3
+        if spec.pairs:
+            return _checked_pairs(spec, value, bad)
+        if (not isinstance(value, (list, tuple)) or len(value) != spec.size
                 or not all(_is_finite_number(v) for v in value)
                 or (spec.high is not None and max(abs(v) for v in value) > spec.high)
+                or (spec.low is not None and min(value) < spec.low)
                 or (spec.horizontal and value[2] != 0.0)):
             raise bad
         return [float(v) for v in value]
@@ -328,6 +346,19 @@ def check(name: str, value: Any, specs: Mapping[str, Spec] = SPECS) -> Any:
     if spec.high is not None and value > spec.high:
         raise bad
     return value
+
+
+def _checked_pairs(spec: Spec, value: Any, bad: ParameterError) -> list:
+    """Return a flat list of number pairs as floats (see Spec.pairs), or raise `bad`."""
+    if (not isinstance(value, (list, tuple)) or len(value) % 2
+            or not MIN_PAIRS <= len(value) // 2 <= MAX_PAIRS
+            or not all(_is_finite_number(v) for v in value)
+            or (spec.low is not None and min(value) < spec.low)):
+        raise bad
+    firsts = value[0::2]
+    if any(b <= a for a, b in zip(firsts, firsts[1:])):
+        raise bad
+    return [float(v) for v in value]
 
 
 def _is_special(spec: Spec, value: Any) -> bool:

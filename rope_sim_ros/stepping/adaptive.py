@@ -146,7 +146,7 @@ def _step(system, dt, step_x, step_v, k, fine_steps, together, max_iterations,
     fine = system.fine_left > 1e-9
     saved = system.save_state()
     implicit = None
-    if not fine.all():
+    if not fine.all() or system.has_bodies:  # a body moves in the implicit step only
         _take(system, 'implicit_euler', dt, step_x, step_v, k, 1, max_iterations,
               implicit_bending, compiled, NEWMARK, whole, snapped)
         if not (fine | snapped).any():
@@ -155,6 +155,8 @@ def _step(system, dt, step_x, step_v, k, fine_steps, together, max_iterations,
         implicit = system.save_state()  # a snap: the step again, with improved Euler
         system.fine_left[snapped] = HOLD_TIME
         fine |= snapped
+    if system.has_bodies:  # the fine lines' carried ends follow the body's implicit step
+        step_x, step_v = _carried_ends(system, step_x, step_v)
     if together:
         fine[:] = True
     _take_fine(system, dt, step_x, step_v, k, fine, fine_steps, together, saved, implicit,
@@ -162,6 +164,24 @@ def _step(system, dt, step_x, step_v, k, fine_steps, together, max_iterations,
     real[:, HISTORY] = ~fine
     system.fine_left[fine] -= dt
     system.fine_left[fine & snapped] = HOLD_TIME  # not calm yet: the hold starts again
+
+
+def _carried_ends(system, step_x, step_v):
+    """
+    Return the step's drive arrays with each carried point where the implicit step left it.
+
+    A line taken again with improved Euler (on a LineView, its carried end a driven one)
+    then moves its end along the body's own path through the step: the body's motion is the
+    implicit step's, its lines' snap the improved Euler steps'. (A ship's motion in one step
+    is far too slow for the difference to reach its lines.)
+    """
+    carried = system.carried_points
+    if not len(carried):
+        return step_x, step_v
+    step_x, step_v = step_x.copy(), step_v.copy()
+    step_x[:, carried] = system.point_x[carried]
+    step_v[:, carried] = system.point_v[carried]
+    return step_x, step_v
 
 
 def _take_fine(system, dt, step_x, step_v, k, fine, fine_steps, together, saved, implicit,

@@ -24,16 +24,19 @@ interpreted (``.py_func``).
 import numba
 import numpy as np
 
-from ..model.forces.assembly import (accelerations, has_contact, inverse3, line_forces,
-                                     line_passes, particle_accelerations, particle_environment,
+from ..model.forces.assembly import (accelerations, has_contact, line_forces, line_passes,
+                                     particle_accelerations, particle_environment,
                                      particle_environment_block, point_environment,
                                      point_environment_block, set_ends)
+from ..model.forces.body import body_loads, lever_of, mass_matrix, place_points, rotation_of, turn
 from ..model.forces.drag import add_drag, add_drag_block
 from ..model.forces.gravity import add_weight
 from ..model.forces.springs import spring_block_at
-from ..model.layout import (ADJUST, AXIAL, DRAG, DRIVEN, END_A, ENV_GRAVITY, FIRST,
-                            FLUID, FREE, HISTORY, INV_MASS, KIND, LAST, MASS, MAX_STRAIN,
-                            OWN_MASS, REST, TANGENTS)
+from ..model.layout import (ADJUST, AXIAL, BODY_ACCEL, BODY_CLOCK, BODY_OMEGA, BODY_POSITION,
+                            BODY_VELOCITY, CARRIED, DRAG, DRIVEN, END_A, ENV_GRAVITY, FIRST, FLUID,
+                            FREE, HISTORY, INV_MASS, KIND, LAST, MASS, MAX_STRAIN, OWN_MASS,
+                            POINT_BODY, REST, TANGENTS)
+from ..model.linalg import dense_cholesky_solve, inverse3
 from ..model.parting import check_segments, hold_peaks
 from ..model.superelastic import adjust, over_limit
 from ..model.winch import pay_out, render
@@ -128,7 +131,7 @@ def _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, s
 
 @numba.njit(cache=True)
 def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                       line_real, points, env, max_iterations):
+                       line_real, points, env, bodies, fenders, max_iterations):
     """
     Take len(drive_x) improved Euler steps of the whole system in place.
 
@@ -138,6 +141,8 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
         (n, Q, 3) (rows of other points ignored).
     :param particles, lines, line_real, points: the tables of layout.py.
     :param env: the ENV array (layout.ENV_*): gravity, water, air, current, seabed, quay.
+    :param bodies, fenders: the BODY and FENDER tables (the bodies' state is stepped in
+        place, their carried points follow them).
     """
     n_points = points.shape[0]
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
@@ -158,7 +163,7 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     pxp = np.empty((n_points, 3))
     pvp = np.empty((n_points, 3))
     scratch = np.empty_like(x)
-    if not np.any(points[:, KIND] == FREE):  # every line end fixed or driven: no points
+    if not _moving_points(points) and bodies.shape[0] == 0:  # every end fixed or driven
         for k in range(drive_x.shape[0]):
             line_forces(x, v, a1, particles, lines, line_real)
             line_passes(x, particles, lines, line_real, env, sub, tangent)
@@ -185,9 +190,13 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k,
                         gravity, scratch)
         return
+    body_a1 = np.zeros((bodies.shape[0], 6))
+    body_a2 = np.zeros((bodies.shape[0], 6))
+    predicted = bodies.copy()  # the bodies at the end of the first stage
     for k in range(drive_x.shape[0]):
         accelerations(x, v, a1, particles, lines, line_real, points, point_x, point_v, env,
-                      gravity, contact, sub, tangent, pa1, iso, aniso, work)
+                      gravity, contact, sub, tangent, pa1, iso, aniso, work, bodies, fenders,
+                      body_a1)
         pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
         for i in range(x.shape[0]):
             for d in range(3):
@@ -203,9 +212,13 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                     pvp[q, d] = point_v[q, d] + dt * pa1[q, d]
                 else:
                     pxp[q, d], pvp[q, d] = point_x[q, d], point_v[q, d]
+        if bodies.shape[0] > 0:
+            _euler_bodies(bodies, body_a1, dt, predicted)
+            place_points(predicted, points, pxp, pvp)
         set_ends(xp, vp, lines, pxp, pvp)
         accelerations(xp, vp, a2, particles, lines, line_real, points, pxp, pvp, env,
-                      gravity, contact, sub, tangent, pa2, iso, aniso, work)
+                      gravity, contact, sub, tangent, pa2, iso, aniso, work, predicted,
+                      fenders, body_a2)
         for i in range(x.shape[0]):
             for d in range(3):
                 x[i, d] += 0.5 * dt * (v[i, d] + vp[i, d])
@@ -215,12 +228,56 @@ def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                 for d in range(3):
                     point_x[q, d] += 0.5 * dt * (point_v[q, d] + pvp[q, d])
                     point_v[q, d] += 0.5 * dt * (pa1[q, d] + pa2[q, d])
+        if bodies.shape[0] > 0:
+            _heun_bodies(bodies, predicted, body_a1, body_a2, dt)
+            place_points(bodies, points, point_x, point_v)
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
                        max_iterations)
         _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
                     scratch)
+
+
+@numba.njit(cache=True, inline='always')
+def _moving_points(points):
+    """Tell whether a point moves with the lines: a free point, or one a body carries."""
+    for q in range(points.shape[0]):
+        if points[q, KIND] == FREE or points[q, KIND] == CARRIED:
+            return True
+    return False
+
+
+@numba.njit(cache=True)
+def _euler_bodies(bodies, accel, dt, out):
+    """Put the bodies one Euler step of dt ahead into out (improved Euler's first stage)."""
+    for b in range(bodies.shape[0]):
+        for c in range(bodies.shape[1]):
+            out[b, c] = bodies[b, c]
+        for p in range(3):
+            out[b, BODY_POSITION + p] += dt * bodies[b, BODY_VELOCITY + p]
+            out[b, BODY_VELOCITY + p] += dt * accel[b, p]
+            out[b, BODY_OMEGA + p] += dt * accel[b, 3 + p]
+        turn(out[b], dt * bodies[b, BODY_OMEGA], dt * bodies[b, BODY_OMEGA + 1],
+             dt * bodies[b, BODY_OMEGA + 2])
+        out[b, BODY_CLOCK] += dt
+
+
+@numba.njit(cache=True)
+def _heun_bodies(bodies, predicted, accel, accel_predicted, dt):
+    """Finish the bodies' improved Euler step: the mean of both stages' rates (in place)."""
+    for b in range(bodies.shape[0]):
+        body = bodies[b]
+        rx = 0.5 * dt * (body[BODY_OMEGA] + predicted[b, BODY_OMEGA])
+        ry = 0.5 * dt * (body[BODY_OMEGA + 1] + predicted[b, BODY_OMEGA + 1])
+        rz = 0.5 * dt * (body[BODY_OMEGA + 2] + predicted[b, BODY_OMEGA + 2])
+        for p in range(3):
+            body[BODY_POSITION + p] += 0.5 * dt * (body[BODY_VELOCITY + p]
+                                                   + predicted[b, BODY_VELOCITY + p])
+            body[BODY_VELOCITY + p] += 0.5 * dt * (accel[b, p] + accel_predicted[b, p])
+            body[BODY_OMEGA + p] += 0.5 * dt * (accel[b, 3 + p] + accel_predicted[b, 3 + p])
+        turn(body, rx, ry, rz)
+        body[BODY_CLOCK] += dt
 
 
 # -- implicit Euler: the seed's scheme made implicit -----------------------------------------
@@ -353,32 +410,6 @@ def _cholesky_band_solve(band, rhs, n):
         for p in range(i + 1, min(n, i + width + 1)):
             s -= band[p, p - i] * rhs[p]
         rhs[i] = s / band[i, 0]
-
-
-@numba.njit(cache=True)
-def dense_cholesky_solve(a, b):
-    """Solve the small dense SPD system a x = b in place (a is overwritten); b -> x."""
-    n = a.shape[0]
-    for j in range(n):
-        s = a[j, j]
-        for p in range(j):
-            s -= a[j, p] * a[j, p]
-        a[j, j] = np.sqrt(max(s, 1e-300))
-        for i in range(j + 1, n):
-            s = a[i, j]
-            for p in range(j):
-                s -= a[i, p] * a[j, p]
-            a[i, j] = s / a[j, j]
-    for i in range(n):
-        s = b[i]
-        for p in range(i):
-            s -= a[i, p] * b[p]
-        b[i] = s / a[i, i]
-    for i in range(n - 1, -1, -1):
-        s = b[i]
-        for p in range(i + 1, n):
-            s -= a[p, i] * b[p]
-        b[i] = s / a[i, i]
 
 
 @numba.njit(cache=True, inline='always')
@@ -622,8 +653,8 @@ def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, part
 
 @numba.njit(cache=True)
 def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                       line_real, points, env, max_iterations, implicit_bending, gamma, beta,
-                       accel, point_accel):
+                       line_real, points, env, bodies, fenders, max_iterations, implicit_bending,
+                       gamma, beta, accel, point_accel):
     """
     Take len(drive_x) implicit steps of the whole system in place.
 
@@ -632,7 +663,15 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     line's band from 5 to 8). gamma, beta: Newmark's (1, 1/2: implicit Euler, as above; the
     adaptive integrator's are less damping), from accel and point_accel (P, 3), (Q, 3), the
     accelerations of each line's step before where its HISTORY says they are (the run leaves
-    its last ones there).
+    its last ones there). A body's accelerations of the step before are in its BODY_ACCEL.
+
+    A body (bodies, fenders: the BODY and FENDER tables) joins the step through its carried
+    points: they are unknowns of the point system as free points are, and the body's own six
+    accelerations y replace them, a_q = J_q y with J_q = [I, -[r_q]x] (_condense). Its
+    predictor is the rigid body's (its points follow it there, centripetal terms and all),
+    its own loads and their Jacobians (forces/body.py) join the condensed system, and its
+    points are placed on it again after the step: a stiff line on a light body steps as
+    stably as on a payload.
     """
     n_points = points.shape[0]
     n_lines = lines.shape[0]
@@ -645,7 +684,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     free_of = np.full(n_points, -1, dtype=np.int64)
     n_free = 0
     for q in range(n_points):
-        if points[q, KIND] == FREE:
+        if points[q, KIND] == FREE or points[q, KIND] == CARRIED:
             free_of[q] = n_free
             n_free += 1
     widest = 1
@@ -662,7 +701,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     lower = np.empty((widest, 3, 3))
     inverse = np.empty((widest, 3, 3))
     multiplier = np.empty((widest, 3, 3))
-    if n_free == 0:  # every line end fixed or driven: each line is a system of its own
+    if n_free == 0 and bodies.shape[0] == 0:  # every end fixed or driven: each line alone
         _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
                                   lines, line_real, points, env, max_iterations,
                                   implicit_bending, inv_mass, rest, f, block, rhs, rhs_flat,
@@ -686,6 +725,11 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
     ready = True  # lines joined by free points step as one: all from their history, or none
     for line in range(n_lines):
         ready &= line_real[line, HISTORY] > 0.0
+    # bodies: the condensed system of the free points' and the bodies' accelerations
+    n_bodies = bodies.shape[0]
+    if n_bodies > 0:
+        transform, reduced, reduced_rhs, body_accel = _condensed_arrays(
+            points, free_of, n_free, n_bodies)
     for k in range(drive_x.shape[0]):
         dt_c, half_h2, ahead_x, ahead_v = _newmark(k, (gamma, beta), ready, dt)
         pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
@@ -697,14 +741,18 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                     if ahead_x != 0.0 or ahead_v != 0.0:
                         point_x[q, p] += ahead_x * point_accel[q, p]
                         point_v[q, p] += ahead_v * point_accel[q, p]
+        if n_bodies > 0:
+            _predict_bodies(bodies, dt, ahead_x, ahead_v)
+            place_points(bodies, points, point_x, point_v)
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
         line_forces(x, v, f, particles, lines, line_real)
         line_passes(x, particles, lines, line_real, env, sub, tangent)
         schur[:] = 0.0
+        point_rhs[:] = 0.0
         for q in range(n_points):
             j = free_of[q]
-            if j >= 0:
+            if points[q, KIND] == FREE:  # a carried point's rows: its line ends' only
                 point_force[0] = 0.0
                 added, weight = point_environment(point_x, point_v, q, points, contact, env,
                                                   point_force, 0)
@@ -726,7 +774,7 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             coupled = False
             for e in range(2):
                 q = lines[line, END_A + e]
-                end_free[e] = points[q, KIND] == FREE
+                end_free[e] = free_of[q] >= 0
                 free_index[e] = free_of[q]
                 coupled |= end_free[e]
             diagonal[:m] = 0.0
@@ -827,12 +875,16 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                         for p in range(3):
                             s += coupling[i, p, c] * solved_coupling[first + 1 + i, p, d]
                     schur[ro, co] -= s
-        dense_cholesky_solve(schur, point_rhs)
+        if n_bodies > 0:
+            _condense(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c,
+                      half_h2, transform, reduced, reduced_rhs, body_accel)
+        else:
+            dense_cholesky_solve(schur, point_rhs)
         for line in range(n_lines):
             first, last = lines[line, FIRST], lines[line, LAST]
             for c in range(6):
                 q = lines[line, END_A + c // 3]
-                if points[q, KIND] != FREE:
+                if free_of[q] < 0:
                     continue
                 a = point_rhs[3 * free_of[q] + c % 3]
                 for i in range(first + 1, last):
@@ -842,9 +894,13 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
             j = free_of[q]
             if j >= 0:
                 for p in range(3):
-                    point_x[q, p] += half_h2 * point_rhs[3 * j + p]
-                    point_v[q, p] += dt_c * point_rhs[3 * j + p]
                     point_accel[q, p] = point_rhs[3 * j + p]
+                    if points[q, KIND] == FREE:
+                        point_x[q, p] += half_h2 * point_rhs[3 * j + p]
+                        point_v[q, p] += dt_c * point_rhs[3 * j + p]
+        if n_bodies > 0:
+            _correct_bodies(bodies, body_accel, dt_c, half_h2)
+            place_points(bodies, points, point_x, point_v)
         for line in range(n_lines):
             for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
                 for p in range(3):
@@ -856,6 +912,141 @@ def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, 
                        max_iterations)
         _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
                     f)  # f: scratch here, the next step computes it afresh
+
+
+@numba.njit(cache=True)
+def _condensed_arrays(points, free_of, n_free, n_bodies):
+    """
+    Return the condensed system's arrays, each to be filled by _condense.
+
+    transform T (3 F, Y), reduced (Y, Y), its right-hand side (Y,) and the bodies'
+    accelerations (B, 6); Y holds 3 unknowns per free point and 6 per body, in that order.
+    """
+    n_y = 6 * n_bodies
+    for q in range(points.shape[0]):
+        if points[q, KIND] == FREE:
+            n_y += 3
+    return (np.zeros((3 * n_free, n_y)), np.empty((n_y, n_y)), np.empty(n_y),
+            np.zeros((n_bodies, 6)))
+
+
+@numba.njit(cache=True)
+def _condense(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c, half_h2,
+              transform, reduced, reduced_rhs, body_accel):
+    """
+    Solve the point system S a = g with the carried points' accelerations a_q = J_q y.
+
+    (T^T S T + blocks of each body: M + h_c C + h2 K) y = T^T g + each body's own loads;
+    point_rhs gets the points' accelerations T y, body_accel each body's y (6,).
+    """
+    n_bodies = bodies.shape[0]
+    first_body = transform.shape[1] - 6 * n_bodies
+    transform[:] = 0.0
+    column = 0
+    for q in range(points.shape[0]):
+        j = free_of[q]
+        if j < 0:
+            continue
+        if points[q, KIND] == FREE:
+            for p in range(3):
+                transform[3 * j + p, column + p] = 1.0
+            column += 3
+            continue
+        b = int(points[q, POINT_BODY])
+        c = first_body + 6 * b
+        r = lever_of(bodies, points, point_x, q)
+        for p in range(3):
+            transform[3 * j + p, c + p] = 1.0
+        # -[r]x
+        transform[3 * j, c + 4] = r[2]
+        transform[3 * j, c + 5] = -r[1]
+        transform[3 * j + 1, c + 3] = -r[2]
+        transform[3 * j + 1, c + 5] = r[0]
+        transform[3 * j + 2, c + 3] = r[1]
+        transform[3 * j + 2, c + 4] = -r[0]
+    _reduce(schur, point_rhs, transform, reduced, reduced_rhs)
+    rotation = np.empty((3, 3))
+    mass = np.empty((6, 6))
+    load = np.empty(6)
+    stiffness = np.empty((6, 6))
+    damping = np.empty((6, 6))
+    for b in range(n_bodies):
+        body = bodies[b]
+        rotation_of(body, rotation)
+        mass_matrix(body, rotation, mass)
+        body_loads(body, b, fenders, rotation, body[BODY_CLOCK], load, True, stiffness,
+                   damping)
+        c = first_body + 6 * b
+        for p in range(6):
+            reduced_rhs[c + p] += load[p]
+            for r in range(6):
+                reduced[c + p, c + r] += (mass[p, r] + dt_c * damping[p, r]
+                                          + half_h2 * stiffness[p, r])
+    dense_cholesky_solve(reduced, reduced_rhs)
+    for i in range(transform.shape[0]):
+        s = 0.0
+        for c in range(transform.shape[1]):
+            s += transform[i, c] * reduced_rhs[c]
+        point_rhs[i] = s
+    for b in range(n_bodies):
+        for p in range(6):
+            body_accel[b, p] = reduced_rhs[first_body + 6 * b + p]
+
+
+@numba.njit(cache=True)
+def _reduce(schur, rhs, transform, reduced, reduced_rhs):
+    """Put T^T S T into reduced and T^T g into reduced_rhs (plain loops: small, often empty)."""
+    n, m = transform.shape
+    product = np.zeros((n, m))
+    for i in range(n):
+        for j in range(n):
+            s = schur[i, j]
+            if s != 0.0:
+                for c in range(m):
+                    product[i, c] += s * transform[j, c]
+    for c in range(m):
+        reduced_rhs[c] = 0.0
+        for d in range(m):
+            reduced[c, d] = 0.0
+        for i in range(n):
+            t = transform[i, c]
+            if t != 0.0:
+                reduced_rhs[c] += t * rhs[i]
+                for d in range(m):
+                    reduced[c, d] += t * product[i, d]
+
+
+@numba.njit(cache=True)
+def _predict_bodies(bodies, dt, ahead_x, ahead_v):
+    """Put every body at its predictor (as _predict does the particles; rigidly turned)."""
+    history = ahead_x != 0.0 or ahead_v != 0.0
+    for b in range(bodies.shape[0]):
+        body = bodies[b]
+        rotate = np.empty(3)
+        for p in range(3):
+            body[BODY_POSITION + p] += dt * body[BODY_VELOCITY + p]
+            rotate[p] = dt * body[BODY_OMEGA + p]
+            if history:
+                body[BODY_POSITION + p] += ahead_x * body[BODY_ACCEL + p]
+                body[BODY_VELOCITY + p] += ahead_v * body[BODY_ACCEL + p]
+                rotate[p] += ahead_x * body[BODY_ACCEL + 3 + p]
+                body[BODY_OMEGA + p] += ahead_v * body[BODY_ACCEL + 3 + p]
+        turn(body, rotate[0], rotate[1], rotate[2])
+        body[BODY_CLOCK] += dt
+
+
+@numba.njit(cache=True)
+def _correct_bodies(bodies, accel, dt_c, half_h2):
+    """Finish every body's implicit step from its solved accelerations (kept for the next)."""
+    for b in range(bodies.shape[0]):
+        body = bodies[b]
+        for p in range(3):
+            body[BODY_POSITION + p] += half_h2 * accel[b, p]
+            body[BODY_VELOCITY + p] += dt_c * accel[b, p]
+            body[BODY_OMEGA + p] += dt_c * accel[b, 3 + p]
+        for p in range(6):
+            body[BODY_ACCEL + p] = accel[b, p]
+        turn(body, half_h2 * accel[b, 3], half_h2 * accel[b, 4], half_h2 * accel[b, 5])
 
 
 def run_kernel(system, integrator: str, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,

@@ -31,18 +31,20 @@ line reports, and the state check. Tests run these same functions interpreted
 import numba
 import numpy as np
 
+from .body import add_point_load, add_point_matrix, body_loads, lever_of, mass_matrix, rotation_of
 from .contact import add_contact, add_contact_block
 from .drag import add_drag
-from .fluid import (accelerate, add_line_drag, add_line_drag_block, add_mass_block,
-                    add_point_drag, add_point_drag_block, line_pass, point_fraction)
+from .fluid import (accelerate, add_line_drag, add_line_drag_block, add_mass_block, add_point_drag,
+                    add_point_drag_block, line_pass, point_fraction)
 from .gravity import add_weight
 from .springs import add_springs
-from ..layout import (ADDED_MASS, AXIAL, BENDING, DIAMETER, DRAG, DRAG_AREA, END_A,
-                      ENV_AIR_DENSITY, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_NORMAL,
+from ..layout import (ADDED_MASS, AXIAL, BENDING, BODY_CLOCK, BODY_OMEGA, CARRIED, DIAMETER, DRAG,
+                      DRAG_AREA, END_A, ENV_AIR_DENSITY, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_NORMAL,
                       ENV_SEABED_LEVEL, ENV_WATER_DENSITY, ENV_WATER_LEVEL, FIRST, FLUID, FREE,
                       KIND, LAST, LENGTH, MASS, NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS,
-                      POINT_SINK, REST, SINK, SIZE, TANGENTIAL_ADDED_MASS, TANGENTIAL_DRAG,
-                      TANGENTS, TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
+                      POINT_BODY, POINT_SINK, REST, SINK, SIZE, TANGENTIAL_ADDED_MASS,
+                      TANGENTIAL_DRAG, TANGENTS, TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
+from ..linalg import dense_cholesky_solve, inverse3
 from ..tension_curve import axial_tension
 
 
@@ -243,15 +245,18 @@ def end_forces(x, v, particles, lines, line_real, env, out):
 def point_forces(x, v, f, particles, lines, line_real, points, point_x, point_v, env,
                  gravity, contact, sub, tangent, out, iso, aniso):
     """
-    Net force on each free point into out (Q, 3), from the line forces f before gravity.
+    Net force on each free or carried point into out (Q, 3), from the line forces f.
 
-    Its own weight, buoyancy, drag and contact plus, for every line end on it, that end's
-    springs, dampers and the environment terms of the half segment lumped there. Its mass
-    matrix: iso[q] I + aniso[q] (Q, 3, 3): its own mass and added mass and every end
-    particle's mass matrix. Rows of fixed and driven points are left as they are.
+    A free point's own weight, buoyancy, drag and contact plus, for every line end on a free
+    or carried point, that end's springs, dampers and the environment terms of the half
+    segment lumped there. The point's mass matrix: iso[q] I + aniso[q] (Q, 3, 3): a free
+    point's own mass and added mass and every end particle's mass matrix (a carried point
+    has no mass of its own: its body's comes in body_accelerations). Rows of fixed and
+    driven points are left as they are.
     """
     for q in range(points.shape[0]):
-        if points[q, KIND] == FREE:
+        kind = points[q, KIND]
+        if kind == FREE:
             for p in range(3):
                 out[q, p] = 0.0
             added, weight = point_environment(point_x, point_v, q, points, contact, env, out,
@@ -259,12 +264,17 @@ def point_forces(x, v, f, particles, lines, line_real, points, point_x, point_v,
             add_weight(out, q, weight, gravity)
             iso[q] = points[q, TOTAL_MASS] + added
             aniso[q] = 0.0
+        elif kind == CARRIED:
+            for p in range(3):
+                out[q, p] = 0.0
+            iso[q] = points[q, TOTAL_MASS]
+            aniso[q] = 0.0
     for k in range(lines.shape[0]):
         fluid = lines[k, FLUID] == 1
         tangents = lines[k, TANGENTS] == 1
         for e in range(2):
             q = lines[k, END_A + e]
-            if points[q, KIND] != FREE:
+            if points[q, KIND] != FREE and points[q, KIND] != CARRIED:
                 continue
             row = lines[k, FIRST] if e == 0 else lines[k, LAST]
             for p in range(3):
@@ -282,16 +292,20 @@ def point_forces(x, v, f, particles, lines, line_real, points, point_x, point_v,
 
 @numba.njit(cache=True)
 def accelerations(x, v, a, particles, lines, line_real, points, point_x, point_v, env,
-                  gravity, contact, sub, tangent, point_a, iso, aniso, work):
+                  gravity, contact, sub, tangent, point_a, iso, aniso, work, bodies, fenders,
+                  body_a):
     """
     Accelerations of every particle into a (P, 3), of every free point into point_a (Q, 3).
 
+    And of every body into body_a (B, 6) (its carried points' rows of point_a: theirs).
     Rows of line ends are meaningless (their points set them).
     """
     line_forces(x, v, a, particles, lines, line_real)
     line_passes(x, particles, lines, line_real, env, sub, tangent)
     point_forces(x, v, a, particles, lines, line_real, points, point_x, point_v, env,
                  gravity, contact, sub, tangent, point_a, iso, aniso)
+    if bodies.shape[0] > 0:
+        body_accelerations(bodies, fenders, points, point_x, point_a, iso, aniso, body_a)
     for q in range(points.shape[0]):
         if points[q, KIND] == FREE:
             plain = True
@@ -310,6 +324,64 @@ def accelerations(x, v, a, particles, lines, line_real, points, point_x, point_v
                     point_a[q, p] = work[p, 0] * f0 + work[p, 1] * f1 + work[p, 2] * f2
     particle_accelerations(x, v, a, particles, lines, line_real, env, gravity, contact, sub,
                            tangent)
+
+
+@numba.njit(cache=True)
+def body_accelerations(bodies, fenders, points, point_x, point_a, iso, aniso, body_a):
+    """
+    Turn the forces on carried points (point_a's rows) into their bodies' accelerations.
+
+    Each body: its mass matrix plus J^T m J of every carried point's lumped mass m (the half
+    segments there move with the body), its own loads (forces/body.py) plus J^T of every
+    carried point's force less the point mass's share of its centripetal acceleration; then
+    the points' accelerations a + alpha x r + omega x (omega x r) into point_a.
+    """
+    rotation = np.empty((3, 3))
+    mass = np.empty((6, 6))
+    load = np.empty(6)
+    unused = np.empty((6, 6))
+    block = np.empty((3, 3))
+    force = np.empty(3)
+    for b in range(bodies.shape[0]):
+        body = bodies[b]
+        rotation_of(body, rotation)
+        mass_matrix(body, rotation, mass)
+        body_loads(body, b, fenders, rotation, body[BODY_CLOCK], load, False, unused, unused)
+        omega = body[BODY_OMEGA:BODY_OMEGA + 3]
+        for q in range(points.shape[0]):
+            if points[q, KIND] != CARRIED or int(points[q, POINT_BODY]) != b:
+                continue
+            lever = lever_of(bodies, points, point_x, q)
+            for p in range(3):
+                for r in range(3):
+                    block[p, r] = aniso[q, p, r] + (iso[q] if p == r else 0.0)
+            add_point_matrix(mass, lever, block, 1.0)
+            spin = _centripetal(omega, lever)
+            for p in range(3):
+                force[p] = point_a[q, p] - (block[p, 0] * spin[0] + block[p, 1] * spin[1]
+                                            + block[p, 2] * spin[2])
+            add_point_load(load, lever, force)
+        dense_cholesky_solve(mass, load)
+        for p in range(6):
+            body_a[b, p] = load[p]
+        for q in range(points.shape[0]):
+            if points[q, KIND] != CARRIED or int(points[q, POINT_BODY]) != b:
+                continue
+            lever = lever_of(bodies, points, point_x, q)
+            spin = _centripetal(omega, lever)
+            point_a[q, 0] = load[0] + load[4] * lever[2] - load[5] * lever[1] + spin[0]
+            point_a[q, 1] = load[1] + load[5] * lever[0] - load[3] * lever[2] + spin[1]
+            point_a[q, 2] = load[2] + load[3] * lever[1] - load[4] * lever[0] + spin[2]
+
+
+@numba.njit(cache=True, inline='always')
+def _centripetal(omega, lever):
+    """Return omega x (omega x lever) (3,)."""
+    c0 = omega[1] * lever[2] - omega[2] * lever[1]
+    c1 = omega[2] * lever[0] - omega[0] * lever[2]
+    c2 = omega[0] * lever[1] - omega[1] * lever[0]
+    return np.array([omega[1] * c2 - omega[2] * c1, omega[2] * c0 - omega[0] * c2,
+                     omega[0] * c1 - omega[1] * c0])
 
 
 @numba.njit(cache=True, inline='always')
@@ -395,21 +467,3 @@ def largest_load(x, v, point_x, point_v, particles, lines, line_real, env, force
                 return True, np.nan
             largest = max(largest, load)
     return True, largest
-
-
-@numba.njit(cache=True)
-def inverse3(a, out):
-    """Invert a 3x3 matrix into out (adjugate over determinant)."""
-    c00 = a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]
-    c01 = a[1, 2] * a[2, 0] - a[1, 0] * a[2, 2]
-    c02 = a[1, 0] * a[2, 1] - a[1, 1] * a[2, 0]
-    inv_det = 1.0 / (a[0, 0] * c00 + a[0, 1] * c01 + a[0, 2] * c02)
-    out[0, 0] = c00 * inv_det
-    out[1, 0] = c01 * inv_det
-    out[2, 0] = c02 * inv_det
-    out[0, 1] = (a[0, 2] * a[2, 1] - a[0, 1] * a[2, 2]) * inv_det
-    out[1, 1] = (a[0, 0] * a[2, 2] - a[0, 2] * a[2, 0]) * inv_det
-    out[2, 1] = (a[0, 1] * a[2, 0] - a[0, 0] * a[2, 1]) * inv_det
-    out[0, 2] = (a[0, 1] * a[1, 2] - a[0, 2] * a[1, 1]) * inv_det
-    out[1, 2] = (a[0, 2] * a[1, 0] - a[0, 0] * a[1, 2]) * inv_det
-    out[2, 2] = (a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]) * inv_det

@@ -1,0 +1,247 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The ship of an arrangement and what stands around it: the parameter tables and their values.
+
+`ship_mode` says who moves the ship: `driven` (a ship simulator: the ship follows
+ship/pose) or `free` (a rigid body in six degrees of freedom that moves under its lines, its
+fenders and the loads on it). `ship.*` is the ship itself; `fenders` names the fenders on the
+quay, each with its settings under its name (`fender_1.position`), as `lines` names the
+lines. Every error is one line naming the parameter and what is allowed.
+
+The defaults are a loaded 225 m Panamax bulk carrier (225 m x 32.2 m x 14.0 m, block
+coefficient 0.85, in sea water): its displaced mass, radii of gyration of 0.35 B in roll and
+0.25 L in pitch and yaw, added masses and damping of the usual orders for such a hull (a few
+per cent of critical in surge, sway and yaw, more in heave and pitch). They let a free ship
+start without further settings; a study of a real ship gives that ship's numbers.
+"""
+
+from dataclasses import dataclass, field, fields
+import math
+import re
+from typing import Any, Dict, List, Mapping, Tuple
+
+from .table import ParameterError, Spec
+
+SHIP = 'ship'
+PASSING_SHIP = 'passing_ship'
+FENDERS = 'fenders'
+SHIP_MODES = ('driven', 'free')
+MAX_FENDERS = 32
+FENDER_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
+
+# The ship as a whole: what the arrangement's top level takes (`ship.mass`, ...).
+SHIP_SPECS: Mapping[str, Spec] = {
+    'ship_mode': Spec(
+        'driven', '', 'driven: the ship follows ship/pose (a ship simulator integrates it); '
+        'free: a rigid body in six degrees of freedom, moved by its lines, fenders and the '
+        'loads on it, publishing ship/pose and ship/odometry', choices=SHIP_MODES),
+    'ship.mass': Spec(8.84e7, 'kg', "the ship's mass: its displaced water's at the start pose",
+                      0.0, 1.0e10, low_open=True),
+    'ship.center_of_gravity': Spec(
+        [0.0, 0.0, -3.0], 'm', 'its centre of gravity in the body frame (x forward, y to '
+        'port, z up from the body origin)', high=1.0e4),
+    'ship.radii_of_gyration': Spec(
+        [11.3, 56.3, 56.3], 'm', 'radii of gyration in roll, pitch and yaw about the centre '
+        'of gravity', low=0.0, high=1.0e4),
+    'ship.added_mass': Spec(
+        [4.4e6, 7.0e7, 8.5e7, 2.3e9, 2.8e11, 3.0e11], 'kg, kg*m^2', 'added mass in surge, sway, '
+        'heave [kg] and added inertia in roll, pitch, yaw [kg*m^2], about the centre of '
+        'gravity in body axes', low=0.0, high=1.0e16, size=6),
+    'ship.linear_damping': Spec(
+        [7.5e5, 7.5e5, 2.1e7, 6.0e8, 7.0e10, 3.0e9], 'N*s/m, N*m*s/rad', 'linear damping in '
+        'surge, sway, heave [N per m/s] and roll, pitch, yaw [N*m per rad/s], about the centre '
+        'of gravity in body axes', low=0.0, high=1.0e16, size=6),
+    'ship.quadratic_damping': Spec(
+        [0.0] * 6, 'N*s^2/m^2, N*m*s^2/rad^2', 'quadratic damping in surge, sway, heave '
+        '[N per (m/s)^2] and roll, pitch, yaw [N*m per (rad/s)^2], about the centre of gravity '
+        "in body axes (0 by default: the current's load, taken on the velocity of the water "
+        'relative to the ship, is already the drag of a ship moving in still water)',
+        low=0.0, high=1.0e16, size=6),
+    'ship.waterplane_area': Spec(
+        6520.0, 'm^2', 'waterplane area: the heave stiffness is rho g times it', 0.0, 1.0e7,
+        low_open=True),
+    'ship.metacentric_height': Spec(
+        [3.0, 250.0], 'm', 'transverse and longitudinal metacentric heights GM_T, GM_L: the '
+        'roll and pitch stiffnesses are m g times them', low=0.0, high=1.0e5, size=2),
+    'ship.start_position': Spec(
+        [0.0, 0.0, 0.0], 'm', 'where the body origin floats without its lines, in frame_id: '
+        'the free ship starts there, at rest', high=1.0e7),
+    'ship.start_yaw': Spec(
+        0.0, 'rad', "the ship's heading at the start: yaw of its body x from frame_id's x, "
+        'counter-clockwise', -2.0 * math.pi, 2.0 * math.pi),
+    'ship.length': Spec(225.0, 'm', 'length between perpendiculars: the hull box the fenders '
+                        'touch, and the wind, current and passing-ship loads', 0.0, 1.0e4,
+                        low_open=True),
+    'ship.beam': Spec(32.2, 'm', 'beam: the hull box the fenders touch', 0.0, 1.0e3,
+                      low_open=True),
+    'ship.draft': Spec(14.0, 'm', 'draft: the hull box reaches this far below the body origin',
+                       0.0, 1.0e3, low_open=True),
+    'stiffness_rate': Spec(
+        1.0, 'Hz', 'rate of ship/stiffness (the 6x6 stiffness of the lines and fenders about '
+        "the ship's present pose); 0 = off", 0.0, 100.0, read_only=False),
+}
+# A fender's settings, under its name (`fender_1.position`).
+FENDER_SPECS: Mapping[str, Spec] = {
+    'position': Spec([0.0, 0.0, 0.0], 'm', 'the centre of its face, uncompressed, in frame_id'),
+    'normal': Spec([0.0, 0.0, 0.0], '', 'direction out of the quay toward the ship, in '
+                   'frame_id (normalised)'),
+    'curve': Spec([0.0, 0.0], 'm, N', 'its load-compression curve as the manufacturer rates '
+                  'it: compression [m] and reaction [N] pairs, from (0, 0) (added when left '
+                  'out), linear between the points and with the last slope past them',
+                  low=0.0, pairs=True),
+    'friction': Spec(0.2, '', 'friction coefficient of its face against the hull (0: none)',
+                     0.0, 2.0),
+    'rated_compression': Spec(
+        0.0, 'm', 'the compression it is rated for: diagnostics warn past it (0: the last '
+        "point of the curve's)", 0.0, 100.0),
+}
+# What every fender must set itself: where it is and how it pushes.
+FENDER_REQUIRED = ('position', 'normal', 'curve')
+
+
+@dataclass(frozen=True)
+class ShipParams:
+    """
+    Validated ship parameters (SHIP_SPECS: units and meanings); names without `ship.`.
+
+    :ivar mode: 'driven' or 'free'.
+    """
+
+    mode: str = SHIP_SPECS['ship_mode'].default
+    mass: float = SHIP_SPECS['ship.mass'].default
+    center_of_gravity: list = field(
+        default_factory=lambda: list(SHIP_SPECS['ship.center_of_gravity'].default))
+    radii_of_gyration: list = field(
+        default_factory=lambda: list(SHIP_SPECS['ship.radii_of_gyration'].default))
+    added_mass: list = field(default_factory=lambda: list(SHIP_SPECS['ship.added_mass'].default))
+    linear_damping: list = field(
+        default_factory=lambda: list(SHIP_SPECS['ship.linear_damping'].default))
+    quadratic_damping: list = field(
+        default_factory=lambda: list(SHIP_SPECS['ship.quadratic_damping'].default))
+    waterplane_area: float = SHIP_SPECS['ship.waterplane_area'].default
+    metacentric_height: list = field(
+        default_factory=lambda: list(SHIP_SPECS['ship.metacentric_height'].default))
+    start_position: list = field(
+        default_factory=lambda: list(SHIP_SPECS['ship.start_position'].default))
+    start_yaw: float = SHIP_SPECS['ship.start_yaw'].default
+    length: float = SHIP_SPECS['ship.length'].default
+    beam: float = SHIP_SPECS['ship.beam'].default
+    draft: float = SHIP_SPECS['ship.draft'].default
+    stiffness_rate: float = SHIP_SPECS['stiffness_rate'].default
+
+    @property
+    def free(self) -> bool:
+        """Tell whether the ship is a free body (ship_mode free)."""
+        return self.mode == 'free'
+
+    def values(self) -> Dict[str, Any]:
+        """Return every value under its parameter name (`ship.mass`, `ship_mode`)."""
+        return {parameter_name(f.name): getattr(self, f.name) for f in fields(self)}
+
+
+def parameter_name(name: str) -> str:
+    """Return a ShipParams field's parameter name: mode -> ship_mode, mass -> ship.mass."""
+    if name == 'mode':
+        return 'ship_mode'
+    if name == 'stiffness_rate':
+        return name
+    return f'{SHIP}.{name}'
+
+
+def field_name(name: str) -> str:
+    """Return the ShipParams field of a parameter name (parameter_name's inverse)."""
+    if name == 'ship_mode':
+        return 'mode'
+    return name.partition('.')[2] if name.startswith(SHIP + '.') else name
+
+
+@dataclass(frozen=True)
+class FenderSetup:
+    """
+    One fender on the quay (FENDER_SPECS: units and meanings).
+
+    :ivar curve: (compression, reaction) pairs from (0, 0).
+    :ivar rated_compression: > 0: the chosen one, or the curve's last compression.
+    """
+
+    name: str
+    position: Tuple[float, float, float]
+    normal: Tuple[float, float, float]
+    curve: Tuple[Tuple[float, float], ...]
+    friction: float
+    rated_compression: float
+
+    def values(self) -> Dict[str, Any]:
+        """Return its settings as a parameter file holds them."""
+        return {'position': list(self.position), 'normal': list(self.normal),
+                'curve': [c for pair in self.curve for c in pair],
+                'friction': self.friction, 'rated_compression': self.rated_compression}
+
+
+def check_fender_names(value: Any, taken) -> List[str]:
+    """
+    Validate the `fenders` parameter: up to MAX_FENDERS distinct names, none taken.
+
+    :param taken: names that are not allowed (the lines', the parameters').
+    :raises ParameterError: not a list of names, a bad or repeated or taken name.
+    """
+    if value is None:
+        return []
+    if isinstance(value, str) or not isinstance(value, (list, tuple)) or \
+            len(value) > MAX_FENDERS:
+        raise ParameterError(f'parameter {FENDERS!r} = {value!r} is not allowed: must be a '
+                             f'list of at most {MAX_FENDERS} fender names')
+    names: List[str] = []
+    for name in value:
+        if not isinstance(name, str) or not FENDER_NAME.match(name):
+            raise ParameterError(f'fender name {name!r} in {FENDERS!r} is not allowed: a name '
+                                 'starts with a letter and holds letters, digits and _')
+        if name in names or name in taken:
+            raise ParameterError(f'fender name {name!r} in {FENDERS!r} is taken: a line, a '
+                                 'parameter or another fender has it')
+        names.append(name)
+    return names
+
+
+def fender_setup(name: str, values: Mapping[str, Any]) -> FenderSetup:
+    """
+    Return a fender from its checked settings (check_fender_value each).
+
+    :raises ParameterError: a required setting missing, a zero normal, a curve whose
+        reaction falls or that does not start at (0, 0).
+    """
+    missing = [f'{name}.{key}' for key in FENDER_REQUIRED if key not in values]
+    if missing:
+        raise ParameterError(f'fender {name!r} is missing settings: set {"; ".join(missing)} '
+                             '(position and normal in frame_id, curve as compression [m] and '
+                             'reaction [N] pairs)')
+    normal = values['normal']
+    norm = math.sqrt(sum(c * c for c in normal))
+    if norm < 1e-9:
+        raise ParameterError(f'parameter {name + ".normal"!r} = {normal!r} is not allowed: '
+                             'must point out of the quay toward the ship (not zero)')
+    flat = values['curve']
+    pairs = [(flat[i], flat[i + 1]) for i in range(0, len(flat), 2)]
+    if pairs[0][0] > 0.0:
+        pairs.insert(0, (0.0, 0.0))
+    if pairs[0] != (0.0, 0.0) or any(b[1] < a[1] for a, b in zip(pairs, pairs[1:])) or \
+            pairs[-1][1] <= 0.0:
+        raise ParameterError(f'parameter {name + ".curve"!r} = {flat!r} is not allowed: the '
+                             'reaction must start at 0 at no compression and never fall')
+    rated = values.get('rated_compression', 0.0) or pairs[-1][0]
+    return FenderSetup(name, tuple(values['position']), tuple(c / norm for c in normal),
+                       tuple(pairs), values.get('friction', FENDER_SPECS['friction'].default),
+                       rated)
