@@ -8,7 +8,7 @@ export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
 export PYTHONPATH := $(CURDIR)
 export PYTHONDONTWRITEBYTECODE := 1
 
-.PHONY: venv build demo test lint bench clean
+.PHONY: venv build demo test lint bench clean study-demo
 
 venv: $(VENV)/.installed
 
@@ -34,6 +34,12 @@ test: venv
 
 lint: venv
 	$(BIN)/python -m pytest -q test/test_flake8.py test/test_pep257.py test/test_copyright.py
+
+# A study of 20 cases of the berth on a local cluster (docs/study.md): results and plots in
+# out/study_demo. The kernels are prepared first, once, for every worker to load.
+study-demo: venv
+	$(BIN)/python -m rope_sim_ros.mooring.precompile
+	$(BIN)/python -m rope_sim_ros study examples/study/berth_study.yaml --out out/study_demo
 
 bench: venv
 	$(BIN)/python benchmarks/physics_vs_moordyn.py

@@ -126,6 +126,24 @@ def build_parser() -> argparse.ArgumentParser:
     recover.add_argument('bag', metavar='BAG', help='bag directory (or .mcap file)')
     recover.add_argument('--out', metavar='NEWBAG',
                          help='write the recovered bag here instead of in place')
+
+    study = commands.add_parser(
+        'study', help='run the cases of a study (STUDY.yaml) on Dask: results, plots',
+        description='Run every case of a study: an arrangement with factors varied (any '
+        "parameter --set takes, a motion file per case), each case a run of the study's "
+        'duration, on a local cluster of one process per core or on the workers of a Dask '
+        'scheduler. Writes DIR/results.csv and DIR/results.parquet (one row per case), '
+        "DIR/utilisation.png, DIR/heatmap.png and each case's files in DIR/cases/. Started "
+        'again, runs only the cases not done yet.')
+    study.add_argument('study', metavar='STUDY.yaml', help='the study file')
+    study.add_argument('--out', required=True, metavar='DIR', help="the study's folder")
+    study.add_argument('--workers', type=int, metavar='N',
+                       help='local cluster processes, one thread each (default: one per core)')
+    study.add_argument('--scheduler', metavar='tcp://HOST:PORT',
+                       help="run on this Dask scheduler's workers instead of a local cluster")
+    study.add_argument('--dry-run', action='store_true',
+                       help='list the cases (and which are done) and run nothing')
+    study.add_argument('--quiet', action='store_true', help='no progress bar or summary')
     return parser
 
 
@@ -270,12 +288,43 @@ def _cmd_recover(args) -> int:
     return 0
 
 
+def _cmd_study(args) -> int:
+    if args.workers is not None and args.scheduler is not None:
+        raise ParameterError('study: give --workers (a local cluster) or --scheduler (its '
+                             'workers), not both')
+    try:
+        import distributed  # noqa: F401
+    except ImportError as e:
+        print(f'{PROG} study: error: needs dask and distributed ({e}): pip install '
+              '"dask[distributed]"', file=sys.stderr)
+        return EXIT_OUTPUT
+    from .study import run_study, StudyInterrupted, summary_lines
+
+    def say(text: str) -> None:
+        if not args.quiet:
+            print(text, flush=True)
+
+    try:
+        report = run_study(args.study, args.out, args.workers, args.scheduler, args.dry_run,
+                           say, progress=not args.quiet)
+    except StudyInterrupted as e:
+        done, total = e.report.done_before + e.report.ran, e.report.cases
+        print(f'{PROG} study: interrupted: {done} of {total} cases done (in {args.out}); run '
+              f'the same command again to run the other {total - done}', file=sys.stderr)
+        return EXIT_INTERRUPTED
+    if not args.dry_run:
+        for line in summary_lines(report):
+            say(line)
+    return EXIT_OUTPUT if report.lost else 0
+
+
 COMMANDS = {
     'run': _cmd_run,
     'resim': _cmd_resim,
     'plot': _cmd_plot,
     'info': _cmd_info,
     'recover': _cmd_recover,
+    'study': _cmd_study,
 }
 
 

@@ -1,0 +1,425 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+rope_sim study: a small study of a four-line berth on a local cluster and on a Dask scheduler.
+
+The study: config/berth.yaml cut to four lines of 8 segments, 4 s of the passing ship's
+motion, head_1's pretension (one level no length gives: a case that fails) times the forward
+spring's material: 8 cases. Run on a local cluster of two processes, then on a `dask
+scheduler` with two `dask worker` processes started here, both killed mid-study and the study
+interrupted, then started again with two new workers: it runs only the missing cases and
+gives byte-identical results. Every case's maxima are those of `rope_sim run` of the case.
+"""
+
+import csv
+import io
+import json
+import math
+import os
+from pathlib import Path
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import pyarrow.parquet as pq
+import pytest
+from rope_sim_ros.mooring import scenario
+from rope_sim_ros.mooring.status import Rating
+from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.run import ratings
+from rope_sim_ros.offline.study import run_study
+from rope_sim_ros.offline.study_file import prepare, read_study
+from rope_sim_ros.offline.study_results import summarise
+from rope_sim_ros.offline.study_run import StudyProgress
+from rope_sim_ros.params.arrangement import read_setup
+import yaml
+
+REPO_ROOT = Path(__file__).resolve().parent.parent
+LINES = ['head_1', 'spring_fwd', 'spring_aft', 'stern_1']
+PRETENSIONS = [60000, 126000, 5.0e6, 90000]  # 5 MN: above what head_1 pulls at its reach
+MATERIALS = ['hmpe', 'polyester']
+SECONDS = 4.0
+RATE = 20.0
+CASES = len(PRETENSIONS) * len(MATERIALS)
+FAILING = {2 * len(MATERIALS), 2 * len(MATERIALS) + 1}  # the 5 MN cases
+PER_LINE = ('max_tension', 'max_utilisation', 'time_of_max', 'mean_tension', 'parted')
+DEADLINE = 90.0  # [s] for a subprocess step that takes a few seconds
+
+
+def write_study(folder: Path, factors: str) -> Path:
+    """Write the berth of four lines, the ship's motion and a study of them into folder."""
+    values = yaml.safe_load((REPO_ROOT / 'config' / 'berth.yaml').read_text())
+    params = values['/**/mooring']['ros__parameters']
+    for name in params['lines']:
+        if name not in LINES:
+            del params[name]
+    params['lines'] = LINES
+    params['segments'] = 8
+    (folder / 'berth4.yaml').write_text(yaml.safe_dump(values))
+    with open(folder / 'ship.csv', 'w', newline='') as stream:
+        writer = csv.writer(stream)
+        writer.writerow(['t', 'x', 'y', 'z', 'qx', 'qy', 'qz', 'qw'])
+        for i in range(int(SECONDS * 10) + 1):
+            t = i / 10.0
+            # the passing ship's strongest push, 20 s into its effect
+            position, orientation = scenario.ship_pose(scenario.START + 20.0 + t)
+            writer.writerow([repr(t)] + [repr(v) for v in position + orientation])
+    path = folder / 'study.yaml'
+    path.write_text(f'study:\n  arrangement: berth4.yaml\n  duration: {SECONDS}\n'
+                    f'  motion: ship.csv\n  rate: {RATE}\n{factors}')
+    return path
+
+
+FACTORS = (f'  factors:\n    head_1.pretension: {json.dumps(PRETENSIONS)}\n'
+           f'    spring_fwd.material: {json.dumps(MATERIALS)}\n')
+
+
+@pytest.fixture(scope='module')
+def local_run(tmp_path_factory):
+    """Run the study on a local cluster of two processes."""
+    folder = tmp_path_factory.mktemp('study')
+    study = write_study(folder, FACTORS)
+    said = []
+    report = run_study(study, folder / 'local', workers=2, say=said.append, progress=False)
+    return folder, study, report, said
+
+
+def read_results(path: Path):
+    """Return results.csv as a header and rows of text."""
+    with open(path, newline='') as stream:
+        rows = list(csv.reader(stream))
+    return rows[0], rows[1:]
+
+
+def test_results_have_a_row_per_case_and_the_failures_reason(local_run):
+    folder, _, report, said = local_run
+    header, rows = read_results(folder / 'local' / 'results.csv')
+    assert header == ['case', 'head_1.pretension', 'spring_fwd.material', 'status'] + [
+        f'{line}_{what}' for line in LINES for what in PER_LINE]
+    assert [int(row[0]) for row in rows] == list(range(CASES))
+    assert report.ran == CASES and report.done_before == 0 and not report.lost
+    for k, row in enumerate(rows):
+        assert row[1] == str(PRETENSIONS[k // 2]) or float(row[1]) == PRETENSIONS[k // 2]
+        assert row[2] == MATERIALS[k % 2]
+        if k in FAILING:
+            # recorded with its one-line reason; the study went on
+            assert row[3] == ("line 'head_1': pretension 5000000 N is not below what the "
+                              'line pulls at its reach (4415488 N at its strain limit)')
+            assert row[4:] == [''] * (len(header) - 4)
+        else:
+            assert row[3] == 'ok'
+            values = dict(zip(header, row))
+            for line in LINES:
+                assert 0.02 < float(values[f'{line}_max_utilisation']) < 0.9
+                assert values[f'{line}_parted'] == '0'
+    assert [index for index, _ in report.failed] == sorted(FAILING)
+    # the parquet table holds the same values, typed
+    table = pq.read_table(folder / 'local' / 'results.parquet').to_pylist()
+    assert len(table) == CASES
+    for row, text in zip(table, rows):
+        assert row['case'] == int(text[0]) and row['status'] == text[3]
+        assert row['spring_fwd.material'] == text[2]
+        for line in LINES:
+            value = row[f'{line}_max_tension']
+            assert (value is None) == (text[3] != 'ok')
+            if value is not None:
+                assert repr(value) == text[header.index(f'{line}_max_tension')]
+                assert row[f'{line}_parted'] == 0
+    for name in ('utilisation.png', 'heatmap.png'):
+        assert (folder / 'local' / name).read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+    assert any('local cluster of 2 processes' in line for line in said)
+
+
+def test_maxima_are_those_of_rope_sim_run_case_by_case(local_run, tmp_path):
+    folder, study, _, _ = local_run
+    header, rows = read_results(folder / 'local' / 'results.csv')
+    for k in (0, 3, 7):
+        values = dict(zip(header, rows[k]))
+        out = tmp_path / f'case{k}.csv'
+        code = cli.main(['run', '--params', str(folder / 'berth4.yaml'), '--motion',
+                         str(folder / 'ship.csv'), '--out', str(out), '--rate', str(RATE),
+                         '--set', f'head_1.pretension={PRETENSIONS[k // 2]}',
+                         '--set', f'spring_fwd.material={MATERIALS[k % 2]}', '--quiet'])
+        assert code == 0
+        # the kept OUT.csv is the very file rope_sim run writes
+        assert (folder / 'local' / 'cases' / f'{k:04d}.csv').read_bytes() == out.read_bytes()
+        with open(out, newline='') as stream:
+            table = list(csv.DictReader(stream))
+        setup = read_setup(folder / 'berth4.yaml', {
+            'head_1.pretension': PRETENSIONS[k // 2], 'spring_fwd.material': MATERIALS[k % 2]})
+        for line, rating in zip(LINES, ratings(setup)):
+            peaks = [max(float(r[f'{line}_fairlead_peak_tension']),
+                         float(r[f'{line}_bollard_peak_tension']),
+                         float(r[f'{line}_tension']), float(r[f'{line}_bollard_tension']))
+                     for r in table]
+            largest = max(peaks)
+            assert float(values[f'{line}_max_tension']) == largest
+            assert float(values[f'{line}_max_utilisation']) == largest / rating.mbl
+            assert float(values[f'{line}_time_of_max']) == float(
+                table[peaks.index(largest)]['t'])
+            tensions = [max(float(r[f'{line}_tension']), float(r[f'{line}_bollard_tension']))
+                        for r in table]
+            assert float(values[f'{line}_mean_tension']) == pytest.approx(
+                sum(tensions) / len(tensions), rel=1e-14)
+    # the spring's material matters: polyester 48 mm breaks at less than HMPE 48 mm
+    assert float(dict(zip(header, rows[1]))['spring_fwd_max_utilisation']) > float(
+        dict(zip(header, rows[0]))['spring_fwd_max_utilisation'])
+
+
+def test_every_case_loaded_its_kernels_and_ran_on_one_thread(local_run):
+    folder, _, report, said = local_run
+    workers = set()
+    for k in range(CASES):
+        record = json.loads((folder / 'local' / 'cases' / f'{k:04d}.json').read_text())
+        assert record['compiled'] == 0, k  # loaded by the worker's warm-up, never per case
+        assert record['threads'] == {'numba': 1, 'blas': 1}
+        assert record['wall'] > 0.0
+        workers.add(record['worker'])
+    assert len(workers) == 2  # both processes ran cases
+    assert any("kernels loaded from numba's cache on 2 worker(s)" in line for line in said)
+    assert 0.0 < report.case_wall < report.wall * 2
+
+
+def test_dry_run_lists_the_cases_and_what_is_done(local_run, capsys):
+    folder, study, _, _ = local_run
+    assert cli.main(['study', str(study), '--out', str(folder / 'local'), '--dry-run']) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].endswith(f'{CASES} cases (4 x 2 factorial), 4 s each at 20 Hz; '
+                             f'{CASES} done, 0 to run')
+    assert len(lines) == 1 + CASES
+    assert lines[1] == '  case    0  head_1.pretension=60000, spring_fwd.material=hmpe  [done]'
+    assert "[failed: line 'head_1': pretension 5000000 N" in lines[1 + min(FAILING)]
+    assert cli.main(['study', str(study), '--out', str(folder / 'fresh'), '--dry-run']) == 0
+    assert capsys.readouterr().out.count('[to run]') == CASES
+    assert not (folder / 'fresh').exists()
+
+
+def _free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(('127.0.0.1', 0))
+        return probe.getsockname()[1]
+
+
+class DaskProcesses:
+    """The `dask scheduler` and `dask worker` processes a test starts (and only ends)."""
+
+    def __init__(self, folder: Path) -> None:
+        """Start a scheduler on a free local port."""
+        self.folder = folder
+        self.env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+            [str(REPO_ROOT)] + [p for p in os.environ.get('PYTHONPATH', '').split(os.pathsep)
+                                if p]))
+        self.address = f'tcp://127.0.0.1:{_free_port()}'
+        self.workers = []
+        self.scheduler = self._start(['scheduler', '--host', '127.0.0.1', '--port',
+                                      self.address.rsplit(':', 1)[1], '--no-dashboard'],
+                                     'scheduler')
+
+    def _start(self, arguments, name) -> subprocess.Popen:
+        log = open(self.folder / f'{name}.log', 'w')
+        return subprocess.Popen([sys.executable, '-m', 'dask', *arguments], env=self.env,
+                                stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                start_new_session=True)
+
+    def start_workers(self, count: int) -> None:
+        """Start `count` workers of one thread and wait until they have joined."""
+        from distributed import Client
+        first = len(self.workers)
+        for k in range(first, first + count):
+            self.workers.append(self._start(
+                ['worker', self.address, '--nthreads', '1', '--nworkers', '1', '--host',
+                 '127.0.0.1', '--no-dashboard', '--name', f'w{k}'], f'worker{k}'))
+        with Client(self.address, timeout=DEADLINE) as client:
+            client.wait_for_workers(count, timeout=DEADLINE)
+
+    def kill(self, process: subprocess.Popen) -> None:
+        """Kill a process this object started, with its children (its session)."""
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+        process.wait(timeout=DEADLINE)
+
+    def kill_workers(self) -> None:
+        """Kill every worker started so far (a lost machine: no goodbye)."""
+        for worker in self.workers:
+            self.kill(worker)
+
+    def close(self) -> None:
+        """End everything this object started."""
+        self.kill_workers()
+        self.kill(self.scheduler)
+
+
+@pytest.fixture
+def dask_processes(tmp_path):
+    processes = DaskProcesses(tmp_path)
+    yield processes
+    processes.close()
+
+
+def _records(folder: Path):
+    cases = folder / 'cases'
+    return sorted(cases.glob('*.json')) if cases.is_dir() else []
+
+
+def test_on_a_scheduler_killed_and_started_again_it_completes_the_same_results(
+        local_run, dask_processes, tmp_path):
+    folder, study, _, _ = local_run
+    out = tmp_path / 'cluster'
+    dask_processes.start_workers(2)
+    command = [sys.executable, '-m', 'rope_sim_ros', 'study', str(study), '--out', str(out),
+               '--scheduler', dask_processes.address, '--quiet']
+    first = subprocess.Popen(command, env=dask_processes.env, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, stdin=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + DEADLINE
+        while not _records(out) and first.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.01)  # poll for the first finished case
+        dask_processes.kill_workers()  # mid-study: cases in flight are lost with them
+        assert first.poll() is None, first.communicate()
+        first.send_signal(signal.SIGINT)
+        _, stderr = first.communicate(timeout=DEADLINE)
+    finally:
+        if first.poll() is None:
+            first.kill()
+            first.wait()
+    assert first.returncode == 130, stderr
+    done = len(_records(out))
+    assert 1 <= done < CASES
+    assert f'interrupted: {done} of {CASES} cases done' in stderr
+    _, partial = read_results(out / 'results.csv')
+    assert len(partial) == done
+    before = {path.name: path.stat().st_mtime_ns for path in _records(out)}
+
+    dask_processes.start_workers(2)
+    said = []
+    report = run_study(study, out, scheduler=dask_processes.address, say=said.append,
+                       progress=False)
+    assert report.done_before == done and report.ran == CASES - done and not report.lost
+    assert {path.name: path.stat().st_mtime_ns for path in _records(out)
+            if path.name in before} == before  # the cases done were not run again
+    assert any(f'{CASES - done} to run, {done} done before' in line for line in said)
+    # identical to the local cluster's results, byte for byte
+    local = folder / 'local'
+    assert (out / 'results.csv').read_bytes() == (local / 'results.csv').read_bytes()
+    assert pq.read_table(out / 'results.parquet').equals(
+        pq.read_table(local / 'results.parquet'))
+    for k in range(CASES):
+        if k not in FAILING:
+            name = f'{k:04d}.csv'
+            assert (out / 'cases' / name).read_bytes() == (local / 'cases' / name).read_bytes()
+
+
+def test_a_bad_factor_refuses_the_study_at_once(tmp_path, capsys):
+    study = write_study(tmp_path, '  factors:\n    head_1.pretension: [100000]\n'
+                        '    time_step: [0.001, 0.5]\n')
+    assert cli.main(['study', str(study), '--out', str(tmp_path / 'out')]) == 2
+    err = capsys.readouterr().err
+    assert err == (f'rope_sim study: error: {study}: case 1 (head_1.pretension=100000, '
+                   "time_step=0.5): parameter 'time_step' = 0.5 is not allowed: must be >= 0 "
+                   'and <= 0.1 s\n')
+    assert not (tmp_path / 'out').exists()
+
+
+@pytest.mark.parametrize('factors, message', [
+    ('  factors:\n    head_9.length: [40]\n', "parameter 'head_9.length' is for no line"),
+    ('  factors:\n    head_1.pretension: 100000\n',
+     'study.factors.head_1.pretension = 100000 is not allowed: must be a list'),
+    ('  cases: [{head_1.material: kevlar}]\n', 'kevlar'),
+    ('  factors:\n    motion: [ship.csv, missing.csv]\n', 'missing.csv'),
+    ('  factors: {head_1.length: [40]}\n  cases: [{}]\n', 'not both'),
+    ('  factors: {head_1.pretension: [1.0e5]}\n  speed: 3\n', 'unknown key(s) speed'),
+])
+def test_what_a_study_refuses_is_one_line(tmp_path, capsys, factors, message):
+    study = write_study(tmp_path, factors)
+    assert cli.main(['study', str(study), '--out', str(tmp_path / 'out')]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith('rope_sim study: error: ') and err.count('\n') == 1
+    assert message in err
+
+
+@pytest.mark.parametrize('options, message', [
+    (['--workers', '0'], '--workers 0: must be >= 1'),
+    (['--workers', '2', '--scheduler', 'tcp://127.0.0.1:8786'], 'not both'),
+])
+def test_bad_cluster_options_are_one_line(tmp_path, capsys, options, message):
+    study = write_study(tmp_path, FACTORS)
+    assert cli.main(['study', str(study), '--out', str(tmp_path / 'out'), *options]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith('rope_sim study: error: ') and err.count('\n') == 1
+    assert message in err
+    assert not (tmp_path / 'out').exists()
+
+
+def test_a_motion_shorter_than_the_duration_is_refused(tmp_path):
+    study = write_study(tmp_path, '  factors: {head_1.pretension: [1.0e5]}\n')
+    study.write_text(study.read_text().replace(f'duration: {SECONDS}', 'duration: 10'))
+    with pytest.raises(ValueError, match=r'covers 4 s from its first row, less than the '
+                       r"study's duration of 10 s"):
+        prepare(read_study(study))
+
+
+def test_cases_list_and_per_case_files(tmp_path):
+    study = write_study(tmp_path, '  cases:\n    - {head_1.pretension: 1.0e5}\n'
+                        '    - {motion: ship.csv, stern_1: {material: nylon}}\n')
+    read = read_study(study)
+    assert read.factors == ('head_1.pretension', 'motion', 'stern_1.material')
+    assert [case.values for case in read.cases] == [
+        (('head_1.pretension', 1.0e5),), (('motion', 'ship.csv'), ('stern_1.material', 'nylon'))]
+    prepared = prepare(read)
+    assert prepared[1].setup.line('stern_1').params.material == 'nylon'
+    assert prepared[0].key != prepared[1].key
+    # the key follows the inputs: the same case again has the same key
+    assert prepare(read_study(study))[0].key == prepared[0].key
+
+
+def test_ship_excursions_and_line_summary_of_a_synthetic_out_csv(tmp_path):
+    # a free ship's OUT.csv: heading +y (yaw 90 deg) at (10, 20, 0), then moving
+    yaw0, rows = math.pi / 2.0, []
+    motions = [(0.0, 0.0, 0.0), (-3.0, 0.5, 0.05), (1.0, -0.2, -0.02), (0.0, 0.0, 0.0)]
+    tensions = [(1000.0, 900.0, 1100.0, 950.0, 0.0), (5000.0, 5200.0, 5400.0, 5300.0, 0.0),
+                (0.0, 0.0, 6000.0, 0.0, 1.0), (0.0, 0.0, 0.0, 0.0, 1.0)]
+    for k, ((dx, dy, dyaw), tension) in enumerate(zip(motions, tensions)):
+        yaw = yaw0 + dyaw
+        rows.append([0.5 * k, 10.0 + dx, 20.0 + dy, 0.0, 0.0, 0.0, math.sin(yaw / 2.0),
+                     math.cos(yaw / 2.0), *tension])
+    path = tmp_path / 'out.csv'
+    header = ['t', 'x', 'y', 'z', 'qx', 'qy', 'qz', 'qw', 'a_tension', 'a_bollard_tension',
+              'a_fairlead_peak_tension', 'a_bollard_peak_tension', 'a_parted']
+    with open(path, 'w', newline='') as stream:
+        writer = csv.writer(stream)
+        writer.writerow(header)
+        writer.writerows([[repr(v) for v in row] for row in rows])
+    summary = summarise(path, ['a'], [Rating(20000.0, 10000.0)])
+    assert summary['a_max_tension'] == 6000.0  # a peak between rows, as the line parted
+    assert summary['a_time_of_max'] == 1.0
+    assert summary['a_max_utilisation'] == 0.3
+    assert summary['a_mean_tension'] == (1000.0 + 5200.0) / 4.0
+    assert summary['a_parted'] == 1
+    # along the start heading (+y) 0.5 m; across it (port = -x) 3 m; the yaw change 0.05
+    assert summary['max_surge'] == pytest.approx(0.5, abs=1e-12)
+    assert summary['max_sway'] == pytest.approx(3.0, abs=1e-12)
+    assert summary['max_yaw'] == pytest.approx(0.05, abs=1e-12)
+
+
+def test_the_progress_bar_counts_cases():
+    stream = io.StringIO()
+    bar = StudyProgress(4, stream, width=8, enabled=True)
+    bar.update()
+    bar.update(failed=True)
+    assert bar.text().startswith('[####....] 2/4 cases, 1 failed, 0:00')
+    bar.finish()
+    assert stream.getvalue().endswith('\n') and stream.getvalue().count('\r') == 2
