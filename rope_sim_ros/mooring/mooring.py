@@ -750,7 +750,7 @@ class Mooring:
         """
         if not self._ship and not self.free:
             raise TrajectoryError('cannot start the lines before the first ship pose')
-        lengths = self._resolve_pretensions(t)
+        lengths = self.resolve_pretensions(t)
         alone = {}
         for k in range(len(self.lines)):
             alone[k] = self._at_rest(k, t)
@@ -760,8 +760,15 @@ class Mooring:
             self._apply_winch(k)
         return lengths
 
-    def _resolve_pretensions(self, t: float) -> Dict[int, float]:
-        """Give every pretensioned line the length that starts it at its pretension."""
+    def resolve_pretensions(self, t: float) -> Dict[int, float]:
+        """
+        Give every pretensioned line the length that starts it at its pretension at t.
+
+        start() does it; the statics (statics.py) too, for the same lengths.
+
+        :returns: {line index: the length chosen [m]}.
+        :raises ParameterError: a pretension no length gives (named with its line).
+        """
         lengths = {}
         for k, setup in enumerate(self.arrangement.lines):
             if setup.pretension <= 0.0:

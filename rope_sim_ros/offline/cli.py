@@ -73,11 +73,19 @@ def build_parser() -> argparse.ArgumentParser:
         'bollard_y, bollard_z (world-frame end points, interpolated between rows as the '
         'parameter end_interpolation says: cubic by default, linear = the secant of each row '
         'interval) and winch_speed. For an arrangement, SHIP.csv has t, x, y, z and qx, qy, '
-        'qz, qw or yaw. Writes OUT.csv with the forces of the lines every 1/rate s and/or a '
-        'bag as the node records it.')
+        'qz, qw or yaw. A free ship (ship_mode: free) takes no motion: it starts at rest at '
+        'its start pose and runs for --duration s under the loads of --loads LOADS.csv (t, '
+        'force_x, force_y, force_z, moment_x, moment_y, moment_z: frame_id axes, about its '
+        'origin, linear between rows). Writes OUT.csv with the forces of the lines every '
+        "1/rate s (and a free ship's motion and fenders) and/or a bag as the node records "
+        'it.')
     _add_params_options(run, LINE_FILE)
-    run.add_argument('--motion', required=True, metavar='MOTION.csv',
-                     help='motion table (SHIP.csv for an arrangement)')
+    run.add_argument('--motion', metavar='MOTION.csv',
+                     help='motion table (SHIP.csv for an arrangement); not for a free ship')
+    run.add_argument('--loads', metavar='LOADS.csv',
+                     help="a free ship's external load over time (default: none)")
+    run.add_argument('--duration', type=float, metavar='S',
+                     help="a free ship's run: how many simulated seconds")
     run.add_argument('--out', metavar='OUT.csv',
                      help='output table (overwritten); required unless --bag is given')
     run.add_argument('--rate', type=float, default=100.0, metavar='HZ',
@@ -144,6 +152,17 @@ def build_parser() -> argparse.ArgumentParser:
     study.add_argument('--dry-run', action='store_true',
                        help='list the cases (and which are done) and run nothing')
     study.add_argument('--quiet', action='store_true', help='no progress bar or summary')
+
+    stiffness = commands.add_parser(
+        'stiffness', help="the 6x6 stiffness of the lines and fenders at the ship's start pose",
+        description="Print the stiffness matrix of an arrangement's lines and fenders (the "
+        "quasi-static elastic catenaries, pretensions resolved) about the ship's origin at its "
+        'start pose (ship.start_position, ship.start_yaw), in frame_id axes: its last six '
+        'lines, six numbers each, rows and columns x, y, z, roll, pitch, yaw (N/m, N/rad, '
+        'N m/m, N m/rad).')
+    _add_params_options(stiffness, LINE_FILE)
+    stiffness.add_argument('--hydrostatics', action='store_true',
+                           help="add the ship's heave, roll and pitch restoring")
     return parser
 
 
@@ -202,6 +221,14 @@ def _cmd_run(args) -> int:
     if args.out is None and args.bag is None:
         raise ParameterError('run: give --out OUT.csv and/or --bag DIR')
     setup = _setup(args)
+    if setup.ship.free:
+        return _run_free(args, setup)
+    if args.motion is None:
+        raise ParameterError('run: give --motion MOTION.csv (SHIP.csv for an arrangement), or '
+                             'set ship_mode: free for a ship moved by its loads')
+    if args.loads is not None or args.duration is not None:
+        raise ParameterError('run: --loads and --duration are for a free ship (ship_mode: '
+                             'free); a driven ship follows --motion')
     if setup.single:
         line = setup.lines[0].params
         streams = read_motion(args.motion, line.fairlead_offset, line.bollard_offset)
@@ -221,6 +248,34 @@ def _cmd_run(args) -> int:
         print(f'{summary.rows} outputs{what}, t = {summary.start:.3f} .. {summary.end:.3f} s '
               f'every {1 / args.rate:g} s (step {summary.time_step * 1e3:.4g} ms) -> '
               f'{targets} in {summary.wall:.1f} s')
+    return 0
+
+
+def _run_free(args, setup) -> int:
+    """rope_sim run of a free ship: --duration s from rest under --loads."""
+    from .motion import read_loads
+    from .run import run_free
+    if args.motion is not None:
+        raise ParameterError('run: a free ship (ship_mode: free) takes no --motion: give '
+                             '--duration S and optionally --loads LOADS.csv')
+    if args.duration is None:
+        raise ParameterError('run: a free ship (ship_mode: free) needs --duration S')
+    if args.bag is not None:
+        raise ParameterError("run: a free ship's run writes --out OUT.csv; record a bag "
+                             'with the mooring node')
+    loads = read_loads(args.loads) if args.loads is not None else None
+    progress = _progress(args.quiet)
+    try:
+        with _compiling_notice(args.quiet):
+            summary = run_free(setup, args.duration, loads, args.out, args.rate, progress)
+    finally:
+        if progress is not None:
+            progress.finish()
+    _report(summary, False)
+    if not args.quiet:
+        print(f'{summary.rows} outputs of a free ship on {len(setup.lines)} lines, t = '
+              f'{summary.start:.3f} .. {summary.end:.3f} s every {1 / args.rate:g} s (step '
+              f'{summary.time_step * 1e3:.4g} ms) -> {args.out} in {summary.wall:.1f} s')
     return 0
 
 
@@ -318,6 +373,12 @@ def _cmd_study(args) -> int:
     return EXIT_OUTPUT if report.lost else 0
 
 
+def _cmd_stiffness(args) -> int:
+    from .stiffness import stiffness_report
+    print('\n'.join(stiffness_report(_setup(args), hydrostatics=args.hydrostatics)))
+    return 0
+
+
 COMMANDS = {
     'run': _cmd_run,
     'resim': _cmd_resim,
@@ -325,6 +386,7 @@ COMMANDS = {
     'info': _cmd_info,
     'recover': _cmd_recover,
     'study': _cmd_study,
+    'stiffness': _cmd_stiffness,
 }
 
 

@@ -13,7 +13,7 @@
 # limitations under the License.
 
 """
-The motion files an offline run reads: MOTION.csv of a single line, SHIP.csv of a ship.
+The files an offline run reads: MOTION.csv of a single line, SHIP.csv of a ship, LOADS.csv.
 
 Both are CSV tables with a header naming their columns; other columns are ignored. Every
 cell of the columns read must be a finite number and ``t`` [s] must increase strictly; it
@@ -28,6 +28,9 @@ column.
 - SHIP.csv: ``t``, the ship's origin ``x, y, z`` [m] in frame_id, and its orientation as
   ``qx, qy, qz, qw``, or as ``yaw`` [rad] (about z; roll and pitch zero), or neither
   (heading along x).
+- LOADS.csv: ``t`` and the external load on a free ship (ship_mode free): ``force_x,
+  force_y, force_z`` [N] and ``moment_x, moment_y, moment_z`` [N m] about the ship's origin,
+  in frame_id axes; linear between rows, held after the last.
 
 A line's motion is a ship's: its fairlead point is the pose whose origin plus the
 fairlead_offset (identity orientation) is that point, so the node fed with the recorded
@@ -234,3 +237,36 @@ def read_ship_motion(path) -> Streams:
                                        np.cos(yaw / 2.0)])
     position = np.column_stack([columns[column] for column in POSITION])
     return Streams(name, t_ns, position, orientation, origin=float(columns[TIME][0]))
+
+
+LOAD_COLUMNS = ('force_x', 'force_y', 'force_z', 'moment_x', 'moment_y', 'moment_z')
+
+
+@dataclass(frozen=True)
+class LoadSchedule:
+    """
+    LOADS.csv: the external load on a free ship over time.
+
+    :ivar path: the file.
+    :ivar times: each row's t [s] (n,).
+    :ivar loads: each row's force [N] and moment about the ship's origin [N m], world axes
+        (n, 6); linear between rows, held before the first and after the last.
+    """
+
+    path: str
+    times: np.ndarray
+    loads: np.ndarray
+
+
+def read_loads(path) -> LoadSchedule:
+    """
+    Read LOADS.csv: t, force_x, force_y, force_z, moment_x, moment_y, moment_z.
+
+    :raises MotionError: unreadable, a column missing, a cell not a finite number, t not
+        increasing; named with the file, row and column.
+    """
+    name = os.fspath(path)
+    columns, _ = read_table(name, (TIME,) + LOAD_COLUMNS, (),
+                            f'{TIME}, {", ".join(LOAD_COLUMNS)}')
+    return LoadSchedule(name, np.asarray(columns[TIME], dtype=float),
+                        np.column_stack([columns[column] for column in LOAD_COLUMNS]))

@@ -32,7 +32,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .motion import MotionError, Streams
+from .motion import LoadSchedule, MotionError, Streams
 from .sinks import BagSink, CsvSink
 from ..messages import topics
 from ..messages.encode import OutputEncoder, pose_stamped
@@ -41,6 +41,7 @@ from ..mooring.driver import Driver, Published, SHIP
 from ..mooring.status import Rating
 from ..params.arrangement import ArrangementParams, stored
 from ..params.materials import load_materials
+from ..params.table import ParameterError
 
 DEFAULT_RATE = 100.0
 
@@ -226,6 +227,74 @@ def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_R
             take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
     take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
     summary.wall = time.monotonic() - wall
+    return summary
+
+
+def simulate_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSchedule] = None,
+                  rate: float = DEFAULT_RATE, sinks: Sequence[Sink] = (),
+                  progress: Optional[Callable[[int, int, float], None]] = None,
+                  materials: Any = None) -> RunSummary:
+    """
+    Run a free ship from rest at its start pose for `duration` s under its loads.
+
+    Outputs every 1 / rate s from 0 to duration, each to the sinks.
+
+    :param loads: the external load over time (LOADS.csv); None: none.
+    :raises ParameterError: not a free ship, a bad rate or duration, or a pretension no
+        length gives at the start pose.
+    """
+    wall = time.monotonic()
+    if not setup.ship.free:
+        raise ParameterError('a run without a motion file moves a free ship: set ship_mode: '
+                             'free, or give --motion SHIP.csv for a driven one')
+    if not (math.isfinite(duration) and duration > 0.0):
+        raise ParameterError(f'--duration {duration!r} is not allowed: must be a number of '
+                             'seconds > 0')
+    driver = driver_for(setup, rate, materials)
+    if loads is not None:
+        driver.mooring.load_schedule = (loads.times, loads.loads)
+    summary = RunSummary(time_step=driver.mooring.time_step,
+                         reach={line.name: line.reach for line in driver.mooring.lines})
+    tally = Tally(summary, driver.mooring.names)
+    total = int(math.floor(duration * rate + 1e-9)) + 1
+    driver.start_free(0)
+    chunk = max(1.0, 10.0 / rate)  # outputs in chunks, so that progress shows
+    t = 0.0
+    while True:
+        t = min(t + chunk, duration)
+        for published in driver.outputs_until(t).outputs:
+            tally.add(published)
+            for sink in sinks:
+                sink(published)
+            if progress is not None:
+                progress(summary.rows, max(total, summary.rows), published.output.t)
+        if t >= duration:
+            break
+    summary.wall = time.monotonic() - wall
+    return summary
+
+
+def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSchedule] = None,
+             out_path=None, rate: float = DEFAULT_RATE, progress=None,
+             materials: Any = None) -> RunSummary:
+    """
+    Run a free ship (simulate_free) into OUT.csv with its motion and fenders (sinks.py).
+
+    :raises ParameterError: as simulate_free, before any file exists.
+    :raises OSError: OUT.csv cannot be written.
+    """
+    driver_for(setup, rate, materials)  # refuses a bad rate or line first
+    writer = None
+    sinks: List[Sink] = []
+    if out_path is not None:
+        writer = CsvSink(out_path, setup.names, ratings(setup), free=True,
+                         fenders=[(fender.name, fender.normal) for fender in setup.fenders])
+        sinks.append(writer)
+    try:
+        summary = simulate_free(setup, duration, loads, rate, sinks, progress, materials)
+    finally:
+        if writer is not None:
+            writer.close()
     return summary
 
 

@@ -20,7 +20,9 @@ LINE_COLUMNS: the forces of the line on both ends, the largest tension at each s
 previous row, the unstretched length and whether the line has parted, and the payload's
 position (PAYLOAD_COLUMNS) when the line ends in a free payload. An arrangement's has
 ARRANGEMENT_COLUMNS, the total force and moment of the lines on the ship (body frame,
-about its origin), then each line's EACH_LINE_COLUMNS under its name (NAME_tension, ...).
+about its origin), then each line's EACH_LINE_COLUMNS under its name (NAME_tension, ...);
+a free ship's adds its motion (SHIP_COLUMNS: its origin's pose as SHIP.csv names it and
+its velocity, frame_id axes) and each fender's FENDER_COLUMNS under its name.
 Times are in the motion file's own time base; every number is written with Python's
 shortest exact repr, so a row read back gives the very floats that were computed.
 
@@ -34,6 +36,8 @@ import math
 import os
 import time
 from typing import Any, Mapping, Optional, Sequence, Tuple
+
+import numpy as np
 
 from ..bag import BagError, BagWriter, cdr
 from ..messages.encode import OutputEncoder
@@ -52,13 +56,20 @@ ARRANGEMENT_COLUMNS = ('t', 'force_x', 'force_y', 'force_z', 'moment_x', 'moment
 # its utilisation, and as a single line's, its peaks, its length and parted (0, 1).
 EACH_LINE_COLUMNS = ('tension', 'bollard_tension', 'utilisation', 'fairlead_peak_tension',
                      'bollard_peak_tension', 'line_length', 'parted')
+# A free ship's motion after the lines' columns: its origin's position [m] and orientation,
+# its origin's velocity [m/s] and its angular velocity [rad/s], frame_id axes.
+SHIP_COLUMNS = ('x', 'y', 'z', 'qx', 'qy', 'qz', 'qw', 'vx', 'vy', 'vz', 'wx', 'wy', 'wz')
+# Each fender's columns after those, under its name: its compression [m] (<= 0: untouched)
+# and its reaction on the hull along its normal [N].
+FENDER_COLUMNS = ('compression', 'reaction')
 
 
 class CsvSink:
     """Writes OUT.csv row by row (see the module docstring); a context manager."""
 
     def __init__(self, path, names: Sequence[str], ratings: Sequence[Rating],
-                 payload: bool = False, origin: float = 0.0) -> None:
+                 payload: bool = False, origin: float = 0.0, free: bool = False,
+                 fenders: Sequence[Tuple[str, Sequence[float]]] = ()) -> None:
         """
         Open (create or overwrite) the file and write the header.
 
@@ -67,6 +78,8 @@ class CsvSink:
         :param payload: a single line that ends in a payload (PAYLOAD_COLUMNS).
         :param origin: the motion file's first time [s]: a row's t is origin plus the
             output's simulated time.
+        :param free: a free ship's run (SHIP_COLUMNS).
+        :param fenders: each fender's name and normal (FENDER_COLUMNS).
         :raises OSError: it cannot be written.
         """
         self.path = os.fspath(path)
@@ -74,6 +87,8 @@ class CsvSink:
         self.ratings = list(ratings)
         self.payload = payload
         self.origin = origin
+        self.free = free
+        self.normals = [tuple(normal) for _, normal in fenders]
         self._file = open(self.path, 'w', newline='', encoding='utf-8')
         self._writer = csv.writer(self._file, lineterminator='\n')
         if self.single:
@@ -81,6 +96,9 @@ class CsvSink:
         else:
             header = ARRANGEMENT_COLUMNS + tuple(f'{name}_{column}' for name in names
                                                  for column in EACH_LINE_COLUMNS)
+            header += SHIP_COLUMNS if free else ()
+            header += tuple(f'{name}_{column}' for name, _ in fenders
+                            for column in FENDER_COLUMNS)
         self._writer.writerow(header)
         self.rows = 0
 
@@ -102,6 +120,12 @@ class CsvSink:
                 numbers += [fairlead, bollard, rating.utilisation(max(fairlead, bollard)),
                             out.fairlead_peaks[k], out.bollard_peaks[k], out.line_lengths[k],
                             float(out.parted[k])]
+            if self.free:
+                ship = out.ship
+                numbers += [*ship.position, *ship.orientation, *ship.velocity, *ship.omega]
+            for f, normal in enumerate(self.normals):
+                numbers += [out.fender_compressions[f], float(np.dot(out.fender_forces[f],
+                                                                     normal))]
         self._writer.writerow([repr(float(v)) for v in numbers])
         self.rows += 1
 

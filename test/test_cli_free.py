@@ -1,0 +1,96 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""rope_sim run of a free ship: --loads LOADS.csv --duration T, its motion in OUT.csv."""
+
+import csv
+
+import pytest
+
+from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.sinks import FENDER_COLUMNS, SHIP_COLUMNS
+
+FREE_BERTH = """/**/mooring:
+  ros__parameters:
+    lines: [head, stern]
+    ship_mode: free
+    ship:
+      start_position: [0.0, -17.6, 0.0]
+    fenders: [fender_a]
+    fender_a: {position: [0.0, -1.5, 0.0], normal: [0.0, -1.0, 0.0],
+               curve: [0.5, 5.0e5, 1.0, 1.2e6]}
+    segments: 8
+    head: {material: polyester, fairlead_offset: [106.0, 13.0, 10.0],
+           bollard_position: [150.0, 3.0, 3.5], pretension: 126000.0}
+    stern: {material: polyester, fairlead_offset: [-104.0, 13.0, 10.0],
+            bollard_position: [-150.0, 3.0, 3.5], pretension: 126000.0}
+"""
+# a push ahead ramped in over 2 s, then held
+LOADS = """t,force_x,force_y,force_z,moment_x,moment_y,moment_z
+0,0,0,0,0,0,0
+2,200000,0,0,0,0,0
+"""
+
+
+@pytest.fixture
+def files(tmp_path):
+    params = tmp_path / 'free.yaml'
+    params.write_text(FREE_BERTH)
+    loads = tmp_path / 'loads.csv'
+    loads.write_text(LOADS)
+    return params, loads, tmp_path / 'out.csv'
+
+
+def test_a_free_ship_runs_under_its_loads_into_out_csv(files):
+    params, loads, out = files
+    assert cli.main(['run', '--params', str(params), '--loads', str(loads), '--duration', '6',
+                     '--rate', '10', '--out', str(out), '--quiet']) == 0
+    with open(out, newline='') as stream:
+        rows = list(csv.reader(stream))
+    header, data = rows[0], [[float(v) for v in row] for row in rows[1:]]
+    assert header[-len(SHIP_COLUMNS) - 2:-2] == list(SHIP_COLUMNS)
+    assert header[-2:] == [f'fender_a_{column}' for column in FENDER_COLUMNS]
+    assert len(data) == 61 and data[0][0] == 0.0 and data[-1][0] == 6.0
+    column = {name: i for i, name in enumerate(header)}
+    first, last = data[0], data[-1]
+    assert (first[column['x']], first[column['y']]) == (0.0, -17.6)  # at rest at its start
+    assert first[column['qw']] == 1.0
+    assert last[column['x']] > 1e-3  # pushed ahead
+    assert last[column['vx']] > 0.0
+    # the stern line, which the push stretches, pulls harder than at the start
+    assert last[column['stern_tension']] > first[column['stern_tension']] + 1e3
+
+
+@pytest.mark.parametrize('arguments, message', [
+    (['--duration', '5'], None),
+    (['--motion', 'SHIP.csv', '--duration', '5'], 'takes no --motion'),
+    ([], 'needs --duration S'),
+])
+def test_a_free_run_refuses_a_motion_or_no_duration(files, capsys, arguments, message):
+    params, _, out = files
+    code = cli.main(['run', '--params', str(params), '--out', str(out), '--quiet', *arguments])
+    if message is None:  # no loads: the ship rests against its fender, lines pulling
+        assert code == 0
+        return
+    err = capsys.readouterr().err
+    assert code == 2 and message in err and err.count('\n') == 1, err
+
+
+def test_a_driven_ship_refuses_loads(files, tmp_path, capsys):
+    params, loads, out = files
+    params.write_text(FREE_BERTH.replace('ship_mode: free', 'ship_mode: driven'))
+    code = cli.main(['run', '--params', str(params), '--loads', str(loads), '--out', str(out),
+                     '--motion', str(loads), '--quiet'])
+    err = capsys.readouterr().err
+    assert code == 2 and '--loads and --duration are for a free ship' in err, err
