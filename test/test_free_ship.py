@@ -45,8 +45,8 @@ LINES = {
 }
 LOAD = (2.0e5, -3.0e5, 0.0, 0.0, 0.0, -6.0e6)  # ahead, off the quay, yawing
 # about critical damping, 2 sqrt(K M) of each diagonal term (the stiffness at the start: 3.8
-# and 1.0 MN/m in surge and sway, 6.6e9 N m/rad in yaw), so that SETTLE s settle it (to 1e-7 m/s): more
-# would leave it creeping, its dampers holding part of the load
+# and 1.0 MN/m in surge and sway, 6.6e9 N m/rad in yaw), so that SETTLE s settle it (to
+# 1e-7 m/s): more would leave it creeping, its dampers holding part of the load
 SETTLE_DAMPING = [3.0e7, 2.0e7, 1.5e8, 1.2e10, 7.0e10, 8.0e10]
 SETTLE = 480.0
 
