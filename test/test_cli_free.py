@@ -19,7 +19,7 @@ import csv
 import pytest
 
 from rope_sim_ros.offline import cli
-from rope_sim_ros.offline.sinks import FENDER_COLUMNS, SHIP_COLUMNS
+from rope_sim_ros.offline.sinks import FENDER_COLUMNS, LOAD_COLUMNS, SHIP_COLUMNS
 
 FREE_BERTH = """/**/mooring:
   ros__parameters:
@@ -59,8 +59,11 @@ def test_a_free_ship_runs_under_its_loads_into_out_csv(files):
     with open(out, newline='') as stream:
         rows = list(csv.reader(stream))
     header, data = rows[0], [[float(v) for v in row] for row in rows[1:]]
-    assert header[-len(SHIP_COLUMNS) - 2:-2] == list(SHIP_COLUMNS)
-    assert header[-2:] == [f'fender_a_{column}' for column in FENDER_COLUMNS]
+    ship = header.index('x')
+    assert header[ship:ship + len(SHIP_COLUMNS)] == list(SHIP_COLUMNS)
+    fender = ship + len(SHIP_COLUMNS)
+    assert header[fender:fender + 2] == [f'fender_a_{column}' for column in FENDER_COLUMNS]
+    assert header[fender + 2:] == list(LOAD_COLUMNS)
     assert len(data) == 61 and data[0][0] == 0.0 and data[-1][0] == 6.0
     column = {name: i for i, name in enumerate(header)}
     first, last = data[0], data[-1]
@@ -70,6 +73,9 @@ def test_a_free_ship_runs_under_its_loads_into_out_csv(files):
     assert last[column['vx']] > 0.0
     # the stern line, which the push stretches, pulls harder than at the start
     assert last[column['stern_tension']] > first[column['stern_tension']] + 1e3
+    # the current's load on a ship moving in still water: its drag, against the motion
+    assert last[column['current_force_x']] < 0.0
+    assert last[column['wind_force_x']] == 0.0 and last[column['passing_force_y']] == 0.0
 
 
 @pytest.mark.parametrize('arguments, message', [

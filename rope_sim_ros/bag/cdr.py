@@ -96,6 +96,40 @@ def boolean(value: bool) -> bytes:
     return CDR_LE + struct.pack('<?', bool(value))
 
 
+def odometry(sec: int, nanosec: int, frame_id: str, child_frame_id: str,
+             pose: Sequence[float], twist: Sequence[float]) -> bytes:
+    """
+    Return a nav_msgs/Odometry as CDR bytes, its covariances zero (unknown).
+
+    :param pose: x, y, z, qx, qy, qz, qw in frame_id.
+    :param twist: linear and angular velocity, six numbers, in child_frame_id's axes.
+    """
+    body = _pad(_header(sec, nanosec, frame_id), 4) + _string(child_frame_id)
+    body = _pad(body, 8) + struct.pack('<7d', *pose) + bytes(8 * 36)
+    return CDR_LE + body + struct.pack('<6d', *twist) + bytes(8 * 36)
+
+
+def float64_multi_array(dimensions: Sequence[Tuple[str, int, int]],
+                        data: Sequence[float]) -> bytes:
+    """
+    Return a std_msgs/Float64MultiArray as CDR bytes, its data_offset 0.
+
+    :param dimensions: (label, size, stride) of each dimension, outermost first.
+    """
+    body = struct.pack('<I', len(dimensions))
+    for label, size, stride in dimensions:
+        body = _pad(body, 4) + _string(label)
+        body = _pad(body, 4) + struct.pack('<II', size, stride)
+    values = np.asarray(data, dtype='<f8').reshape(-1)
+    body = _pad(body, 4) + struct.pack('<II', 0, len(values))
+    return CDR_LE + _pad(body, 8) + values.tobytes()
+
+
+def vector3_stamped(sec: int, nanosec: int, frame_id: str, vector: Sequence[float]) -> bytes:
+    """Return a geometry_msgs/Vector3Stamped as CDR bytes."""
+    return CDR_LE + _pad(_header(sec, nanosec, frame_id), 8) + struct.pack('<3d', *vector)
+
+
 class _Cursor:
     """Reads CDR fields in order, aligning each to its size from the end of the header."""
 

@@ -108,6 +108,17 @@ DEFINITIONS = {
         'std_msgs/Header header\n'
         'Pose pose\n',
         'RIHS01_10f3786d7d40fd2b54367835614bff85d4ad3b5dab62bf8bca0cc232d73b4cd8'),
+    'geometry_msgs/msg/PoseWithCovariance': (
+        '# This represents a pose in free space with uncertainty.\n'
+        '\n'
+        'Pose pose\n'
+        '\n'
+        '# Row-major representation of the 6x6 covariance matrix\n'
+        '# The orientation parameters use a fixed-axis representation.\n'
+        '# In order, the parameters are:\n'
+        '# (x, y, z, rotation about X axis, rotation about Y axis, rotation about Z axis)\n'
+        'float64[36] covariance\n',
+        'RIHS01_9a7c0fd234b7f45c6098745ecccd773ca1085670e64107135397aee31c02e1bb'),
     'geometry_msgs/msg/Quaternion': (
         '# This represents an orientation in free space in quaternion form.\n'
         '\n'
@@ -116,6 +127,23 @@ DEFINITIONS = {
         'float64 z 0\n'
         'float64 w 1\n',
         'RIHS01_8a765f66778c8ff7c8ab94afcc590a2ed5325a1d9a076ffff38fbce36f458684'),
+    'geometry_msgs/msg/Twist': (
+        '# This expresses velocity in free space broken into its linear and angular parts.\n'
+        '\n'
+        'Vector3  linear\n'
+        'Vector3  angular\n',
+        'RIHS01_9c45bf16fe0983d80e3cfe750d6835843d265a9a6c46bd2e609fcddde6fb8d2a'),
+    'geometry_msgs/msg/TwistWithCovariance': (
+        '# This expresses velocity in free space with uncertainty.\n'
+        '\n'
+        'Twist twist\n'
+        '\n'
+        '# Row-major representation of the 6x6 covariance matrix\n'
+        '# The orientation parameters use a fixed-axis representation.\n'
+        '# In order, the parameters are:\n'
+        '# (x, y, z, rotation about X axis, rotation about Y axis, rotation about Z axis)\n'
+        'float64[36] covariance\n',
+        'RIHS01_49f574f033f095d8b6cd1beaca5ca7925e296e84af1716d16c89d38b059c8c18'),
     'geometry_msgs/msg/Vector3': (
         '# This represents a vector in free space.\n'
         '\n'
@@ -127,6 +155,16 @@ DEFINITIONS = {
         'float64 y\n'
         'float64 z\n',
         'RIHS01_cc12fe83e4c02719f1ce8070bfd14aecd40f75a96696a67a2a1f37f7dbb0765d'),
+    'geometry_msgs/msg/Vector3Stamped': (
+        '# This represents a Vector3 with reference coordinate frame and timestamp\n'
+        '\n'
+        '# Note that this follows vector semantics with it always anchored at the origin,\n'
+        '# so the rotational elements of a transform are the only parts applied when transformin'
+        'g.\n'
+        '\n'
+        'std_msgs/Header header\n'
+        'Vector3 vector\n',
+        'RIHS01_d4829622288cbb443886e7ea94ea5671a3b1be6bab4ad04224432a65f7d7887a'),
     'geometry_msgs/msg/Wrench': (
         '# This represents force in free space, separated into its linear and angular parts.\n'
         '\n'
@@ -139,6 +177,25 @@ DEFINITIONS = {
         'std_msgs/Header header\n'
         'Wrench wrench\n',
         'RIHS01_8dc3deaf06b2ab281f9f9a742a8961c328ca7cec16e3fd6586d3a5c83fa78f77'),
+    'nav_msgs/msg/Odometry': (
+        '# This represents an estimate of a position and velocity in free space.\n'
+        '# The pose in this message should be specified in the coordinate frame given by header.'
+        'frame_id\n'
+        '# The twist in this message should be specified in the coordinate frame given by the ch'
+        'ild_frame_id\n'
+        '\n'
+        '# Includes the frame id of the pose parent.\n'
+        'std_msgs/Header header\n'
+        '\n'
+        '# Frame id the pose points to. The twist is in this coordinate frame.\n'
+        'string child_frame_id\n'
+        '\n'
+        '# Estimated pose that is typically relative to a fixed world frame.\n'
+        'geometry_msgs/PoseWithCovariance pose\n'
+        '\n'
+        '# Estimated linear and angular velocity relative to child_frame_id.\n'
+        'geometry_msgs/TwistWithCovariance twist\n',
+        'RIHS01_3cc97dc7fb7502f8714462c526d369e35b603cfc34d946e3f2eda2766dfec6e0'),
     'sensor_msgs/msg/CompressedImage': (
         '# This message contains a compressed image.\n'
         '\n'
@@ -208,6 +265,19 @@ DEFINITIONS = {
         '\n'
         'float64 data\n',
         'RIHS01_705ba9c3d1a09df43737eb67095534de36fd426c0587779bda2bc51fe790182a'),
+    'std_msgs/msg/Float64MultiArray': (
+        '# This was originally provided as an example message.\n'
+        '# It is deprecated as of Foxy\n'
+        '# It is recommended to create your own semantically meaningful message.\n'
+        '# However if you would like to continue using this please use the equivalent in example'
+        '_msgs.\n'
+        '\n'
+        '# Please look at the MultiArrayLayout message definition for\n'
+        '# documentation on all multiarrays.\n'
+        '\n'
+        'MultiArrayLayout  layout        # specification of data layout\n'
+        'float64[]         data          # array of data\n',
+        'RIHS01_1025ddc6b9552d191f89ef1a8d2f60f3d373e28b283d8891ddcc974e8c55397f'),
     'std_msgs/msg/Header': (
         '# Standard metadata for higher-level stamped data types.\n'
         '# This is generally used to communicate timestamped data\n'
@@ -219,6 +289,51 @@ DEFINITIONS = {
         '# Transform frame with which this data is associated.\n'
         'string frame_id\n',
         'RIHS01_f49fb3ae2cf070f793645ff749683ac6b06203e41c891e17701b1cb597ce6a01'),
+    'std_msgs/msg/MultiArrayDimension': (
+        '# This was originally provided as an example message.\n'
+        '# It is deprecated as of Foxy\n'
+        '# It is recommended to create your own semantically meaningful message.\n'
+        '# However if you would like to continue using this please use the equivalent in example'
+        '_msgs.\n'
+        '\n'
+        'string label   # label of given dimension\n'
+        'uint32 size    # size of given dimension (in type units)\n'
+        'uint32 stride  # stride of given dimension\n',
+        'RIHS01_5e773a60a4c7fc8a54985f307c7837aa2994252a126c301957a24e31282c9cbe'),
+    'std_msgs/msg/MultiArrayLayout': (
+        '# This was originally provided as an example message.\n'
+        '# It is deprecated as of Foxy\n'
+        '# It is recommended to create your own semantically meaningful message.\n'
+        '# However if you would like to continue using this please use the equivalent in example'
+        '_msgs.\n'
+        '\n'
+        '# The multiarray declares a generic multi-dimensional array of a\n'
+        '# particular data type.  Dimensions are ordered from outer most\n'
+        '# to inner most.\n'
+        '#\n'
+        '# Accessors should ALWAYS be written in terms of dimension stride\n'
+        '# and specified outer-most dimension first.\n'
+        '#\n'
+        '# multiarray(i,j,k) = data[data_offset + dim_stride[1]*i + dim_stride[2]*j + k]\n'
+        '#\n'
+        '# A standard, 3-channel 640x480 image with interleaved color channels\n'
+        '# would be specified as:\n'
+        '#\n'
+        '# dim[0].label  = "height"\n'
+        '# dim[0].size   = 480\n'
+        '# dim[0].stride = 3*640*480 = 921600  (note dim[0] stride is just size of image)\n'
+        '# dim[1].label  = "width"\n'
+        '# dim[1].size   = 640\n'
+        '# dim[1].stride = 3*640 = 1920\n'
+        '# dim[2].label  = "channel"\n'
+        '# dim[2].size   = 3\n'
+        '# dim[2].stride = 3\n'
+        '#\n'
+        '# multiarray(i,j,k) refers to the ith row, jth column, and kth channel.\n'
+        '\n'
+        'MultiArrayDimension[] dim # Array of dimension properties\n'
+        'uint32 data_offset        # padding bytes at front of data\n',
+        'RIHS01_4c66e6f78e740ac103a94cf63259f968e48c617e7699e829b63c21a5cb50dac6'),
     'std_msgs/msg/String': (
         '# This was originally provided as an example message.\n'
         '# It is deprecated as of Foxy\n'

@@ -26,7 +26,12 @@ physics (370 us an output for one line's particles and tensions, as bytes 80 us)
   [N, frame_id axes], the torque its moment about the end's pose origin (the lever × force);
 - peaks and the winch's length: std_msgs/Float64; payload/pose: geometry_msgs/PoseStamped;
 - ship/mooring_wrench (body axes, ship_frame_id) and ship/mooring_wrench_world (frame_id
-  axes): geometry_msgs/WrenchStamped, about the ship's origin.
+  axes): geometry_msgs/WrenchStamped, about the ship's origin;
+- a free ship's ship/pose (geometry_msgs/PoseStamped, its origin in frame_id) and
+  ship/odometry (nav_msgs/Odometry: that pose, and the origin's velocity and the angular
+  velocity in ship_frame_id axes, covariances unknown: zero);
+- each fender's <fender>/reaction: geometry_msgs/WrenchStamped in frame_id, the force of the
+  fender on the hull at its contact point (no torque about that point).
 """
 
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple
@@ -58,8 +63,14 @@ class OutputEncoder:
     """
 
     def __init__(self, layout: Layout, names: Sequence[str], payloads: Sequence[bool],
-                 frame_id: str, ship_frame_id: str = 'base_link'):
-        """Name every output of these lines (payloads: which lines end in a payload)."""
+                 frame_id: str, ship_frame_id: str = 'base_link', free: bool = False,
+                 fenders: Sequence[str] = ()):
+        """
+        Name every output of these lines (payloads: which lines end in a payload).
+
+        :param free: a free ship's (its pose and odometry are outputs).
+        :param fenders: the fenders' names (their reactions are outputs).
+        """
         self.layout = layout
         self.frame_id = frame_id
         self.ship_frame_id = ship_frame_id
@@ -75,20 +86,24 @@ class OutputEncoder:
                 self.types[topic] = type_name
         self.parted_topics = [layout.line_topic(name, topics.PARTED) for name in names]
         self.types.update({topic: topics.BOOL for topic in self.parted_topics})
-        if layout.ship_outputs:
-            self.types.update(topics.SHIP_OUTPUTS)
+        self.ship_topics = dict(topics.SHIP_OUTPUTS) if layout.ship_outputs else {}
+        if free:
+            self.ship_topics.update(topics.FREE_SHIP_OUTPUTS)
+        self.fender_topics = {f'{name}/{topics.FENDER_REACTION}': f
+                              for f, name in enumerate(fenders)}
+        self.ship_topics.update({topic: topics.WRENCH_STAMPED for topic in self.fender_topics})
+        self.types.update(self.ship_topics)
         self._parted: List[Optional[bool]] = [None] * len(names)  # what was said last
 
     def has_header(self, topic: str) -> bool:
         """Tell whether an output topic's messages carry a header stamp (the ship's do)."""
         line = self.line_topics.get(topic)
-        return topic in topics.SHIP_OUTPUTS if line is None else line[1] in topics.STAMPED
+        return topic in self.ship_topics if line is None else line[1] in topics.STAMPED
 
     @property
     def output_topics(self) -> List[str]:
         """Return every topic an output may publish on: the lines', then the ship's."""
-        ship = list(topics.SHIP_OUTPUTS) if self.layout.ship_outputs else []
-        return list(self.line_topics) + ship
+        return list(self.line_topics) + list(self.ship_topics)
 
     def messages(self, published: Published,
                  wanted: Optional[Iterable[str]] = None) -> List[Tuple[str, bytes]]:
@@ -133,9 +148,22 @@ class OutputEncoder:
             elif topic == topics.MOORING_WRENCH:
                 data = cdr.wrench_stamped(sec, nanosec, self.ship_frame_id, published.force,
                                           published.moment)
-            else:  # MOORING_WRENCH_WORLD
+            elif topic == topics.MOORING_WRENCH_WORLD:
                 data = cdr.wrench_stamped(sec, nanosec, self.frame_id,
                                           *published.world_wrench())
+            elif topic in self.fender_topics:
+                data = cdr.wrench_stamped(sec, nanosec, self.frame_id,
+                                          out.fender_forces[self.fender_topics[topic]],
+                                          (0.0, 0.0, 0.0))
+            elif topic == topics.SHIP_POSE:
+                data = cdr.pose_stamped(sec, nanosec, self.frame_id,
+                                        [*out.ship.position, *out.ship.orientation])
+            else:  # SHIP_ODOMETRY
+                rotation = published.rotation  # the twist in the ship's axes
+                data = cdr.odometry(sec, nanosec, self.frame_id, self.ship_frame_id,
+                                    [*out.ship.position, *out.ship.orientation],
+                                    [*(out.ship.velocity @ rotation),
+                                     *(out.ship.omega @ rotation)])
             built.append((topic, data))
         return built
 
@@ -147,3 +175,9 @@ class OutputEncoder:
                 self._parted[k] = now
                 changes.append((self.parted_topics[k], now))
         return changes
+
+
+def stiffness_message(matrix: np.ndarray) -> bytes:
+    """Return ship/stiffness: the 6x6 matrix row-major, dimensions 'rows' and 'cols'."""
+    rows, cols = topics.STIFFNESS_DIMENSIONS
+    return cdr.float64_multi_array([(rows, 6, 36), (cols, 6, 6)], np.asarray(matrix).ravel())

@@ -37,6 +37,9 @@ FLOAT64 = 'std_msgs/msg/Float64'
 BOOL = 'std_msgs/msg/Bool'
 STRING = 'std_msgs/msg/String'
 MARKER_ARRAY = 'visualization_msgs/msg/MarkerArray'
+ODOMETRY = 'nav_msgs/msg/Odometry'
+FLOAT64_MULTI_ARRAY = 'std_msgs/msg/Float64MultiArray'
+VECTOR3_STAMPED = 'geometry_msgs/msg/Vector3Stamped'
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
 
 # A line's topics, relative to its namespace.
@@ -65,6 +68,14 @@ MOORING_WRENCH = 'ship/mooring_wrench'  # body frame, ship_frame_id
 MOORING_WRENCH_WORLD = 'ship/mooring_wrench_world'  # frame_id axes
 SHIP_OUTPUTS: Dict[str, str] = {MOORING_WRENCH: WRENCH_STAMPED,
                                 MOORING_WRENCH_WORLD: WRENCH_STAMPED}
+# A free ship's: its pose is an output on SHIP_POSE, with its odometry (the body origin's
+# pose in frame_id, its velocity in ship_frame_id axes, as nav_msgs has it).
+SHIP_ODOMETRY = 'ship/odometry'
+FREE_SHIP_OUTPUTS: Dict[str, str] = {SHIP_POSE: POSE_STAMPED, SHIP_ODOMETRY: ODOMETRY}
+EXTERNAL_WRENCH = 'ship/external_wrench'  # in: the external load on a free ship
+STIFFNESS = 'ship/stiffness'  # the 6x6 stiffness of the lines and fenders, row-major
+STIFFNESS_DIMENSIONS = ('rows', 'cols')
+FENDER_REACTION = 'reaction'  # a fender's force on the ship, in its namespace
 MARKERS = 'mooring/markers'
 DIAGNOSTICS = '/diagnostics'
 

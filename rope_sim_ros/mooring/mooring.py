@@ -73,7 +73,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .line import MooringLine, Parting
-from .ship import fenders, ship_body
+from .ship import fenders, ship_body, ship_loads
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 from ..model.forces.body import place_points
 from ..model.forces.fender import fender_force
@@ -82,6 +82,7 @@ from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, B
                             BODY_POSITION, BODY_QUATERNION, BODY_STATE, BODY_VELOCITY,
                             FENDER_COLUMNS, WINCH_SPEED)
 from ..model.objects import Line, Point, System
+from ..model.ship.loads import world_load
 from ..model.statics.pretension import length_for_tension, PretensionError
 from ..model.superelastic import MAX_ITERATIONS
 from ..params.arrangement import ArrangementParams
@@ -170,6 +171,9 @@ class MooringOutput:
     :ivar fender_compressions: each fender's compression [m] (F,) (<= 0: not touched).
     :ivar fender_forces: each fender's force on the ship (F, 3) [N], frame_id axes, at
         fender_points (F, 3) [m] (the contact points; the fender's centre when untouched).
+    :ivar ship_loads: the wind's, the current's and a passing ship's load on the ship, rows
+        in that order, each F_x, F_y [N], M_z [N m] in its body axes about its origin (a
+        driven ship's at its pose, taken at rest: applied to a free ship only).
     """
 
     t: float
@@ -190,6 +194,7 @@ class MooringOutput:
     fender_compressions: np.ndarray = field(default_factory=lambda: np.zeros(0))
     fender_forces: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     fender_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    ship_loads: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
 
     @property
     def peaks(self) -> np.ndarray:
@@ -335,6 +340,7 @@ class Mooring:
         self.body = ship_body(arrangement)
         self._start_row = self.body.row()
         self.fenders = fenders(arrangement)
+        self.ship_loads = ship_loads(arrangement)  # wind, current, a passing ship
         self._fender_rows = np.array([fender.row() for fender in self.fenders]).reshape(
             len(self.fenders), FENDER_COLUMNS)
         # force, moment about the ship's origin, held until set again: in world axes, and in
@@ -753,8 +759,10 @@ class Mooring:
         lengths = self.resolve_pretensions(t)
         alone = {}
         for k in range(len(self.lines)):
-            alone[k] = self._at_rest(k, t)
+            alone[k] = self._parted_if_overloaded(k, t, self._at_rest(k, t))
         self._build(alone, {k: 0 for k in alone})
+        for group in self.groups:  # what bringing them to rest pulled is no load of theirs
+            group.system.take_peaks()
         self._set_time(t)
         for k in range(len(self.lines)):
             self._apply_winch(k)
@@ -806,10 +814,40 @@ class Mooring:
             return
         group, j = self.where(k)
         t = group.time if t is None else t
-        alone = self._at_rest(k, t)
+        alone = self._parted_if_overloaded(k, t, self._at_rest(k, t))
         group.system.load_line(j, alone)
         self._apply_winch(k)
+        group.system.take_peaks(j)  # nor before the restart: the peaks start from its rest
         group.rules.refresh([self.lines[m] for m in group.members])
+
+    def _parted_if_overloaded(self, k: int, t: float, alone: System) -> System:
+        """
+        Return line k's rest state at a (re)start, parted if that state passes its break load.
+
+        A line (re)started where its ends are too far apart for it to hold its break load
+        (a teleport past its reach, a skip or a reset there) has no whole rest state: it
+        parts at once, at its most stretched segment, its two pieces laid unstretched along
+        the line from their ends. Held whole at its reach it would pull EA x max_strain (up
+        to 20 MN on the berth's springs) at the restart and in the step it parted in.
+        """
+        line = self.lines[k]
+        if line.parting is not None or line.payload or not line.params.parting:
+            return alone
+        finite, largest = alone.largest_load()
+        if finite and largest <= line.break_load:
+            return alone
+        rope = alone.lines[0]
+        x = rope.x
+        lengths = np.sqrt(((x[1:] - x[:-1]) ** 2).sum(axis=1))
+        segment = int(np.argmax(lengths / rope.rest))
+        chord = x[-1] - x[0]
+        u = chord / max(float(np.linalg.norm(chord)), 1e-12)
+        along = np.concatenate([[0.0], np.cumsum(rope.rest)])
+        shape = x[0] + along[:, None] * u  # the bollard's piece from the bollard, the
+        shape[segment + 1:] = x[-1] - (along[-1] - along[segment + 1:])[:, None] * u  # other
+        line.parting = Parting(t, segment, line.break_load)
+        self.held[k] = False  # in two pieces: nothing to hold at a reach
+        return line.build(shape)
 
     def _apply_winch(self, k: int) -> None:
         """Give line k the winch and break load its parameters ask for now."""
@@ -986,6 +1024,7 @@ class Mooring:
             line = self.lines[k]
             line.parting = Parting(group.time + (at + 1) * dt, group.system.lines[j].parted,
                                    line.break_load)
+            self.held[k] = False  # its pieces reach anywhere: no restart 'back within reach'
             done.parted[k] = line.parting
             changed = True
         if changed:
@@ -1028,14 +1067,19 @@ class Mooring:
         """
         Give the body its loads from start to end [s]: their value at start, their rate to end.
 
-        Taken about the centre of gravity where the ship is at start: over one output interval
-        it turns far too little for that to matter.
+        Taken about the centre of gravity where the ship is at start, with its velocity there
+        (the wind and current on it): over one output interval it turns and speeds up far
+        too little for that to matter.
         """
-        lever = self.body.position - self.body.origin_pose()[0]  # from the origin to the CG
+        origin, orientation = self.body.origin_pose()
+        lever = self.body.position - origin  # from the origin to the CG
+        rotation = rotation_matrix(orientation)
+        velocity = self.body.velocity - np.cross(self.body.omega, lever)
         row = system.body_table[0]
         values = []
         for t in (start, end):
             load = self.load_at(t)
+            load += world_load(self.ship_loads.at(t, origin, rotation, velocity), rotation)
             load[3:] -= np.cross(lever, load[:3])  # the moment about the CG
             values.append(load)
         row[BODY_LOAD:BODY_LOAD + 6] = values[0]
@@ -1128,6 +1172,7 @@ class Mooring:
         self._apply_winch(k)  # also refreshes the tables
         if tuple(system.environment.current) != line.props.current:
             system.set_current(line.props.current)
+            self.ship_loads.current = line.props.current
         if line.time_step != dt:
             self._regroup()
         else:
@@ -1185,10 +1230,19 @@ class Mooring:
         total += float(lengths.sum())
         ship = self._ship_state() if self.free else None
         compressions, fender_forces, points = self._fender_states()
+        loads = np.zeros((3, 3))
+        if ship is not None:
+            loads = self.ship_loads.at(self.time, ship.position,
+                                       rotation_matrix(ship.orientation), ship.velocity)
+        elif self.ship_loads.acts:  # (a driven ship: worked out only when asked for)
+            position, orientation = self.ship_pose(self.time)
+            loads = self.ship_loads.at(self.time, position, rotation_matrix(orientation),
+                                       np.zeros(3))
         return MooringOutput(
             self.time, tuple(positions), forces[:, 1], forces[:, 0], strains, tuple(payloads),
             parted, peaks[:, 1], tensions[:, 1], tensions[:, 0], peaks[:, 0], lengths,
-            winch_speeds, math.isfinite(total), ship, compressions, fender_forces, points)
+            winch_speeds, math.isfinite(total), ship, compressions, fender_forces, points,
+            loads)
 
     def _ship_state(self) -> ShipState:
         """Return the free ship's motion now (its body origin's)."""

@@ -13,10 +13,11 @@
 # limitations under the License.
 
 """
-The free ship of an arrangement as model objects: its body and its fenders.
+The ship of an arrangement as model objects: its body, its fenders and the loads on it.
 
-One place turns the ship.* and fender parameters into a model.body.Body and Fenders, for the
-Mooring that steps them and for the statics (equilibrium, stiffness) alike.
+One place turns the ship.*, fender, wind and passing_ship.* parameters into a
+model.body.Body, Fenders and ShipLoads, for the Mooring that steps them and for the statics
+(equilibrium, stiffness, the berth check) alike.
 """
 
 from typing import List
@@ -24,7 +25,11 @@ from typing import List
 import numpy as np
 
 from ..model.body import Body, Fender
+from ..model.ship.loads import PassingShip, ShipLoads, Wind
+from ..model.ship.passing import Hull
+from ..model.ship.wind import GustyWind
 from ..params.arrangement import ArrangementParams
+from ..params.ship import read_coefficients
 
 
 def ship_body(setup: ArrangementParams) -> Body:
@@ -50,3 +55,40 @@ def start_pose(setup: ArrangementParams) -> tuple:
     half = 0.5 * setup.ship.start_yaw
     return (np.array(setup.ship.start_position, dtype=float),
             np.array([0.0, 0.0, np.sin(half), np.cos(half)]))
+
+
+def ship_loads(setup: ArrangementParams) -> ShipLoads:
+    """
+    Return the wind, current and passing-ship loads of the arrangement's ship.
+
+    The passing ship's track starts from the ship's start pose (ship.start_position,
+    ship.start_yaw).
+
+    :raises ParameterError: a coefficient table that cannot be read.
+    """
+    ship, shared, passing = setup.ship, setup.shared, setup.passing
+    hull = Hull(ship.length, ship.beam, ship.draft, ship.block_coefficient)
+    gusts = None
+    if ship.wind_spectrum != 'none' and ship.wind_speed > 0.0:
+        gusts = GustyWind(ship.wind_spectrum, ship.wind_speed, ship.wind_seed)
+    other = None
+    if passing.present:
+        other = PassingShip.beside(
+            Hull(passing.length, passing.beam, passing.draft, passing.block_coefficient),
+            passing.speed, passing.direction, passing.separation, passing.start_x,
+            ship.start_position, ship.start_yaw)
+    return ShipLoads(
+        hull, read_coefficients(ship, 'wind_coefficients'),
+        read_coefficients(ship, 'current_coefficients'),
+        (ship.wind_area_front, ship.wind_area_side),
+        (ship.current_area_front or ship.beam * ship.draft,
+         ship.current_area_side or ship.length * ship.draft),
+        shared.air_density, shared.water_density,
+        Wind(ship.wind_speed, ship.wind_direction, gusts), tuple(shared.current), other)
+
+
+def reports_ship_loads(setup: ArrangementParams) -> bool:
+    """Tell whether the ship's wind, current and passing-ship loads are outputs of a run."""
+    ship = setup.ship
+    return (not setup.single and (ship.free or ship.wind_speed > 0.0 or setup.passing.present
+                                  or any(setup.shared.current)))

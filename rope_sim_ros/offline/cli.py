@@ -163,6 +163,30 @@ def build_parser() -> argparse.ArgumentParser:
     _add_params_options(stiffness, LINE_FILE)
     stiffness.add_argument('--hydrostatics', action='store_true',
                            help="add the ship's heave, roll and pitch restoring")
+
+    berth = commands.add_parser(
+        'berth-check', help='will the arrangement hold its ship in this wind and current?',
+        description="The ship's quasi-static equilibrium under its lines and fenders with "
+        'the wind from every direction (from the bow toward port) at one speed and each '
+        "current of the scenario; prints and plots, per direction, the most loaded line's "
+        "share of its MBL against its WLL, the ship's offset and the fender loads. By "
+        "default OCIMF MEG4's standard criteria: a 60 knot wind with a current of 3 knots "
+        'from ahead or astern, 2 knots at 10 or 170 degrees, or 0.75 knots from the beam. '
+        'Writes DIR/berth_check.csv and DIR/berth_check.png.')
+    berth.add_argument('arrangement', metavar='ARRANGEMENT.yaml', help="the mooring node's "
+                       'parameter file (lines, ship, fenders)')
+    berth.add_argument('--wind-speed', type=float, metavar='V',
+                       help='wind speed [m/s] (default 30.87: 60 knots)')
+    berth.add_argument('--current', metavar='X,Y,Z',
+                       help="one current instead of MEG4's: the water's velocity in "
+                       'frame_id [m/s]')
+    berth.add_argument('--directions', type=int, default=24, metavar='N',
+                       help='wind directions, evenly spaced (default 24: every 15 degrees)')
+    berth.add_argument('--out', default='berth_check', metavar='DIR',
+                       help='folder for berth_check.csv and .png (default ./berth_check)')
+    berth.add_argument('--set', action='append', default=[], metavar='NAME=VALUE',
+                       help='override a parameter (repeatable)')
+    berth.add_argument('--quiet', action='store_true', help='print only the file names')
     return parser
 
 
@@ -373,6 +397,28 @@ def _cmd_study(args) -> int:
     return EXIT_OUTPUT if report.lost else 0
 
 
+def _cmd_berth_check(args) -> int:
+    from .berth_check import MEG4_WIND, parse_current, run
+    from ..params.arrangement import is_arrangement_file, read_setup
+    from ..params.files import parse_set
+    if not is_arrangement_file(args.arrangement):
+        raise ParameterError(f'berth-check: {args.arrangement} is not an arrangement (a '
+                             "parameter file for the mooring node, with 'lines')")
+    setup = read_setup(args.arrangement, parse_set(args.set))
+    current = None if args.current is None else parse_current(args.current)
+    wind = MEG4_WIND if args.wind_speed is None else args.wind_speed
+    cases, lines = run(setup, args.out, wind, current, args.directions)
+    if not args.quiet:
+        print('\n'.join(lines))
+    failed = sum(case.status != 'ok' for case in cases)
+    if failed:
+        print(f'{PROG}: warning: {failed} of {len(cases)} cases found no equilibrium (their '
+              'status in berth_check.csv)', file=sys.stderr)
+    print(f'-> {os.path.join(args.out, "berth_check.csv")}, '
+          f'{os.path.join(args.out, "berth_check.png")}')
+    return 0
+
+
 def _cmd_stiffness(args) -> int:
     from .stiffness import stiffness_report
     print('\n'.join(stiffness_report(_setup(args), hydrostatics=args.hydrostatics)))
@@ -387,6 +433,7 @@ COMMANDS = {
     'recover': _cmd_recover,
     'study': _cmd_study,
     'stiffness': _cmd_stiffness,
+    'berth-check': _cmd_berth_check,
 }
 
 

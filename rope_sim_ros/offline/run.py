@@ -38,6 +38,7 @@ from ..messages import topics
 from ..messages.encode import OutputEncoder, pose_stamped
 from ..messages.topics import LAYOUTS
 from ..mooring.driver import Driver, Published, SHIP
+from ..mooring.ship import reports_ship_loads
 from ..mooring.status import Rating
 from ..params.arrangement import ArrangementParams, stored
 from ..params.materials import load_materials
@@ -288,7 +289,8 @@ def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSche
     sinks: List[Sink] = []
     if out_path is not None:
         writer = CsvSink(out_path, setup.names, ratings(setup), free=True,
-                         fenders=[(fender.name, fender.normal) for fender in setup.fenders])
+                         fenders=[(fender.name, fender.normal) for fender in setup.fenders],
+                         loads=True)
         sinks.append(writer)
     try:
         summary = simulate_free(setup, duration, loads, rate, sinks, progress, materials)
@@ -360,7 +362,10 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
         if out_path is not None:
             lines = driver.mooring.lines
             writer = CsvSink(out_path, driver.mooring.names, ratings(setup),
-                             payload=setup.single and lines[0].payload, origin=streams.origin)
+                             payload=setup.single and lines[0].payload, origin=streams.origin,
+                             fenders=[(fender.name, fender.normal)
+                                      for fender in setup.fenders],
+                             loads=reports_ship_loads(setup))
             sinks.insert(0, writer)
         summary = simulate(setup, streams, rate, sinks, progress, materials)
     except BaseException:

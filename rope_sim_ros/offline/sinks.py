@@ -22,7 +22,9 @@ position (PAYLOAD_COLUMNS) when the line ends in a free payload. An arrangement'
 ARRANGEMENT_COLUMNS, the total force and moment of the lines on the ship (body frame,
 about its origin), then each line's EACH_LINE_COLUMNS under its name (NAME_tension, ...);
 a free ship's adds its motion (SHIP_COLUMNS: its origin's pose as SHIP.csv names it and
-its velocity, frame_id axes) and each fender's FENDER_COLUMNS under its name.
+its velocity, frame_id axes) and each fender's FENDER_COLUMNS under its name; where wind,
+current or a passing ship act (or the ship is free), LOAD_COLUMNS: their loads on the ship,
+body axes about its origin.
 Times are in the motion file's own time base; every number is written with Python's
 shortest exact repr, so a row read back gives the very floats that were computed.
 
@@ -62,6 +64,9 @@ SHIP_COLUMNS = ('x', 'y', 'z', 'qx', 'qy', 'qz', 'qw', 'vx', 'vy', 'vz', 'wx', '
 # Each fender's columns after those, under its name: its compression [m] (<= 0: untouched)
 # and its reaction on the hull along its normal [N].
 FENDER_COLUMNS = ('compression', 'reaction')
+# The wind's, the current's and a passing ship's loads on the ship, body axes about its origin.
+LOAD_COLUMNS = tuple(f'{source}_{column}' for source in ('wind', 'current', 'passing')
+                     for column in ('force_x', 'force_y', 'moment_z'))
 
 
 class CsvSink:
@@ -69,7 +74,8 @@ class CsvSink:
 
     def __init__(self, path, names: Sequence[str], ratings: Sequence[Rating],
                  payload: bool = False, origin: float = 0.0, free: bool = False,
-                 fenders: Sequence[Tuple[str, Sequence[float]]] = ()) -> None:
+                 fenders: Sequence[Tuple[str, Sequence[float]]] = (),
+                 loads: bool = False) -> None:
         """
         Open (create or overwrite) the file and write the header.
 
@@ -80,6 +86,7 @@ class CsvSink:
             output's simulated time.
         :param free: a free ship's run (SHIP_COLUMNS).
         :param fenders: each fender's name and normal (FENDER_COLUMNS).
+        :param loads: the wind, current and passing-ship loads (LOAD_COLUMNS).
         :raises OSError: it cannot be written.
         """
         self.path = os.fspath(path)
@@ -88,6 +95,7 @@ class CsvSink:
         self.payload = payload
         self.origin = origin
         self.free = free
+        self.loads = loads
         self.normals = [tuple(normal) for _, normal in fenders]
         self._file = open(self.path, 'w', newline='', encoding='utf-8')
         self._writer = csv.writer(self._file, lineterminator='\n')
@@ -99,6 +107,7 @@ class CsvSink:
             header += SHIP_COLUMNS if free else ()
             header += tuple(f'{name}_{column}' for name, _ in fenders
                             for column in FENDER_COLUMNS)
+            header += LOAD_COLUMNS if loads else ()
         self._writer.writerow(header)
         self.rows = 0
 
@@ -126,6 +135,8 @@ class CsvSink:
             for f, normal in enumerate(self.normals):
                 numbers += [out.fender_compressions[f], float(np.dot(out.fender_forces[f],
                                                                      normal))]
+            if self.loads:
+                numbers += out.ship_loads.ravel().tolist()
         self._writer.writerow([repr(float(v)) for v in numbers])
         self.rows += 1
 

@@ -33,6 +33,8 @@ allowed. No ROS and no files here beyond reading a parameter file.
 """
 
 from dataclasses import dataclass, replace
+import difflib
+import os
 import re
 from typing import Any, Dict, List, Mapping, Optional, Tuple
 
@@ -40,7 +42,8 @@ import yaml
 
 from .files import read_params_file
 from .ship import (check_fender_names, fender_setup, FENDER_SPECS, FENDERS, FenderSetup,
-                   field_name, PASSING_SHIP, SHIP, SHIP_SPECS, ShipParams)
+                   field_name, PASSING_SHIP, passing_ship, PASSING_SPECS, PassingShipParams, SHIP,
+                   SHIP_SPECS, ShipParams)
 from .table import allowed, check, LineParams, ParameterError, Spec, SPECS
 from .table import NODE_NAME as LINE_NODE_NAME
 
@@ -117,6 +120,7 @@ class ArrangementParams:
     :ivar marker_rate: rate of mooring/markers [Hz].
     :ivar ship: the ship (driven or free) and its body.
     :ivar fenders: the fenders on the quay, in the order of `fenders`.
+    :ivar passing: the ship passing the moored one (passing_ship.*; speed 0: none).
     """
 
     lines: Tuple[LineSetup, ...]
@@ -125,6 +129,7 @@ class ArrangementParams:
     marker_rate: float = ARRANGEMENT_SPECS['marker_rate'].default
     ship: ShipParams = ShipParams()
     fenders: Tuple[FenderSetup, ...] = ()
+    passing: PassingShipParams = PassingShipParams()
 
     @property
     def single(self) -> bool:
@@ -153,11 +158,12 @@ class ArrangementParams:
         values.update({name: getattr(self.shared, name) for name in SHARED})
         values['ship_frame_id'] = self.ship_frame_id
         values['marker_rate'] = self.marker_rate
-        for name, value in self.ship.values().items():
-            if name == 'ship_mode' or name == 'stiffness_rate':
+        for name, value in [*self.ship.values().items(), *self.passing.values().items()]:
+            prefix, dot, own = name.partition('.')
+            if dot:  # nested as the lines' settings are
+                values.setdefault(prefix, {})[own] = value
+            else:
                 values[name] = value
-            else:  # nested as the lines' settings are
-                values.setdefault(SHIP, {})[name.partition('.')[2]] = value
         if self.fenders:
             values[FENDERS] = [fender.name for fender in self.fenders]
             for fender in self.fenders:
@@ -228,12 +234,14 @@ def check_line_value(line: str, name: str, value: Any) -> Any:
         the line (`head_1.length`).
     """
     if name in SHARED:
-        raise ParameterError(f'parameter {line}.{name!r} is not allowed: {name} is shared by '
+        raise ParameterError(f"parameter '{line}.{name}' is not allowed: {name} is shared by "
                              'every line (one system steps them together): set it at the top '
                              'level')
     if name not in LINE_SPECS:
-        raise ParameterError(f'unknown parameter {line}.{name}; a line takes: '
-                             f'{", ".join(sorted(LINE_SPECS))}')
+        found = difflib.get_close_matches(name, list(LINE_SPECS), n=1, cutoff=0.6)
+        near = f'did you mean {line}.{found[0]}?' if found else f'see {line}.length'
+        raise ParameterError(f'unknown parameter {line}.{name}: not a line setting; {near} '
+                             '(docs/parameters.md lists them)')
     try:
         return check(name, value, LINE_SPECS)
     except ParameterError as e:
@@ -251,11 +259,14 @@ def check_top_value(name: str, value: Any) -> Any:
         return check(name, value, ARRANGEMENT_SPECS)
     if name in SHIP_SPECS:
         return check(name, value, SHIP_SPECS)
+    if name in PASSING_SPECS:
+        return check(name, value, PASSING_SPECS)
     if name in SPECS or name in OWN_SPECS:
         return check(name, value, {**SPECS, **OWN_SPECS})
-    if name.startswith(SHIP + '.'):
-        raise ParameterError(f'unknown parameter {name!r}; the ship takes: '
-                             f'{", ".join(n for n in SHIP_SPECS if n.startswith(SHIP + "."))}')
+    for prefix, specs in ((SHIP, SHIP_SPECS), (PASSING_SHIP, PASSING_SPECS)):
+        if name.startswith(prefix + '.'):
+            raise ParameterError(f'unknown parameter {name!r}; {prefix} takes: '
+                                 f'{", ".join(n for n in specs if n.startswith(prefix + "."))}')
     raise ParameterError(
         f'unknown parameter {name!r}: not a shared parameter ({", ".join(SHARED)}), a line '
         f'setting, nor one of {LINES}, {FENDERS}, {", ".join(ARRANGEMENT_SPECS)}, '
@@ -297,7 +308,7 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
         if key in (LINES, FENDERS):
             continue
         line, dot, name = key.partition('.')
-        if not dot or line == SHIP:
+        if not dot or line in (SHIP, PASSING_SHIP):
             top[key] = check_top_value(key, value)
         elif line in own:
             own[line][name] = check_line_value(line, name, value)
@@ -316,7 +327,8 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
         setups, shared,
         top.get('ship_frame_id', ARRANGEMENT_SPECS['ship_frame_id'].default),
         top.get('marker_rate', ARRANGEMENT_SPECS['marker_rate'].default), ship,
-        tuple(fender_setup(name, fenders[name]) for name in fender_names))
+        tuple(fender_setup(name, fenders[name]) for name in fender_names),
+        passing_ship({k: v for k, v in top.items() if k in PASSING_SPECS}))
 
 
 def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],
@@ -326,10 +338,9 @@ def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],
     missing = [f'{name}.{key} ({unit})' for key, unit in REQUIRED.items()
                if key not in values
                and not (key == 'bollard_position' and values.get('payload_mass', 0.0) > 0.0)]
-    if 'length' in own and own.get('pretension', 0.0) > 0.0:
-        raise ParameterError(f'line {name!r} has both length and pretension: give '
-                             f'{name}.length (m) or {name}.pretension (N), not both')
-    # its own length or pretension wins over the top-level defaults
+    # its own length or pretension wins over the top-level defaults; its own length wins over
+    # its own pretension: a parameter dump of a started node has both, the length the
+    # pretension chose, and must restart the same line
     pretension = 0.0 if 'length' in own else values.pop('pretension', 0.0)
     values.pop('pretension', None)
     if pretension > 0.0 and values.get('payload_mass', 0.0) > 0.0:
@@ -378,9 +389,19 @@ def read_setup(path, overrides: Optional[Mapping[str, Any]] = None) -> Arrangeme
     """
     overrides = dict(overrides or {})
     if path is not None and is_arrangement_file(path):
-        return from_values({**flatten(read_params_file(path, NODE_NAME)), **overrides})
+        setup = from_values({**flatten(read_params_file(path, NODE_NAME)), **overrides})
+        return with_tables_from(setup, os.path.dirname(os.path.abspath(path)))
     values = read_params_file(path, LINE_NODE_NAME) if path is not None else {}
     return single_line(LineParams().with_values({**values, **overrides}))
+
+
+def with_tables_from(setup: ArrangementParams, folder: str) -> ArrangementParams:
+    """Return the setup with its ship's coefficient tables relative to `folder` made absolute."""
+    ship = setup.ship
+    tables = {name: os.path.join(folder, getattr(ship, name))
+              for name in ('wind_coefficients', 'current_coefficients')
+              if getattr(ship, name) and not os.path.isabs(getattr(ship, name))}
+    return replace(setup, ship=replace(ship, **tables)) if tables else setup
 
 
 def read_arrangement_file(path) -> ArrangementParams:

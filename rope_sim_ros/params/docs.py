@@ -34,6 +34,7 @@ from typing import Any, Iterable, List, Mapping, Optional, Tuple
 from .arrangement import (ARRANGEMENT_SPECS, LINE_NAME_RULE, LINE_SPECS, LINES,
                           LINES_DESCRIPTION, MAX_LINES, NODE_NAME, OWN_SPECS, REQUIRED,
                           SHARED)
+from .ship import FENDER_REQUIRED, FENDER_SPECS, FENDERS, MAX_FENDERS, PASSING_SPECS, SHIP_SPECS
 from .table import allowed, NODE_NAME as LINE_NODE_NAME, Spec, SPECS
 
 COMMAND = 'python -m rope_sim_ros.params.docs > docs/parameters.md'
@@ -135,7 +136,35 @@ def sections() -> List[Tuple[str, List[str]]]:
             '',
             *table([*spec_rows(LINE_SPECS, own), *spec_rows(OWN_SPECS)]),
         ]),
+        ('### The ship', [
+            'Who moves the ship (`ship_mode`), the free ship as a body, its hull for the '
+            'fenders and the loads, its coefficient tables and the wind; the current is the '
+            "lines' `current` above. [free_ship.md](free_ship.md) and "
+            '[ship_loads.md](ship_loads.md) say how each acts.',
+            '',
+            *table(spec_rows(SHIP_SPECS)),
+        ]),
+        ('### The fenders', [
+            *table([fenders_row()]),
+            '',
+            f'Each fender takes these under its name, `<fender>.<parameter>`; it must set '
+            f'{", ".join(f"`{name}`" for name in FENDER_REQUIRED)}.',
+            '',
+            *table(spec_rows(FENDER_SPECS)),
+        ]),
+        ('### A passing ship', [
+            *table(spec_rows(PASSING_SPECS)),
+        ]),
     ]
+
+
+def fenders_row() -> str:
+    """Return the row of `fenders`, a list of names without a Spec."""
+    return '| ' + ' | '.join((
+        f'`{FENDERS}`', '`[]`', '-',
+        cell(f"a list of at most {MAX_FENDERS} distinct names, none a line's"), 'read-only',
+        cell('names of the fenders on the quay; each has its settings under its name'))) + \
+        ' |'
 
 
 def markdown() -> str:

@@ -33,12 +33,15 @@ import math
 import re
 from typing import Any, Dict, List, Mapping, Tuple
 
+from .materials import default_config_dir
 from .table import ParameterError, Spec
+from ..model.ship.coefficients import CoefficientFileError, parse_coefficient_csv
 
 SHIP = 'ship'
 PASSING_SHIP = 'passing_ship'
 FENDERS = 'fenders'
 SHIP_MODES = ('driven', 'free')
+WIND_SPECTRA = ('none', 'api', 'npd')
 MAX_FENDERS = 32
 FENDER_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
 
@@ -89,9 +92,64 @@ SHIP_SPECS: Mapping[str, Spec] = {
                       low_open=True),
     'ship.draft': Spec(14.0, 'm', 'draft: the hull box reaches this far below the body origin',
                        0.0, 1.0e3, low_open=True),
+    'ship.block_coefficient': Spec(
+        0.85, '', 'block coefficient C_b: the passing-ship loads take the hull as a parabolic '
+        'sectional-area curve holding C_b L B T', 0.3, 1.0),
+    'ship.wind_area_front': Spec(
+        450.0, 'm^2', 'front projected area above the water, A_T of the wind coefficients',
+        0.0, 1.0e6, low_open=True),
+    'ship.wind_area_side': Spec(
+        2500.0, 'm^2', 'side projected area above the water, A_L of the wind coefficients',
+        0.0, 1.0e6, low_open=True),
+    'ship.current_area_front': Spec(
+        0.0, 'm^2', 'front projected area below the water, A_T of the current coefficients; '
+        '0 = beam x draft', 0.0, 1.0e6),
+    'ship.current_area_side': Spec(
+        0.0, 'm^2', 'side projected area below the water, A_L of the current coefficients; '
+        '0 = length x draft', 0.0, 1.0e6),
+    'ship.wind_coefficients': Spec(
+        '', '', 'CSV table angle_deg, cx, cy, cmz of the wind loads (OCIMF form), absolute or '
+        "relative to the parameter file's folder; empty = the shipped loaded tanker "
+        "(config/ship/wind_coefficients_tanker_loaded.csv): use your own ship's"),
+    'ship.current_coefficients': Spec(
+        '', '', 'CSV table angle_deg, cx, cy, cmz of the current loads, as '
+        'ship.wind_coefficients; empty = the shipped loaded tanker '
+        '(config/ship/current_coefficients_tanker_loaded.csv)'),
     'stiffness_rate': Spec(
         1.0, 'Hz', 'rate of ship/stiffness (the 6x6 stiffness of the lines and fenders about '
         "the ship's present pose); 0 = off", 0.0, 100.0, read_only=False),
+    # the wind on the ship (the current is the lines' `current`)
+    'wind_speed': Spec(
+        0.0, 'm/s', 'mean wind speed at 10 m: with the wind coefficients, the load on the ship '
+        '(a free ship moves under it; environment/wind sets it at run time)', 0.0, 100.0,
+        read_only=False),
+    'wind_direction': Spec(
+        0.0, 'rad', 'direction the wind comes FROM in frame_id, counter-clockwise from +x',
+        -2.0 * math.pi, 2.0 * math.pi, read_only=False),
+    'wind_spectrum': Spec(
+        'none', '', 'none: a steady wind; api or npd: gusts from that spectrum about the mean, '
+        'repeatable with wind_seed', choices=WIND_SPECTRA),
+    'wind_seed': Spec(0, '', "seed of the gusts' random phases", 0, 2 ** 31 - 1),
+}
+# A ship passing the moored one (Wang's slender-body loads, deep water): `passing_ship.*`.
+PASSING_SPECS: Mapping[str, Spec] = {
+    'passing_ship.speed': Spec(
+        0.0, 'm/s', "the passing ship's speed through the water; 0 = no passing ship", 0.0,
+        20.0),
+    'passing_ship.length': Spec(200.0, 'm', 'its length between perpendiculars', 0.0, 1.0e3,
+                                low_open=True),
+    'passing_ship.beam': Spec(32.0, 'm', 'its beam', 0.0, 200.0, low_open=True),
+    'passing_ship.draft': Spec(12.0, 'm', 'its draft', 0.0, 50.0, low_open=True),
+    'passing_ship.block_coefficient': Spec(0.8, '', 'its block coefficient', 0.3, 1.0),
+    'passing_ship.separation': Spec(
+        60.0, 'm', 'distance between the two centrelines, positive with the passing ship on '
+        "the moored ship's starboard side (body -y); at least half the two beams",
+        -1.0e4, 1.0e4),
+    'passing_ship.start_x': Spec(
+        -1000.0, 'm', "its midship's place along the moored ship's body x at t = 0",
+        -1.0e5, 1.0e5),
+    'passing_ship.direction': Spec(
+        1, '', "+1: it moves along the moored ship's body +x; -1: along -x", -1, 1),
 }
 # A fender's settings, under its name (`fender_1.position`).
 FENDER_SPECS: Mapping[str, Spec] = {
@@ -140,7 +198,18 @@ class ShipParams:
     length: float = SHIP_SPECS['ship.length'].default
     beam: float = SHIP_SPECS['ship.beam'].default
     draft: float = SHIP_SPECS['ship.draft'].default
+    block_coefficient: float = SHIP_SPECS['ship.block_coefficient'].default
+    wind_area_front: float = SHIP_SPECS['ship.wind_area_front'].default
+    wind_area_side: float = SHIP_SPECS['ship.wind_area_side'].default
+    current_area_front: float = SHIP_SPECS['ship.current_area_front'].default
+    current_area_side: float = SHIP_SPECS['ship.current_area_side'].default
+    wind_coefficients: str = SHIP_SPECS['ship.wind_coefficients'].default
+    current_coefficients: str = SHIP_SPECS['ship.current_coefficients'].default
     stiffness_rate: float = SHIP_SPECS['stiffness_rate'].default
+    wind_speed: float = SHIP_SPECS['wind_speed'].default
+    wind_direction: float = SHIP_SPECS['wind_direction'].default
+    wind_spectrum: str = SHIP_SPECS['wind_spectrum'].default
+    wind_seed: int = SHIP_SPECS['wind_seed'].default
 
     @property
     def free(self) -> bool:
@@ -156,9 +225,7 @@ def parameter_name(name: str) -> str:
     """Return a ShipParams field's parameter name: mode -> ship_mode, mass -> ship.mass."""
     if name == 'mode':
         return 'ship_mode'
-    if name == 'stiffness_rate':
-        return name
-    return f'{SHIP}.{name}'
+    return name if name in SHIP_SPECS else f'{SHIP}.{name}'
 
 
 def field_name(name: str) -> str:
@@ -166,6 +233,42 @@ def field_name(name: str) -> str:
     if name == 'ship_mode':
         return 'mode'
     return name.partition('.')[2] if name.startswith(SHIP + '.') else name
+
+
+@dataclass(frozen=True)
+class PassingShipParams:
+    """Validated passing_ship.* parameters (PASSING_SPECS: units and meanings)."""
+
+    speed: float = PASSING_SPECS['passing_ship.speed'].default
+    length: float = PASSING_SPECS['passing_ship.length'].default
+    beam: float = PASSING_SPECS['passing_ship.beam'].default
+    draft: float = PASSING_SPECS['passing_ship.draft'].default
+    block_coefficient: float = PASSING_SPECS['passing_ship.block_coefficient'].default
+    separation: float = PASSING_SPECS['passing_ship.separation'].default
+    start_x: float = PASSING_SPECS['passing_ship.start_x'].default
+    direction: int = PASSING_SPECS['passing_ship.direction'].default
+
+    @property
+    def present(self) -> bool:
+        """Tell whether a ship passes (speed > 0)."""
+        return self.speed > 0.0
+
+    def values(self) -> Dict[str, Any]:
+        """Return every value under its parameter name (`passing_ship.speed`)."""
+        return {f'{PASSING_SHIP}.{f.name}': getattr(self, f.name) for f in fields(self)}
+
+
+def passing_ship(values: Mapping[str, Any]) -> PassingShipParams:
+    """
+    Return the passing ship of checked passing_ship.* values.
+
+    :raises ParameterError: direction 0.
+    """
+    own = {name.partition('.')[2]: value for name, value in values.items()}
+    if own.get('direction', 1) == 0:
+        raise ParameterError(f"parameter '{PASSING_SHIP}.direction' = 0 is not allowed: must "
+                             'be 1 (along body +x) or -1')
+    return PassingShipParams(**own)
 
 
 @dataclass(frozen=True)
@@ -245,3 +348,28 @@ def fender_setup(name: str, values: Mapping[str, Any]) -> FenderSetup:
     return FenderSetup(name, tuple(values['position']), tuple(c / norm for c in normal),
                        tuple(pairs), values.get('friction', FENDER_SPECS['friction'].default),
                        rated)
+
+
+# The shipped coefficient tables (config/ship/), for a table parameter left empty.
+DEFAULT_TABLES = {'wind_coefficients': 'wind_coefficients_tanker_loaded.csv',
+                  'current_coefficients': 'current_coefficients_tanker_loaded.csv'}
+
+
+def read_coefficients(ship: ShipParams, name: str):
+    """
+    Return the ship's wind or current coefficient table (model/ship/coefficients.py).
+
+    :param name: 'wind_coefficients' or 'current_coefficients'; an empty path takes the
+        shipped table.
+    :raises ParameterError: the file cannot be read or is not a coefficient table (one line
+        naming the parameter, the file and what is wrong).
+    """
+    path = getattr(ship, name) or str(default_config_dir() / 'ship' / DEFAULT_TABLES[name])
+    try:
+        with open(path, encoding='utf-8') as stream:
+            return parse_coefficient_csv(stream.read(), path)
+    except OSError as e:
+        raise ParameterError(f'parameter {SHIP}.{name!r}: cannot read {path}: '
+                             f'{e.strerror or e}') from None
+    except CoefficientFileError as e:
+        raise ParameterError(f'parameter {SHIP}.{name!r}: {e}') from None

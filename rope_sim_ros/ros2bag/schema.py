@@ -42,10 +42,13 @@ RECORDED_TYPES = (
     'diagnostic_msgs/msg/DiagnosticArray',
     'geometry_msgs/msg/PoseArray',
     'geometry_msgs/msg/PoseStamped',
+    'geometry_msgs/msg/Vector3Stamped',
     'geometry_msgs/msg/Wrench',
     'geometry_msgs/msg/WrenchStamped',
+    'nav_msgs/msg/Odometry',
     'std_msgs/msg/Bool',
     'std_msgs/msg/Float64',
+    'std_msgs/msg/Float64MultiArray',
     'std_msgs/msg/String',
     'visualization_msgs/msg/MarkerArray',
 )

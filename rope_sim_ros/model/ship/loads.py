@@ -1,0 +1,157 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The wind, the current and a passing ship on a moored ship, at one instant: one place for all.
+
+- Wind and current: OCIMF-form coefficient tables (coefficients.py) on the velocity of the
+  air or water RELATIVE to the ship's origin, in its body axes (a surging ship feels its
+  own motion: the current's load on a ship moving in still water is its drag). The wind
+  is steady, or gusty about its mean (wind.py), along a direction it comes FROM.
+- A passing ship (passing.py, Wang's deep-water slender-body loads): its midship starts at
+  start_x along the moored ship's body x at its start pose and moves along that start
+  heading at its speed, separation off the centreline; at each instant its stagger and
+  separation are measured in the moored ship's body axes where it is then.
+
+Every load is in the ship's body axes about its origin (F_x, F_y, M_z); world_load turns
+their sum into the frame_id axes a free ship's body takes.
+"""
+
+from dataclasses import dataclass
+import math
+from typing import Optional, Sequence, Tuple
+
+import numpy as np
+
+from .coefficients import CoefficientTable, ocimf_loads
+from .passing import Hull, passing_loads
+from .wind import GustyWind
+
+
+@dataclass(frozen=True)
+class Wind:
+    """
+    The wind at 10 m above the water, steady or gusty.
+
+    :ivar speed: its mean speed [m/s].
+    :ivar direction: where it comes FROM in frame_id, counter-clockwise from +x [rad].
+    :ivar gusts: a GustyWind about the mean, or None (steady).
+    """
+
+    speed: float = 0.0
+    direction: float = 0.0
+    gusts: Optional[GustyWind] = None
+
+    def velocity(self, t: float) -> np.ndarray:
+        """Give the air's velocity at time t, where it goes TO, in frame_id axes (3,)."""
+        speed = self.gusts.speed(t) if self.gusts is not None else self.speed
+        return -speed * np.array([math.cos(self.direction), math.sin(self.direction), 0.0])
+
+
+@dataclass(frozen=True)
+class PassingShip:
+    """
+    A ship passing on a parallel course (see the module docstring).
+
+    :ivar hull: its hull; speed [m/s] > 0; direction +1 / -1 along the start heading.
+    :ivar start: where its midship is at t = 0, frame_id (3,); heading: the unit vector it
+        moves along (times direction), frame_id (3,).
+    """
+
+    hull: Hull
+    speed: float
+    direction: int
+    start: np.ndarray
+    heading: np.ndarray
+
+    @classmethod
+    def beside(cls, hull: Hull, speed: float, direction: int, separation: float,
+               start_x: float, position: Sequence[float], yaw: float) -> 'PassingShip':
+        """Return the ship passing one at `position`, heading `yaw`, from start_x off it."""
+        along = np.array([math.cos(yaw), math.sin(yaw), 0.0])
+        port = np.array([-math.sin(yaw), math.cos(yaw), 0.0])
+        start = np.asarray(position, dtype=float) + start_x * along - separation * port
+        return cls(hull, float(speed), int(direction), start, along)
+
+    def midship(self, t: float) -> np.ndarray:
+        """Return its midship at time t, frame_id (3,)."""
+        return self.start + self.direction * self.speed * t * self.heading
+
+
+@dataclass
+class ShipLoads:
+    """
+    What acts on the moored ship besides its lines and fenders (module docstring).
+
+    :ivar hull: the moored ship's hull (its length and block coefficient count).
+    :ivar wind_table, current_table: its coefficients.
+    :ivar wind_areas, current_areas: (A_T, A_L) of each table [m^2].
+    :ivar air_density, water_density: [kg/m^3].
+    :ivar wind: the wind; current: the water's velocity (where it goes TO), frame_id (3,).
+    :ivar passing: a passing ship, or None.
+    """
+
+    hull: Hull
+    wind_table: CoefficientTable
+    current_table: CoefficientTable
+    wind_areas: Tuple[float, float]
+    current_areas: Tuple[float, float]
+    air_density: float
+    water_density: float
+    wind: Wind = Wind()
+    current: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    passing: Optional[PassingShip] = None
+
+    @property
+    def acts(self) -> bool:
+        """Tell whether anything pushes a ship at rest: wind, a current, a passing ship."""
+        return (self.wind.speed > 0.0 or self.wind.gusts is not None or any(self.current)
+                or self.passing is not None)
+
+    def at(self, t: float, position, rotation: np.ndarray, velocity) -> np.ndarray:
+        """
+        Return the wind's, the current's and the passing ship's loads at time t, (3, 3).
+
+        Rows: wind, current, passing ship; columns F_x [N], F_y [N], M_z [N m], body axes,
+        about the ship's origin.
+
+        :param position, rotation, velocity: the ship's origin [m], its orientation matrix
+            (body to frame_id) and the origin's velocity [m/s] (frame_id).
+        """
+        loads = np.zeros((3, 3))
+        ship = np.asarray(velocity, dtype=float)
+        if self.air_density > 0.0 and (self.wind.speed > 0.0 or self.wind.gusts is not None):
+            air = (self.wind.velocity(t) - ship) @ rotation
+            loads[0] = ocimf_loads(self.wind_table, self.air_density, air[:2],
+                                   *self.wind_areas, self.hull.length)
+        water = (np.asarray(self.current, dtype=float) - ship) @ rotation
+        if water[:2].any():
+            loads[1] = ocimf_loads(self.current_table, self.water_density, water[:2],
+                                   *self.current_areas, self.hull.length)
+        if self.passing is not None:
+            apart = (self.passing.midship(t) - np.asarray(position, dtype=float)) @ rotation
+            separation = -apart[1]
+            if abs(separation) >= 0.5 * (self.hull.beam + self.passing.hull.beam):
+                loads[2] = passing_loads(self.hull, self.passing.hull, self.passing.speed,
+                                         separation, apart[0], math.inf, self.water_density,
+                                         self.passing.direction)
+        return loads
+
+
+def world_load(loads: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+    """Return the sum of body-axes loads (n, 3: F_x, F_y, M_z) in frame_id axes (6,)."""
+    total = loads.sum(axis=0)
+    force = rotation @ np.array([total[0], total[1], 0.0])
+    moment = rotation @ np.array([0.0, 0.0, total[2]])
+    return np.concatenate([force, moment])

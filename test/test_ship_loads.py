@@ -1,0 +1,176 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""Wind, current and a passing ship on the moored ship; the berth check against a run."""
+
+import csv
+import math
+
+import numpy as np
+import pytest
+
+from rope_sim_ros.model.frames import rotation_matrix
+from rope_sim_ros.model.layout import BODY_LINEAR_DAMPING
+from rope_sim_ros.model.ship.coefficients import parse_coefficient_csv
+from rope_sim_ros.model.ship.loads import PassingShip, ShipLoads, Wind, world_load
+from rope_sim_ros.model.ship.passing import Hull, passing_loads
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.offline import berth_check, cli
+from rope_sim_ros.params import arrangement
+
+# a table the test can compute by hand: cx = -0.9 cos, cy = -0.7 sin, cmz = -0.1 sin 2theta
+TABLE = parse_coefficient_csv('angle_deg,cx,cy,cmz\n' + '\n'.join(
+    f'{a},{-0.9 * math.cos(math.radians(a))!r},{-0.7 * math.sin(math.radians(a))!r},'
+    f'{-0.1 * math.sin(math.radians(2 * a))!r}' for a in range(0, 360, 5)), 'test table')
+HULL = Hull(225.0, 32.2, 14.0, 0.85)
+AIR, WATER = 1.225, 1025.0
+
+
+def loads(**changes) -> ShipLoads:
+    """Return loads of TABLE for wind and current, windage 450 x 2500, below water B T x L T."""
+    return ShipLoads(HULL, TABLE, TABLE, (450.0, 2500.0), (32.2 * 14.0, 225.0 * 14.0), AIR,
+                     WATER, **changes)
+
+
+def heading(yaw: float) -> np.ndarray:
+    """Return the rotation of a ship heading yaw [rad] (level)."""
+    return rotation_matrix([0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)])
+
+
+@pytest.mark.parametrize('relative', [0.0, 40.0, 90.0, 135.0, 215.0])
+def test_the_wind_load_is_ocimfs_formula(relative):
+    """F_x = 1/2 rho V^2 A_T cx, F_y = 1/2 rho V^2 A_L cy, M_z = 1/2 rho V^2 A_L L cmz."""
+    yaw = 0.4
+    wind = Wind(20.0, yaw + math.radians(relative))  # from `relative` off the bow
+    fx, fy, mz = loads(wind=wind).at(0.0, np.zeros(3), heading(yaw), np.zeros(3))[0]
+    theta = math.radians(relative)
+    pressure = 0.5 * AIR * 20.0 ** 2
+    assert fx == pytest.approx(pressure * 450.0 * -0.9 * math.cos(theta), abs=1e-6)
+    assert fy == pytest.approx(pressure * 2500.0 * -0.7 * math.sin(theta), abs=1e-6)
+    assert mz == pytest.approx(pressure * 2500.0 * 225.0 * -0.1 * math.sin(2 * theta),
+                               abs=1e-3)
+
+
+def test_the_current_load_is_ocimfs_formula_on_the_areas_below_water():
+    current = (-1.0, -1.0, 0.0)  # going to -x, -y: it comes from 45 degrees to port
+    fx, fy, mz = loads(current=current).at(0.0, np.zeros(3), heading(0.0), np.zeros(3))[1]
+    theta = math.radians(45.0)
+    pressure = 0.5 * WATER * 2.0
+    assert fx == pytest.approx(pressure * 32.2 * 14.0 * -0.9 * math.cos(theta))
+    assert fy == pytest.approx(pressure * 225.0 * 14.0 * -0.7 * math.sin(theta))
+    assert mz == pytest.approx(pressure * 225.0 * 14.0 * 225.0 * -0.1 * math.sin(2 * theta))
+
+
+def test_a_moving_ship_feels_the_relative_velocity():
+    """
+    Surge ahead at 2 m/s into a 10 m/s head wind: a 12 m/s head wind, and a 2 m/s current.
+
+    In still water that current's load is the ship's drag.
+    """
+    model = loads(wind=Wind(10.0, 0.0))
+    wind, current, _ = model.at(0.0, np.zeros(3), heading(0.0), [2.0, 0.0, 0.0])
+    assert wind[0] == pytest.approx(0.5 * AIR * 12.0 ** 2 * 450.0 * -0.9)
+    assert current[0] == pytest.approx(0.5 * WATER * 2.0 ** 2 * 32.2 * 14.0 * -0.9)
+    assert abs(wind[1]) < 1e-9 and abs(current[1]) < 1e-9
+
+
+def test_the_passing_ship_is_where_its_track_puts_it():
+    passer = Hull(200.0, 32.0, 12.0, 0.8)
+    yaw, start = 0.3, np.array([5.0, -17.6, 0.0])
+    track = PassingShip.beside(passer, 4.0, 1, 60.0, -400.0, start, yaw)
+    model = loads(passing=track)
+    moved = start + [0.5, 0.2, 0.0]  # the moored ship has moved a little
+    t = 90.0  # its midship 400 m behind at t = 0, 360 m on: 40 m behind the start
+    got = model.at(t, moved, heading(yaw), np.zeros(3))[2]
+    apart = (track.midship(t) - moved) @ heading(yaw)
+    assert apart[0] == pytest.approx(-40.0 - (0.5 * math.cos(yaw) + 0.2 * math.sin(yaw)))
+    expected = passing_loads(HULL, passer, 4.0, -apart[1], apart[0], water_density=WATER)
+    assert got == pytest.approx(expected)
+    assert -apart[1] == pytest.approx(60.0 - 0.5 * math.sin(yaw) + 0.2 * math.cos(yaw))
+    assert abs(got[1]) > 1e4  # abeam-ish, 60 m off: tens of kN
+
+
+def test_world_load_turns_body_loads_with_the_ship():
+    rotation = heading(math.pi / 2)  # bow to +y
+    world = world_load(np.array([[1.0, 2.0, 3.0], [10.0, 0.0, 0.0]]), rotation)
+    assert world == pytest.approx([-2.0, 11.0, 0.0, 0.0, 0.0, 3.0])
+
+
+# ------------------------------------------------------------------------ the berth check
+
+def free_berth(repo_root, **values):
+    """Return config/berth.yaml's arrangement as a free ship (12 segments a line)."""
+    setup = arrangement.read_setup(repo_root / 'config' / 'berth.yaml')
+    flat = arrangement.flatten(setup.values())
+    flat = {k: v for k, v in flat.items() if not k.endswith('.segments')}
+    flat.update({'ship_mode': 'free', 'segments': 12, **values})
+    return arrangement.from_values(flat)
+
+
+def test_the_berth_check_finds_where_a_run_settles(repo_root):
+    """Wind from port, off the quay: the check's equilibrium is where the ship comes to rest."""
+    wind = 20.0  # [m/s] from 60 degrees off the bow toward port
+    setup = free_berth(repo_root, wind_speed=wind, wind_direction=math.radians(60.0))
+    case = berth_check.check(setup, wind, [(0.0, 0.0, 0.0)], directions=6)[1]
+    assert case.direction == 60.0 and case.status == 'ok'
+    # settle the run: dampers near critical on the lines' stiffness
+    mooring = Mooring(setup, output_interval=0.1)
+    mooring.start(0.0)
+    mooring.groups[0].system.body_table[0, BODY_LINEAR_DAMPING:BODY_LINEAR_DAMPING + 6] = [
+        2.0e7, 1.5e7, 1.5e8, 1.2e10, 7.0e10, 5.0e10]
+    for i in range(1, 4001):
+        mooring.advance_to(0.1 * i)
+    assert np.abs(mooring.body.velocity).max() < 1e-4
+    position, orientation = mooring.ship_pose(mooring.time)
+    offset = position - np.array([0.0, -17.6, 0.0])
+    yaw = 2.0 * math.atan2(orientation[2], orientation[3])
+    # decimetres of sway, centimetres of surge, a tenth of a degree of yaw
+    assert case.offset[1] < -0.3 and abs(case.offset[2]) > 1e-3, case.offset
+    assert offset[1] == pytest.approx(case.offset[1], rel=0.01)
+    assert offset[0] == pytest.approx(case.offset[0], rel=0.02, abs=2e-3)
+    assert yaw == pytest.approx(case.offset[2], rel=0.02)
+    out = mooring.output()
+    tensions = np.maximum(out.fairlead_tensions, out.bollard_tensions)
+    assert tensions == pytest.approx(case.tensions, rel=0.01)
+
+
+def test_rope_sim_berth_check_writes_its_table_and_plot(repo_root, tmp_path, capsys):
+    out = tmp_path / 'check'
+    assert cli.main(['berth-check', str(repo_root / 'config' / 'berth.yaml'), '--out', str(out),
+                     '--directions', '8', '--wind-speed', '25', '--current', '0,0,0']) == 0
+    printed = capsys.readouterr().out
+    assert 'most loaded' in printed and (out / 'berth_check.png').stat().st_size > 10000
+    with open(out / 'berth_check.csv', newline='') as stream:
+        rows = list(csv.DictReader(stream))
+    assert [float(row['wind_direction_deg']) for row in rows] == [45.0 * i for i in range(8)]
+    assert all(row['status'] == 'ok' for row in rows)
+    # wind from port (90) pushes the ship off the quay: the breast lines take it; from
+    # starboard (270) onto its fenders, which take it
+    port, starboard = rows[2], rows[6]
+    assert float(port['breast_fwd_mbl_percent']) > 3 * float(starboard['breast_fwd_mbl_percent'])
+    assert float(port['sway']) < 0.0 < float(starboard['sway'])
+    assert float(starboard['fender_2_load']) > 1e5 and float(port['fender_2_load']) == 0.0
+
+
+@pytest.mark.parametrize('arguments, message', [
+    (['--current', '1,2'], "--current '1,2' is not allowed"),
+    (['--directions', '0'], '--directions 0 is not allowed'),
+    (['--set', 'ship.beam=-3'], "parameter 'ship.beam' = -3"),
+])
+def test_berth_check_refuses_bad_input_in_one_line(repo_root, tmp_path, capsys, arguments,
+                                                   message):
+    code = cli.main(['berth-check', str(repo_root / 'config' / 'berth.yaml'), '--out',
+                     str(tmp_path / 'x'), *arguments])
+    err = capsys.readouterr().err
+    assert code == 2 and message in err and err.count('\n') == 1, err
