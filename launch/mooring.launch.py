@@ -17,6 +17,11 @@ Launch a ship's mooring arrangement: the mooring node with an arrangement file.
 
     ros2 launch rope_sim_ros mooring.launch.py namespace:=ship_a use_sim_time:=true
     ros2 launch rope_sim_ros mooring.launch.py params_file:=my_berth.yaml
+    ros2 launch rope_sim_ros mooring.launch.py ship_motion:=true
+
+With ship_motion:=true a scripted ship (the ship_motion node, in the same namespace) drives
+the mooring: its fairlead/pose remapped to ship/pose, oscillating around mean_position (the
+ship's origin at rest, default config/berth.yaml's (0, -17.6, 0)).
 
 Every topic of the node is relative, so two ships run side by side, one namespace each. The
 parameter file must be an arrangement (`mooring: ros__parameters: lines: [...]`, as
@@ -29,6 +34,7 @@ import os
 from ament_index_python.packages import get_package_share_directory
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument, OpaqueFunction
+from launch.conditions import IfCondition
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 from launch_ros.parameter_descriptions import ParameterValue
@@ -75,6 +81,27 @@ def generate_launch_description():
             parameters=[
                 LaunchConfiguration('params_file'),
                 {'use_sim_time': ParameterValue(LaunchConfiguration('use_sim_time'),
+                                                value_type=bool)},
+            ],
+            output='screen',
+        ),
+        DeclareLaunchArgument(
+            'ship_motion', default_value='false', choices=['true', 'false', 'True', 'False'],
+            description='Also start ship_motion, remapped to ship/pose, to drive the ship.'),
+        DeclareLaunchArgument(
+            'mean_position', default_value='[0.0, -17.6, 0.0]',
+            description="ship_motion's mean position: the ship's origin at rest in frame_id "
+                        '(config/berth.yaml: 1.5 m off the quay face).'),
+        Node(
+            package='rope_sim_ros',
+            executable='ship_motion',
+            name='ship_motion',
+            namespace=LaunchConfiguration('namespace'),
+            condition=IfCondition(LaunchConfiguration('ship_motion')),
+            remappings=[('fairlead/pose', 'ship/pose')],
+            parameters=[
+                {'mean_position': LaunchConfiguration('mean_position'),  # read as YAML
+                 'use_sim_time': ParameterValue(LaunchConfiguration('use_sim_time'),
                                                 value_type=bool)},
             ],
             output='screen',

@@ -89,6 +89,53 @@ class NodeProcess:
         return self.stop(signal.SIGINT, timeout)
 
 
+class Executable(NodeProcess):
+    """Any installed executable of the package with its arguments, its log in a file."""
+
+    def __init__(self, install: Path, env: dict, log: Path, name: str, *args: str):
+        """Start install/lib/rope_sim_ros/<name> with args (e.g. '--ros-args', ...)."""
+        self.log = log
+        self.namespace = name
+        self.started = time.monotonic()
+        with open(log, 'w') as f:
+            self.process = subprocess.Popen(
+                [str(install / 'lib' / 'rope_sim_ros' / name), *args], env=env,
+                stdin=subprocess.DEVNULL, stdout=f, stderr=subprocess.STDOUT)
+        STARTED.append(self)
+
+
+def bag_events(bag: Path) -> list:
+    """Return the events a node recorded in its bag (decoded JSON), in log-time order."""
+    import json
+    from rope_sim_ros.bag import read_messages
+    from rope_sim_ros.ros2bag import deserialize
+    return [json.loads(deserialize(m).data)
+            for m in read_messages(bag) if m.topic.endswith('/events')]
+
+
+BERTH_SHARED = ('lines', 'ship_frame_id', 'frame_id', 'publish_rate', 'marker_rate', 'integrator',
+                'time_step', 'segments')
+
+
+def berth_file(path: Path, lengths=None) -> Path:
+    """
+    Write config/berth.yaml's ship and eight lines as an arrangement file; return its path.
+
+    Only the lines and the settings they share (this file's ship needs no more). With
+    `lengths` ({line: m}) each line has its length instead of its pretension.
+    """
+    import yaml
+    berth = Path(__file__).resolve().parent.parent / 'config' / 'berth.yaml'
+    values = yaml.safe_load(berth.read_text())['/**/mooring']['ros__parameters']
+    values = {key: value for key, value in values.items()
+              if key in BERTH_SHARED or key in values['lines']}
+    for name, length in (lengths or {}).items():
+        del values[name]['pretension']
+        values[name]['length'] = length
+    path.write_text(yaml.safe_dump({'/**/mooring': {'ros__parameters': values}}))
+    return path
+
+
 class SimClient:
     """
     A test node that drives a mooring_line node in sim time: /clock, poses, parameters.

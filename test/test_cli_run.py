@@ -297,3 +297,32 @@ def test_a_payload_adds_its_position_to_out_csv_and_the_bag(tmp_path):
     assert cli.main(['resim', str(bag), '--out', str(again), '--quiet']) == 0
     assert [m.data for m in read_messages(again, ['/payload/pose'])] == [
         m.data for m in read_messages(bag, ['/payload/pose'])]
+
+
+def test_a_number_without_a_dot_in_a_params_file_is_a_number(tmp_path, capsys):
+    # `time_step: 5e-05` is a double for ROS's parameter parser; PyYAML alone read it as the
+    # text '5e-05' and refused it: "'5e-05' is not allowed: must be >= 0 and <= 0.1 s".
+    # Both kinds of file run with it, and the step is the one asked for.
+    motion = tmp_path / 'motion.csv'
+    motion.write_text(HEADER + '\n' + ''.join(f'{k * 0.1:.1f},36,0,8\n' for k in range(6)))
+    line_file = tmp_path / 'line.yaml'
+    line_file.write_text('/**/mooring_line:\n  ros__parameters:\n    time_step: 5e-05\n'
+                         '    integrator: improved_euler\n    segments: 8\n')
+    assert read_setup(line_file).lines[0].params.time_step == 5e-05
+    out = tmp_path / 'out.csv'
+    assert cli.main(['run', '--params', str(line_file), '--motion', str(motion), '--out',
+                     str(out), '--quiet']) == 0, capsys.readouterr().err
+    _, rows = read_out(out)
+    expected = simulation(read_setup(line_file).lines[0].params, *motion_points(motion), 100.0)
+    assert len(rows) == 51  # every 10 ms from 0 to 0.5 s; the samples' rows as the model's
+    np.testing.assert_allclose(rows[::10, 1:], expected[:, 1:], rtol=1e-9, atol=1e-6)
+    berth = tmp_path / 'berth.yaml'
+    berth.write_text((REPO_ROOT / 'config' / 'berth.yaml').read_text().replace(
+        'time_step: 0.0 ', 'time_step: 2.5E-4 '))
+    assert read_setup(berth).shared.time_step == 2.5e-4
+    quoted = tmp_path / 'quoted.yaml'
+    quoted.write_text(line_file.read_text().replace('5e-05', "'5e-05'"))
+    code = cli.main(['run', '--params', str(quoted), '--motion', str(motion), '--out',
+                     str(tmp_path / 'quoted.csv')])
+    err = capsys.readouterr().err
+    assert code == 2 and "'5e-05'" in err and len(err.strip().splitlines()) == 1, err

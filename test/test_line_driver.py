@@ -231,3 +231,85 @@ def test_events_round_trip_and_bad_rates_are_refused():
     for rate in (0.0, -1.0, math.nan, math.inf):
         with pytest.raises(ParameterError, match='output rate'):
             one_line(line(), rate=rate)
+
+
+# ------------------------------------------------------------------ restarts that part
+
+
+def teleport_run(driver: Driver, jump, bollard=None) -> tuple:
+    """
+    Hold the ship still 1 s, then jump it (or the bollard) by `jump`; 1 s more at 50 Hz.
+
+    :returns: the outputs before the jump, and those after it.
+    """
+    start = driver.arrangement.lines[0].params
+    rest = np.array([0.0, -17.6, 0.0]) if driver.mooring.names[0] else FAIRLEAD_POINT
+    outputs, before = [], []
+    for k in range(101):
+        if k == 50:
+            before, outputs = outputs, []
+        t = k / 50.0
+        moved = t >= 1.0
+        push(driver, EPOCH + k * SECOND // 50, rest + (jump if moved and bollard is None else 0))
+        if bollard is not None and k >= 25:
+            driver.push_bollard('', EPOCH + k * SECOND // 50,
+                                np.asarray(start.bollard_position) + (jump if moved else 0))
+        outputs += driver.advance(t).outputs
+    return before, outputs
+
+
+def test_a_teleport_puts_no_load_of_its_own_in_an_output_or_a_peak(repo_root):
+    # The berth's ship jumps 50 m ahead (issue: five lines parted as designed, but
+    # spring_aft, whole, reported a peak of 19.7 MN, what a line held at its reach pulls,
+    # and stern_1 sent 4.13 MN as a fairlead tension, 3.3 times its break load). The lines
+    # past their break load at the new place part as they restart, at rest in two pieces;
+    # the others restart at rest; no number of the jump reaches an output or a peak.
+    from rope_sim_ros.params.arrangement import read_arrangement_file
+    driver = Driver(read_arrangement_file(repo_root / 'config' / 'berth.yaml'))
+    before, after = teleport_run(driver, np.array([50.0, 0.0, 0.0]))
+    names = driver.mooring.names
+    breaks = np.array([line.break_load for line in driver.mooring.lines])
+    assert not before[-1].output.parted.any()
+    parted = [names[k] for k in np.flatnonzero(after[0].output.parted)]
+    assert parted == ['breast_fwd', 'spring_fwd', 'breast_aft', 'stern_1', 'stern_2'], parted
+    largest = np.max([np.maximum.reduce([p.output.fairlead_tensions,
+                                         p.output.bollard_tensions, p.output.peaks])
+                      for p in after], axis=0)
+    print('largest tension or peak after the jump [kN]:',
+          dict(zip(names, np.round(largest / 1e3, 1))))
+    assert (largest < 0.05 * breaks).all(), dict(zip(names, largest))
+    for p in after:  # neither beyond reach nor restarted: the parted lines are in pieces
+        assert not p.advance or not (p.advance.beyond_reach or p.advance.restarted), p.advance
+
+
+def test_a_bollard_teleport_past_the_reach_parts_the_line_at_rest():
+    # The single line's bollard jumps 20 m, its ends then 56.6 m apart, past the 50 m its
+    # 40 m reach (issue: 4.4 MN on bollard/peak_tension, EA x max_strain). It parts as it
+    # restarts: no peak above the pieces' weight.
+    driver = one_line(from_values({}))
+    _, outputs = teleport_run(driver, np.array([-20.0, 0.0, 0.0]), bollard=True)
+    after = [p.output for p in outputs]
+    assert after[0].parted[0] and driver.mooring.lines[0].parting.t == pytest.approx(0.96)
+    largest = max(max(o.peaks[0], o.fairlead_tensions[0], o.bollard_tensions[0]) for o in after)
+    print(f'largest tension or peak after the jump: {largest:.0f} N')
+    assert largest < 2000.0  # 40 m of 2.6 kg/m: the pieces hang
+    assert all(not p.advance or not p.advance.restarted for p in outputs)
+
+
+def test_a_line_pulled_past_its_reach_parts_and_is_held_no_more():
+    # The fairlead runs off 26 m in 3 s: the line is held at its reach, pulls its break
+    # load and parts. From then on it is neither beyond reach (its reach is infinite) nor
+    # restarted 'back within reach' (issue: both logged for a parted line).
+    driver = one_line(from_values({}))
+    parted_at, later = None, []
+    for k in range(251):
+        t = k / 50.0
+        push(driver, EPOCH + k * SECOND // 50,
+             FAIRLEAD_POINT + [26.0 * min(max(t - 1.0, 0.0) / 3.0, 1.0), 0.0, 0.0])
+        for p in driver.advance(t).outputs:
+            if p.advance and p.advance.parted:
+                parted_at = p.output.t
+            elif parted_at is not None and p.advance:
+                later.append(p.advance)
+    assert parted_at is not None and 1.0 < parted_at < 4.0, parted_at
+    assert len(later) > 50 and not any(a.beyond_reach or a.restarted for a in later)

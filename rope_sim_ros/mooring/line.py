@@ -38,6 +38,14 @@ from ..params.table import LineParams, ParameterError
 from ..stepping.relax import relax
 from ..stepping.rules import automatic_time_step, drag_rate, stability_limit
 
+# The shortest improved Euler step a line may need [s]: the adaptive integrator's step in a
+# snap, improved_euler's automatic step. One core takes 57,000 improved Euler steps of a
+# 30-segment line a second (benchmarks: a 2-core machine, loaded): a line that needs steps
+# under this cannot keep up with the clock while it takes them. Damping sets it: the berth's
+# head line takes 2.5 ns at axial_damping 1e9 N s, whose first snap then stalled the mooring
+# node (two million steps per 5 ms step), 25 us at 1e5.
+MIN_EXPLICIT_STEP = 1.0e-5
+
 # The winch's defaults (params/table.py): its brake holds 60 % of the MBL (OCIMF MEG4); it
 # hauls in to a tenth of the line's length and pays out to four times it.
 BRAKE_FRACTION = 0.6
@@ -104,6 +112,49 @@ def choose_time_step(params: LineParams, props: RopeProperties,
     return dt
 
 
+def _explicit_step(params: LineParams, props: RopeProperties) -> float:
+    """Return the improved Euler step a line takes (inf: it takes none)."""
+    if params.integrator == 'adaptive' or (params.integrator == 'improved_euler'
+                                           and params.time_step == 0.0):
+        return automatic_time_step(props)
+    return math.inf
+
+
+def check_pace(params: LineParams, props: RopeProperties, material) -> None:
+    """
+    Refuse an axial_damping that makes the line's improved Euler step shorter than it can run.
+
+    See MIN_EXPLICIT_STEP. The message names the largest axial_damping the line takes (found
+    by bisection: the step shrinks as the damping grows). A line whose step is that short
+    without the damping (thousands of segments) is left alone: its steps are its size's.
+
+    :raises ParameterError: the damping makes the step shorter than MIN_EXPLICIT_STEP.
+    """
+    step = _explicit_step(params, props)
+    if step >= MIN_EXPLICIT_STEP or params.axial_damping <= 0.0:
+        return
+
+    def step_at(damping: float) -> float:
+        return _explicit_step(params, rope_properties(
+            params.with_values({'axial_damping': damping}), material))
+
+    if step_at(0.0) < MIN_EXPLICIT_STEP:
+        return
+    low, high = 0.0, params.axial_damping  # the step is long enough at low, too short at high
+    for _ in range(40):
+        middle = 0.5 * (low + high)
+        if step_at(middle) >= MIN_EXPLICIT_STEP:
+            low = middle
+        else:
+            high = middle
+    largest = _round_down(low) if low > 0.0 else 0.0
+    raise ParameterError(
+        f'axial_damping {params.axial_damping:g} N s is not allowed on this line: it makes '
+        f"{params.integrator}'s improved Euler step {step:.2g} s, under the "
+        f'{MIN_EXPLICIT_STEP:g} s that runs at live pace; allowed: up to {largest:g} N s (or '
+        'integrator implicit_euler)')
+
+
 class MooringLine:
     """
     One line's numbers and rules (see the module docstring).
@@ -131,6 +182,7 @@ class MooringLine:
         self.props = rope_properties(params, self.material)
         self.output_interval = output_interval
         self.time_step = choose_time_step(params, self.props, output_interval)
+        check_pace(params, self.props, self.material)
         self.length = params.length
         self.parting: Optional[Parting] = None
         self.winch_command = 0.0  # the speed last commanded [m/s]
@@ -298,6 +350,7 @@ class MooringLine:
         props = rope_properties(params, self.material)
         try:
             time_step = choose_time_step(params, props, self.output_interval)
+            check_pace(params, props, self.material)
         except ParameterError as e:
             changes = ', '.join(f'{k} = {v}' for k, v in values.items())
             raise ParameterError(f'with {changes}, {e}') from None

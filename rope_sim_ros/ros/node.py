@@ -36,9 +36,13 @@ published on the events topic (std_msgs/String, one JSON object each) and record
 `rope_sim resim` of the node's bag takes them at the same points and reproduces its outputs.
 
 Time: the ropes follow the node clock, so use_sim_time and /clock work. Under use_sim_time,
-until the first /clock message the poses alone set the pace. When a stream falls silent for
-LIVE_INPUT seconds its ends coast to a stop, the ropes go on to now and a warning says so;
-poses that come late bring the ends back onto their tracks smoothly.
+until the first /clock message the poses alone set the pace (every output they reach goes
+out at once), and the bag logs on the poses' stamps. When no pose of a stream has arrived
+for LIVE_INPUT seconds of a node that was itself on time all that while, the stream is
+silent: its ends coast to a stop, the ropes go on to now and a warning says so; poses that
+come late bring the ends back onto their tracks smoothly. Outputs that one pose lets
+through together (poses slower than publish_rate) go out at their own times on the node
+clock, each the same time after its stamp, so that they come evenly spaced.
 
 Inputs: a pose stamped more than STAMP_AHEAD_LIMIT ahead of the node clock or
 STAMP_BEHIND_LIMIT behind it is dropped and counted, like a non-finite one; a jump of an end
@@ -50,11 +54,13 @@ through recorder.Recorder, which never blocks the tick; Ctrl-C and SIGTERM close
 after SIGKILL `rope_sim recover` completes it.
 """
 
+from collections import deque
 import functools
 import gc
 import math
 import os
-from typing import Any, Dict, List, Optional
+import sys
+from typing import Any, Deque, Dict, List, Optional, Tuple
 import warnings
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
@@ -125,9 +131,17 @@ class MooringNode(Node):
     """A mooring of one or many lines; see the module docstring and docs/ros.md."""
 
     # A pose stream is live until the node has run this long [s] without a new sample of it:
-    # the ropes wait for its next sample instead of guessing. Counted in ticks, not from the
-    # stamps, so that a node that was itself stalled first reads the poses queued meanwhile.
+    # the ropes wait for its next sample instead of guessing. Measured on the node clock from
+    # the newest pose's arrival, but only over time the node was on time: a tick more than
+    # LATE_TICK after its due time starts the wait again, so that a node that was itself
+    # stalled (its timer late, its ticks run back to back after it) first reads the poses
+    # queued meanwhile. Counting ticks took a burst of late ticks for 0.25 s of silence.
     LIVE_INPUT = 0.25
+    LATE_TICK = 0.25 * LIVE_INPUT
+    # Outputs held back to go out evenly (see _release) are published this early [ticks].
+    EARLY = 0.5
+    # The lag of the outputs behind the clock is the largest of the last LAG_WINDOW [s].
+    LAG_WINDOW = 2.0
     # Falling further behind than this [s] restarts the ropes at now instead of catching up.
     MAX_LAG = MAX_LAG
     # One tick or pose callback simulates and publishes at most this many output periods of
@@ -188,8 +202,18 @@ class MooringNode(Node):
         self.encoder = OutputEncoder(layout, self.names,
                                      [line.payload for line in mooring.lines],
                                      setup.shared.frame_id, setup.ship_frame_id)
-        self._quiet_ticks = {stream: 0 for stream in self.driver.streams}
+        # clock [ns] at each stream's newest pose; the clock since which the node was on time
+        self._arrived: Dict[str, int] = {stream: 0 for stream in self.driver.streams}
+        self._on_time_since = 0
+        self._last_tick = 0
+        # outputs computed, not yet published (see _release), and (clock, lag) [ns] of
+        # the oldest output each pose let through
+        self._held: Deque[Published] = deque()
+        self._lags: Deque[Tuple[int, int]] = deque()
+        self._unlogged: List[tuple] = []  # recorded before the node knew any time (record)
+        self._last_log_ns = 0
         self._told_payload = False
+        self._starting = False
         # the newest output and what the diagnostics gather between reports
         self._latest: Optional[Published] = None
         self._peaks = np.zeros(len(self.names))
@@ -341,7 +365,16 @@ class MooringNode(Node):
                    'queue or a lower rate keeps them)')
 
     def _check_pose_publishers(self) -> None:
-        """Warn of best-effort pose publishers: they cannot reach a reliable subscription."""
+        """
+        Warn of best-effort pose publishers: they cannot reach a reliable subscription.
+
+        Not while the ship's poses flow: the graph was then asked every second for nothing,
+        and with other processes coming and going (ros2 param, ros2 topic) a mooring node
+        that asked it stopped receiving poses for 0.3 s, on a 3 s grid, in 3 runs of 3 (a
+        witness subscriber saw no gap): false silences. Without the asking, in 3 of 3 none.
+        """
+        if self.driver.started and self.driver.live(SHIP):
+            return
         for topic in (s.topic_name for s in self._pose_subs.values()
                       if s.qos_profile.reliability == ReliabilityPolicy.RELIABLE):
             if any(info.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
@@ -380,9 +413,13 @@ class MooringNode(Node):
             self._drop(topic, e)
             return
         self._check_norm(topic, norm)
-        self._quiet_ticks[SHIP] = 0
+        self._arrived[SHIP] = self.get_clock().now().nanoseconds
         mooring = self.driver.mooring
         if 'start' in event:
+            self._starting = True  # the first output says which lines start past their WLL
+            for k, length in event['start'].items():  # the lengths in use (a dump holds them)
+                self._show_parameter(f'{self.names[k]}.length', float(length))
+            self._parted_at_restart(range(len(self.names)))
             if self.parameters.single:
                 point = mooring.free_ends(0, [mooring.time])[0][0, 1]
                 self.get_logger().info(
@@ -406,7 +443,8 @@ class MooringNode(Node):
                 self.get_logger().warning(
                     'the ship jumped more than teleport_distance: restarted at rest '
                     + ', '.join(self.names[k] for k in event['teleport']))
-        self._advance()
+            self._parted_at_restart(event['teleport'])
+        self._advance(stamp_ns)
 
     def _on_bollard(self, topic: str, name: str, stamp_ns: int, msg: PoseStamped) -> None:
         k = self.names.index(name)
@@ -427,7 +465,7 @@ class MooringNode(Node):
                     f'{self.layout.line_topic(name, topics.PAYLOAD_POSE)}')
             return
         self._check_norm(topic, point.quaternion_norm)
-        self._quiet_ticks[name] = 0
+        self._arrived[name] = self.get_clock().now().nanoseconds
         if event == 'teleport':
             line = self.driver.mooring.lines[k]
             self.get_logger().warning(
@@ -435,8 +473,9 @@ class MooringNode(Node):
                 f'{self.driver.mooring.last_jumps[k]:.2f} m, more than teleport_distance '
                 f'({line.params.teleport_distance:g} m), to {_fmt(point.point)}: '
                 f'{"line" if name else "rope"} restarted on the catenary there')
+            self._parted_at_restart([k])
         if self.driver.started:
-            self._advance()
+            self._advance(stamp_ns)
 
     def _check_norm(self, topic: str, norm: float) -> None:
         if abs(norm - 1.0) > 1e-3:
@@ -497,13 +536,18 @@ class MooringNode(Node):
         return 1.0 / min(rate, self.MAX_TICK_RATE)
 
     def _on_tick(self) -> None:
-        """Count a tick without poses for each stream, then advance."""
+        """Take a stream for silent if it brought no pose while the node was on time; advance."""
+        now = self.get_clock().now().nanoseconds
+        period = self._tick_period(self.driver.rate)
+        if not self._last_tick or not 0 <= now - self._last_tick <= (
+                period + self.LATE_TICK) * 1e9:
+            self._on_time_since = now  # a late tick (or a clock jump): wait anew
+        self._last_tick = now
         if not self.driver.started:
             return
-        live_ticks = max(2, math.ceil(self.LIVE_INPUT / self._tick_period(self.driver.rate)))
         for stream in self.driver.streams:
-            self._quiet_ticks[stream] += 1
-            if self.driver.live(stream) and self._quiet_ticks[stream] >= live_ticks:
+            waited = now - max(self._arrived[stream], self._on_time_since)
+            if self.driver.live(stream) and waited >= self.LIVE_INPUT * 1e9:
                 self.driver.silence(stream)
                 self._event('silent', stream=stream, t=self.driver.time)
                 topic = self.layout.stream_topic(stream)
@@ -518,7 +562,7 @@ class MooringNode(Node):
                            f'the clock from t = {self.driver.time:.3f} s')
         self._advance()
 
-    def _advance(self) -> None:
+    def _advance(self, pose_ns: int = 0) -> None:
         """
         Advance the ropes towards the clock, publishing each output they reach (the Driver).
 
@@ -526,6 +570,8 @@ class MooringNode(Node):
         stream is live, else from the tick. One call publishes at most OUTPUTS_PER_CALL
         ticks' worth of them, so that a node catching up stays responsive; a node further
         behind than MAX_LAG skips ahead instead of catching up.
+
+        :param pose_ns: the stamp of the pose that called (0: a tick).
         """
         driver = self.driver
         clock_ns = self.get_clock().now().nanoseconds
@@ -536,9 +582,13 @@ class MooringNode(Node):
             self._warn('no clock', 'use_sim_time is true but no /clock message has come: '
                        'the ropes follow the pose stamps alone')
         rate = driver.rate
-        report = driver.advance(now, self.OUTPUTS_PER_CALL * math.ceil(
-            rate * self._tick_period(rate) - 1e-9), self.MAX_LAG)
+        # without a clock no tick runs: a pose must take every output it lets through
+        limit = math.inf if math.isinf(now) else self.OUTPUTS_PER_CALL * math.ceil(
+            rate * self._tick_period(rate) - 1e-9)
+        report = driver.advance(now, limit, self.MAX_LAG)
         if report.clock_back:
+            self._held.clear()
+            self._lags.clear()
             self._event('clock_back', back=report.clock_back)
             self.get_logger().warning(
                 f'clock jumped back by {report.clock_back:.2f} s: waiting for the next '
@@ -555,14 +605,82 @@ class MooringNode(Node):
         for t in report.faults:
             self.get_logger().error(f'non-finite output at t = {t:.3f} s: not published; '
                                     'ropes restarted')
+        if report.outputs and pose_ns:
+            # the next pose's outputs come: those of the one before are due by now, whatever
+            # a clock out of step with the stamps says (never held past a pose period)
+            while self._held:
+                self._publish(self._held.popleft())
+            grid = [p for p in report.outputs if p.advance is not None]  # (not a restart's)
+            if len(grid) > 1 and clock_ns:  # poses slower than the outputs
+                self._lags.append((clock_ns, pose_ns - grid[0].stamp_ns))
         for published in report.outputs:
             self._report(published)
-            self._publish(published)
+            self._held.append(published)
+        self._release(clock_ns)
+
+    def _release(self, clock_ns: int) -> None:
+        """
+        Publish the outputs held back whose time has come on the node clock.
+
+        Poses slower than the outputs let several through at once (20 Hz poses, 50 Hz
+        outputs: 41 % of the gaps under 5 ms). Each output is then due LAG after its stamp,
+        LAG the longest any output of the last LAG_WINDOW seconds let through with others
+        waited for its pose, in stamps (the pose's stamp less the output's: how the stream
+        is sampled, not how late it came): spread over the ticks. Outputs a stalled node
+        computes late are overdue and go out at once; with poses as fast as the outputs
+        (one output a pose) LAG is 0 and every output goes out as its pose arrives, as
+        without a clock.
+        """
+        held = self._held
+        if not held:
+            return
+        lags = self._lags
+        while lags and lags[0][0] < clock_ns - self.LAG_WINDOW * 1e9:
+            lags.popleft()
+        lag = max((lag for _, lag in lags), default=0)
+        early = self.EARLY * self._tick_period(self.driver.rate) * 1e9
+        while held and (not clock_ns or held[0].stamp_ns + lag - early <= clock_ns):
+            self._publish(held.popleft())
+
+    def _show_parameter(self, name: str, value: Any) -> None:
+        """Make a read-only parameter read `value`: what the node uses (no set event)."""
+        if self.has_parameter(name):
+            self._parameters[name] = Parameter(name, value=value)
+
+    def _parted_at_restart(self, lines) -> None:
+        """Log (and record) each (re)started line that parted at once (past its break load)."""
+        mooring = self.driver.mooring
+        for k in lines:
+            parting = mooring.lines[k].parting
+            if parting is None or parting.t != mooring.time:
+                continue
+            name = self.names[k]
+            self._event('parted', line=name, t=parting.t, segment=parting.segment,
+                        break_load=parting.break_load)
+            self.get_logger().error(
+                f'{name or "the line"} parted at t = {parting.t:.3f} s as it (re)started: its '
+                f'ends are too far apart for it to hold its break load of '
+                f'{parting.break_load / 1e3:.0f} kN. ~/reset restores every line')
+
+    def _warn_past_wll(self, published: Published) -> None:
+        """Warn of each line that starts past its working load limit: one line each."""
+        out = published.output
+        tensions = np.maximum(out.fairlead_tensions, out.bollard_tensions)
+        for name, tension, rating in zip(self.names, tensions, self.ratings):
+            if tension > rating.wll:
+                share = 100 * rating.utilisation(tension)
+                self.get_logger().warning(
+                    f'{name or "the line"} starts at {tension / 1e3:.0f} kN, past its working '
+                    f'load limit of {rating.wll / 1e3:.0f} kN ({share:.1f} % of its MBL): is '
+                    f'{self._pose_subs[SHIP].topic_name} where the ship is?')
 
     def _report(self, published: Published) -> None:
         """Log what the advance to an output did to the lines; keep it for the diagnostics."""
         advance = published.advance
         if advance is None:
+            if self._starting:
+                self._starting = False
+                self._warn_past_wll(published)
             return
         mooring = self.driver.mooring
         for k, parting in advance.parted.items():
@@ -575,6 +693,8 @@ class MooringNode(Node):
                 f'its tension passed the break load of {parting.break_load / 1e3:.0f} kN. '
                 'Both pieces go on; ~/reset restores every line')
         for k, distance in advance.beyond_reach.items():
+            if mooring.lines[k].parting is not None:
+                continue  # it parted in these steps: its error says what became of it
             self._warn(f'reach {k}', f'{self.names[k] or "the line"}: its ends are '
                        f'{distance:.1f} m apart, beyond its reach of '
                        f'{mooring.lines[k].reach:.1f} m (length x (1 + max_strain)): its '
@@ -722,8 +842,21 @@ class MooringNode(Node):
         :param stamp_ns: the publish time of CDR bytes with a header [ns] (see
             Recorder.write).
         """
-        if self.recorder is not None:
-            self.recorder.write(topic, msg, self.get_clock().now().nanoseconds, stamp_ns)
+        if self.recorder is None:
+            return
+        now = self.get_clock().now().nanoseconds
+        if not now:  # use_sim_time before the first /clock: the poses' time, not 0
+            header = getattr(msg, 'header', None)
+            now = stamp_ns or (conversions.stamp_to_ns(header.stamp) if header else 0) or \
+                self._last_log_ns
+            if not now:  # (a parameter set before any pose) logged with the first time
+                self._unlogged.append((topic, msg, stamp_ns))
+                return
+        for held in self._unlogged:
+            self.recorder.write(held[0], held[1], now, held[2])
+        self._unlogged.clear()
+        self._last_log_ns = now
+        self.recorder.write(topic, msg, now, stamp_ns)
 
     def destroy_node(self) -> None:
         """Destroy the node, then close the bag (if recording)."""
@@ -762,15 +895,53 @@ def warm_up(setup, say=None) -> None:
         exercise(setup.lines[0].params.as_dict())
 
 
+HELP = {
+    LINE_NODE.node_name: (
+        'one mooring line between a bollard and a fairlead',
+        'fairlead/pose (the fairlead is the pose + fairlead_offset), bollard/pose, '
+        'winch/command', 'rope/particles, fairlead/tension, bollard/tension, ...',
+        'config/mooring_line.yaml'),
+    MOORING_NODE.node_name: (
+        "a ship's whole mooring arrangement", 'ship/pose (every fairlead moves with it), '
+        '<line>/bollard/pose, <line>/winch/command',
+        "each line's topics under its name, ship/mooring_wrench, mooring/markers, "
+        '/diagnostics', 'config/berth.yaml'),
+}
+
+
+def help_asked(argv) -> bool:
+    """Tell whether the command line (before --ros-args) asks for -h or --help."""
+    argv = list(argv)
+    if '--ros-args' in argv:
+        argv = argv[:argv.index('--ros-args')]
+    return any(arg in ('-h', '--help') for arg in argv[1:])
+
+
+def usage(layout: Layout) -> str:
+    """Return the --help text of a node kind."""
+    name = layout.node_name
+    what, inputs, outputs, config = HELP[name]
+    return (f'usage: ros2 run rope_sim_ros {name} [--ros-args --params-file FILE '
+            f'-p NAME:=VALUE ...]\n\n'
+            f'The {name} node: {what}, simulated live from pose messages.\n'
+            f'  in:  {inputs}\n  out: {outputs}, events, ~/reset\n'
+            f'  parameters: a ROS parameter file (the installed {config} lists them '
+            'all), or -p; use_sim_time:=true follows /clock\n'
+            '  see docs/ros.md and docs/parameters.md\n')
+
+
 def run(layout: Layout, args=None) -> int:
     """
     Run a node of this kind until Ctrl-C or SIGTERM, then close its bag (if recording).
 
     Ctrl-C and SIGTERM end the spin (spin_until_shutdown) or the start-up alike: the same
-    clean shutdown, exit code 0.
+    clean shutdown, exit code 0. -h or --help prints the usage and starts nothing.
 
     :returns: 0, or 2 when a parameter is not allowed or record_path cannot be used.
     """
+    if help_asked(sys.argv if args is None else args):
+        print(usage(layout), end='')
+        return 0
     rclpy.init(args=args)
     try:
         node = MooringNode(layout)

@@ -72,6 +72,12 @@ def describe(name: str, spec: Spec) -> ParameterDescriptor:
     return descriptor
 
 
+def arrangement_text(text: str, line: str = '<line>') -> str:
+    """Return a line parameter's description as the mooring node's topics name things."""
+    return text.replace('fairlead/pose', 'ship/pose').replace('bollard/pose',
+                                                              f'{line}/bollard/pose')
+
+
 def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
@@ -172,14 +178,16 @@ class NodeParameters:
             if name in LINE_SPECS:
                 descriptor = describe(name, LINE_SPECS[name])
                 descriptor.description = (f"default of every line's {name} (each line's own: "
-                                          f'<line>.{name}): ' + descriptor.description)
+                                          f'<line>.{name}): '
+                                          + arrangement_text(descriptor.description))
                 descriptor.read_only = True
                 declared.append((name, arrangement.check_top_value(name, value), descriptor))
         for line in setup.lines:
             values = {**line.params.as_dict(), 'pretension': line.pretension}
-            declared += [(f'{line.name}.{name}', values[name],
-                          describe(f'{line.name}.{name}', spec))
-                         for name, spec in LINE_SPECS.items()]
+            for name, spec in LINE_SPECS.items():
+                descriptor = describe(f'{line.name}.{name}', spec)
+                descriptor.description = arrangement_text(descriptor.description, line.name)
+                declared.append((f'{line.name}.{name}', values[name], descriptor))
         node.declare_parameters('', declared, ignore_override=True)
         return setup
 

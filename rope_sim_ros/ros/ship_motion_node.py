@@ -25,6 +25,7 @@ stamp would shake the line.
 """
 
 import math
+import sys
 
 from geometry_msgs.msg import PoseStamped
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
@@ -119,8 +120,23 @@ class ShipMotionNode(Node):
         self.publisher.publish(msg)
 
 
+USAGE = (
+    'usage: ros2 run rope_sim_ros ship_motion [--ros-args -p NAME:=VALUE ...]\n\n'
+    'A scripted ship: publishes fairlead/pose (PoseStamped) at publish_rate, oscillating '
+    'around mean_position\nin surge, sway, heave and roll. Parameters (all read-only):\n'
+    + ''.join(f'  {name}: {description} [{unit or "-"}], default {default}\n'
+              for name, (default, unit, description, _, _) in PARAMETERS.items())
+    + 'For the mooring node: -r fairlead/pose:=ship/pose -p mean_position:=[0.0,-17.6,0.0] '
+    '(config/berth.yaml),\nor ros2 launch rope_sim_ros mooring.launch.py ship_motion:=true\n')
+
+
 def main(args=None) -> int:
     """Run the ship until Ctrl-C; exit code 2 when a parameter is not allowed."""
+    argv = list(sys.argv if args is None else args)
+    if any(arg in ('-h', '--help') for arg in
+           (argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv)[1:]):
+        print(USAGE, end='')
+        return 0
     rclpy.init(args=args)
     try:
         node = ShipMotionNode()
