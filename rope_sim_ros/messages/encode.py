@@ -31,7 +31,9 @@ physics (370 us an output for one line's particles and tensions, as bytes 80 us)
   ship/odometry (nav_msgs/Odometry: that pose, and the origin's velocity and the angular
   velocity in ship_frame_id axes, covariances unknown: zero);
 - each fender's <fender>/reaction: geometry_msgs/WrenchStamped in frame_id, the force of the
-  fender on the hull at its contact point (no torque about that point).
+  fender on the hull at its contact point (no torque about that point);
+- ship/passing_ship_wrench: a passing ship's surge and sway force and yaw moment on the ship
+  (geometry_msgs/WrenchStamped, body axes, about its origin).
 """
 
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple
@@ -43,6 +45,8 @@ from .topics import Layout
 from ..bag import cdr
 from ..model.frames import cross_rows, lines_tangent_quaternions, split_ns
 from ..mooring.driver import Published
+from ..mooring.mooring import Mooring
+from ..params.arrangement import ArrangementParams
 
 
 def pose_stamped(stamp_ns: int, frame_id: str, position: Sequence[float],
@@ -64,12 +68,13 @@ class OutputEncoder:
 
     def __init__(self, layout: Layout, names: Sequence[str], payloads: Sequence[bool],
                  frame_id: str, ship_frame_id: str = 'base_link', free: bool = False,
-                 fenders: Sequence[str] = ()):
+                 fenders: Sequence[str] = (), passing: bool = False):
         """
         Name every output of these lines (payloads: which lines end in a payload).
 
         :param free: a free ship's (its pose and odometry are outputs).
         :param fenders: the fenders' names (their reactions are outputs).
+        :param passing: a ship passes (its load on the ship is an output).
         """
         self.layout = layout
         self.frame_id = frame_id
@@ -89,6 +94,8 @@ class OutputEncoder:
         self.ship_topics = dict(topics.SHIP_OUTPUTS) if layout.ship_outputs else {}
         if free:
             self.ship_topics.update(topics.FREE_SHIP_OUTPUTS)
+        if passing:
+            self.ship_topics[topics.PASSING_WRENCH] = topics.WRENCH_STAMPED
         self.fender_topics = {f'{name}/{topics.FENDER_REACTION}': f
                               for f, name in enumerate(fenders)}
         self.ship_topics.update({topic: topics.WRENCH_STAMPED for topic in self.fender_topics})
@@ -155,6 +162,10 @@ class OutputEncoder:
                 data = cdr.wrench_stamped(sec, nanosec, self.frame_id,
                                           out.fender_forces[self.fender_topics[topic]],
                                           (0.0, 0.0, 0.0))
+            elif topic == topics.PASSING_WRENCH:
+                fx, fy, mz = out.ship_loads[2]
+                data = cdr.wrench_stamped(sec, nanosec, self.ship_frame_id, (fx, fy, 0.0),
+                                          (0.0, 0.0, mz))
             elif topic == topics.SHIP_POSE:
                 data = cdr.pose_stamped(sec, nanosec, self.frame_id,
                                         [*out.ship.position, *out.ship.orientation])
@@ -175,6 +186,14 @@ class OutputEncoder:
                 self._parted[k] = now
                 changes.append((self.parted_topics[k], now))
         return changes
+
+
+def encoder_for(setup: ArrangementParams, mooring: Mooring) -> OutputEncoder:
+    """Return the encoder of every output the node of this setup's kind publishes."""
+    layout = topics.LINE_NODE if setup.single else topics.MOORING_NODE
+    return OutputEncoder(layout, mooring.names, [line.payload for line in mooring.lines],
+                         setup.shared.frame_id, setup.ship_frame_id, setup.ship.free,
+                         [fender.name for fender in setup.fenders], setup.passing.present)
 
 
 def stiffness_message(matrix: np.ndarray) -> bytes:

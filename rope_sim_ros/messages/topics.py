@@ -73,6 +73,10 @@ SHIP_OUTPUTS: Dict[str, str] = {MOORING_WRENCH: WRENCH_STAMPED,
 SHIP_ODOMETRY = 'ship/odometry'
 FREE_SHIP_OUTPUTS: Dict[str, str] = {SHIP_POSE: POSE_STAMPED, SHIP_ODOMETRY: ODOMETRY}
 EXTERNAL_WRENCH = 'ship/external_wrench'  # in: the external load on a free ship
+# A passing ship's load on the ship (body axes, about its origin), when one passes.
+PASSING_WRENCH = 'ship/passing_ship_wrench'
+WIND = 'environment/wind'  # in: the air's velocity, where it goes TO
+CURRENT = 'environment/current'  # in: the water's velocity, where it goes TO
 STIFFNESS = 'ship/stiffness'  # the 6x6 stiffness of the lines and fenders, row-major
 STIFFNESS_DIMENSIONS = ('rows', 'cols')
 FENDER_REACTION = 'reaction'  # a fender's force on the ship, in its namespace

@@ -58,6 +58,7 @@ import numpy as np
 from .mooring import Mooring, mooring_wrench, MooringAdvance, MooringOutput
 from ..model.frames import rotation_matrix
 from ..params.arrangement import ArrangementParams
+from ..params.ship import WIND_SETTINGS
 from ..params.table import ParameterError
 
 SHIP = 'ship'  # the ship's pose stream; a bollard's stream is named by its line
@@ -69,7 +70,7 @@ PIN_TOLERANCE = 1e-6
 # The decisions a node records (one JSON object each, encode_event), and what a model did
 # ('parted': replayed, the model does it again).
 EVENT_KINDS = ('silent', 'skip', 'reset', 'clock_back', 'drop', 'restamp', 'set', 'winch',
-               'parted')
+               'start', 'load', 'parted')
 
 
 def encode_event(kind: str, **fields: Any) -> str:
@@ -484,6 +485,7 @@ class Driver:
 
     def check_update(self, name: Optional[str], values: dict) -> None:
         """Refuse run-time changes of one line's parameters (None: every line's)."""
+        values = {k: v for k, v in values.items() if k not in WIND_SETTINGS}
         for k in self._indices(name):
             self.mooring.check_update(k, values)
 
@@ -491,9 +493,16 @@ class Driver:
         """
         Apply run-time changes of one line's parameters (None: a shared one, every line).
 
-        publish_rate changes the output rate (see set_rate).
+        publish_rate changes the output rate (see set_rate); wind_speed and wind_direction
+        (None only) the wind on the ship.
         """
-        for k in self._indices(name):
+        wind = {k: values[k] for k in WIND_SETTINGS if k in values}
+        if wind:
+            ship = self.mooring.arrangement.ship
+            self.mooring.set_wind(wind.get('wind_speed', ship.wind_speed),
+                                  wind.get('wind_direction', ship.wind_direction))
+            values = {k: v for k, v in values.items() if k not in WIND_SETTINGS}
+        for k in self._indices(name) if values else ():
             self.mooring.update(k, values)
         if 'publish_rate' in values:
             self.set_rate(self.mooring.lines[0].params.publish_rate)

@@ -66,14 +66,14 @@ start and their rate to its end, about the centre of gravity in world axes.
 """
 
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from .line import MooringLine, Parting
-from .ship import fenders, ship_body, ship_loads
+from .ship import fenders, ship_body, ship_loads, ship_wind
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 from ..model.forces.body import place_points
 from ..model.forces.fender import fender_force
@@ -1162,6 +1162,7 @@ class Mooring:
         line.update(values)
         self._ends_version += 1  # (a payload's, a bollard's place are its parameters)
         self.arrangement = self.arrangement.with_line(self.names[k], line.params)
+        self.ship_loads.current = line.props.current  # (the same for every line)
         if not self.started:
             if line.time_step != dt:
                 self._group()
@@ -1172,11 +1173,21 @@ class Mooring:
         self._apply_winch(k)  # also refreshes the tables
         if tuple(system.environment.current) != line.props.current:
             system.set_current(line.props.current)
-            self.ship_loads.current = line.props.current
         if line.time_step != dt:
             self._regroup()
         else:
             group.rules.refresh([self.lines[m] for m in group.members])
+
+    def set_wind(self, speed: float, direction: float) -> None:
+        """
+        Blow the wind at this mean speed [m/s] from this direction [rad] from now on.
+
+        Gusty wind (wind_spectrum) keeps its spectrum and seed about the new mean.
+        """
+        ship = replace(self.arrangement.ship, wind_speed=float(speed),
+                       wind_direction=float(direction))
+        self.arrangement = replace(self.arrangement, ship=ship)
+        self.ship_loads.wind = ship_wind(ship)
 
     def set_output_interval(self, interval: float) -> None:
         """Choose the steps again so that each divides a new output interval [s]."""

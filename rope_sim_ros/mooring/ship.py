@@ -29,7 +29,7 @@ from ..model.ship.loads import PassingShip, ShipLoads, Wind
 from ..model.ship.passing import Hull
 from ..model.ship.wind import GustyWind
 from ..params.arrangement import ArrangementParams
-from ..params.ship import read_coefficients
+from ..params.ship import read_coefficients, ShipParams
 
 
 def ship_body(setup: ArrangementParams) -> Body:
@@ -68,9 +68,6 @@ def ship_loads(setup: ArrangementParams) -> ShipLoads:
     """
     ship, shared, passing = setup.ship, setup.shared, setup.passing
     hull = Hull(ship.length, ship.beam, ship.draft, ship.block_coefficient)
-    gusts = None
-    if ship.wind_spectrum != 'none' and ship.wind_speed > 0.0:
-        gusts = GustyWind(ship.wind_spectrum, ship.wind_speed, ship.wind_seed)
     other = None
     if passing.present:
         other = PassingShip.beside(
@@ -84,7 +81,15 @@ def ship_loads(setup: ArrangementParams) -> ShipLoads:
         (ship.current_area_front or ship.beam * ship.draft,
          ship.current_area_side or ship.length * ship.draft),
         shared.air_density, shared.water_density,
-        Wind(ship.wind_speed, ship.wind_direction, gusts), tuple(shared.current), other)
+        ship_wind(ship), tuple(shared.current), other)
+
+
+def ship_wind(ship: ShipParams) -> Wind:
+    """Return the wind of the ship's parameters: steady, or gusty about its mean."""
+    gusts = None
+    if ship.wind_spectrum != 'none' and ship.wind_speed > 0.0:
+        gusts = GustyWind(ship.wind_spectrum, ship.wind_speed, ship.wind_seed)
+    return Wind(ship.wind_speed, ship.wind_direction, gusts)
 
 
 def reports_ship_loads(setup: ArrangementParams) -> bool:

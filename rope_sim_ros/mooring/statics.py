@@ -29,7 +29,7 @@ import numpy as np
 
 from .mooring import Mooring
 from .ship import start_pose
-from ..model.statics.ship import Equilibrium, LoadFunction, ShipStatics, StaticLine
+from ..model.statics.ship import Equilibrium, LoadFunction, Pose, ShipStatics, StaticLine
 from ..params.arrangement import ArrangementParams
 from ..params.table import ParameterError
 
@@ -65,6 +65,19 @@ def mooring_statics(mooring: Mooring, load: Optional[Sequence[float]] = None,
                                 np.array(line.params.fairlead_offset, dtype=float), line.name))
     return ShipStatics(lines, mooring.body, [fender.row() for fender in mooring.fenders], load,
                        load_function)
+
+
+def stiffness_now(mooring: Mooring, position, orientation) -> np.ndarray:
+    """
+    Return the 6x6 stiffness of a running Mooring's lines and fenders where the ship is.
+
+    As ship_stiffness, about the ship's origin in frame_id axes, at this pose (position
+    [m], unit quaternion x, y, z, w), the lines as they are now (mooring_statics).
+
+    :raises ParameterError: a payload line; StaticsError: a catenary not found there.
+    """
+    pose = Pose(np.asarray(position, dtype=float), np.asarray(orientation, dtype=float))
+    return mooring_statics(mooring).stiffness(pose)
 
 
 def ship_statics(setup: ArrangementParams, materials: Any = None,

@@ -40,12 +40,13 @@ from typing import Dict, List, Optional, Tuple
 import numpy as np
 
 from .motion import Streams
-from .run import DEFAULT_RATE, driver_for, encoder_for, RunSummary, simulate, Tally
+from .run import DEFAULT_RATE, driver_for, RunSummary, simulate, Tally
 from .sinks import BagSink
 from ..bag import bag_info, BagError, read_messages
 from ..bag.cdr import decode_pose_array, decode_pose_stamped, decode_string
 from ..bag.metadata import load_metadata, METADATA_FILE
 from ..messages import topics
+from ..messages.encode import encoder_for
 from ..messages.topics import Layout, LINE_NODE, MOORING_NODE, stream_of_event
 from ..model.frames import pose_point, PoseError, stamp_ns
 from ..mooring.driver import decode_event, Driver, SHIP
@@ -242,7 +243,8 @@ def resim(path, out_path, setup: ArrangementParams, rate: Optional[float] = None
     if rate is None:
         rate = recorded_rate(path, setup, namespace) or DEFAULT_RATE
     driver = driver_for(setup, rate)  # a refused line leaves no bag behind
-    sink = BagSink(out_path, encoder_for(setup, driver), namespace, inputs, types, stored(setup))
+    sink = BagSink(out_path, encoder_for(setup, driver.mooring), namespace, inputs, types,
+                   stored(setup))
     try:
         summary = simulate(setup, streams, rate, [sink], progress)
     except BaseException:
@@ -267,7 +269,7 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
     # as the node: its rate, 5 s of samples kept (a refused line leaves no bag behind)
     driver = Driver(setup, rate=setup.shared.publish_rate)
     recorded = bag_info(path).topics
-    streams = {layout.ship_pose: SHIP}
+    streams = {} if setup.ship.free else {layout.ship_pose: SHIP}  # (a free ship's: output)
     for line in setup.lines:
         streams[layout.line_topic(line.name, topics.BOLLARD_POSE)] = line.name
     streams = {topic: stream for topic, stream in streams.items()
@@ -278,7 +280,7 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
     particles = layout.line_topic(setup.names[0], topics.PARTICLES)
     total = recorded[f'{namespace}/{particles}'].message_count \
         if f'{namespace}/{particles}' in recorded else 0
-    sink = BagSink(out_path, encoder_for(setup, driver), namespace, [],
+    sink = BagSink(out_path, encoder_for(setup, driver.mooring), namespace, [],
                    {topic: topics.POSE_STAMPED for topic in streams}, stored(setup),
                    {layout.events: topics.STRING})
     summary = RunSummary(time_step=driver.mooring.time_step,
@@ -369,6 +371,11 @@ def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: D
                 driver.reset()
         elif kind == 'clock_back':
             driver.clear()
+        elif kind == 'start':  # a free ship's, at the node's first tick
+            if not driver.started:
+                driver.start_free(int(event['stamp']))
+        elif kind == 'load':
+            driver.set_external_load(event['force'], event['moment'], event['frame'] == 'body')
         elif kind == 'set':
             driver.update(event.get('line'), dict(event['values']))  # None: every line
         elif kind == 'winch':

@@ -35,7 +35,7 @@ import numpy as np
 from .motion import LoadSchedule, MotionError, Streams
 from .sinks import BagSink, CsvSink
 from ..messages import topics
-from ..messages.encode import OutputEncoder, pose_stamped
+from ..messages.encode import encoder_for, pose_stamped
 from ..messages.topics import LAYOUTS
 from ..mooring.driver import Driver, Published, SHIP
 from ..mooring.ship import reports_ship_loads
@@ -328,14 +328,6 @@ def input_messages(setup: ArrangementParams, streams: Streams) -> Tuple[list, di
     return rows, types
 
 
-def encoder_for(setup: ArrangementParams, driver: Driver) -> OutputEncoder:
-    """Return the encoder of the outputs the node of this setup's kind publishes."""
-    layout = topics.LINE_NODE if setup.single else topics.MOORING_NODE
-    return OutputEncoder(layout, driver.mooring.names,
-                         [line.payload for line in driver.mooring.lines],
-                         setup.shared.frame_id, setup.ship_frame_id)
-
-
 def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                rate: float = DEFAULT_RATE, bag_path=None, progress=None,
                materials: Any = None) -> RunSummary:
@@ -356,7 +348,8 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                 f'{streams.path}: data row 1, column {"t"!r}: {streams.origin!r} is negative; '
                 'a bag stamps messages with the simulated time, which must be >= 0')
         inputs, types = input_messages(setup, streams)
-        bag = BagSink(bag_path, encoder_for(setup, driver), '', inputs, types, stored(setup))
+        bag = BagSink(bag_path, encoder_for(setup, driver.mooring), '', inputs, types,
+                      stored(setup))
         sinks.append(bag)
     try:
         if out_path is not None:

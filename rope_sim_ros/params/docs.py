@@ -31,10 +31,10 @@ import re
 import sys
 from typing import Any, Iterable, List, Mapping, Optional, Tuple
 
-from .arrangement import (ARRANGEMENT_SPECS, LINE_NAME_RULE, LINE_SPECS, LINES,
-                          LINES_DESCRIPTION, MAX_LINES, NODE_NAME, OWN_SPECS, REQUIRED,
-                          SHARED)
-from .ship import FENDER_REQUIRED, FENDER_SPECS, FENDERS, MAX_FENDERS, PASSING_SPECS, SHIP_SPECS
+from .arrangement import (ARRANGEMENT_SPECS, LINE_NAME_RULE, LINE_SPECS, LINES, LINES_DESCRIPTION,
+                          MAX_LINES, NODE_NAME, OWN_SPECS, REQUIRED, SHARED)
+from .ship import (FENDER_REQUIRED, FENDER_SPECS, FENDERS, FENDERS_DESCRIPTION, MAX_FENDERS,
+                   PASSING_SPECS, SHIP_SPECS)
 from .table import allowed, NODE_NAME as LINE_NODE_NAME, Spec, SPECS
 
 COMMAND = 'python -m rope_sim_ros.params.docs > docs/parameters.md'
@@ -163,7 +163,7 @@ def fenders_row() -> str:
     return '| ' + ' | '.join((
         f'`{FENDERS}`', '`[]`', '-',
         cell(f"a list of at most {MAX_FENDERS} distinct names, none a line's"), 'read-only',
-        cell('names of the fenders on the quay; each has its settings under its name'))) + \
+        cell(FENDERS_DESCRIPTION))) + \
         ' |'
 
 

@@ -43,6 +43,9 @@ FENDERS = 'fenders'
 SHIP_MODES = ('driven', 'free')
 WIND_SPECTRA = ('none', 'api', 'npd')
 MAX_FENDERS = 32
+FENDERS_DESCRIPTION = 'names of the fenders on the quay; each has its settings under its name'
+# The ship's settings a run may change (as the lines' shared `current`): the wind.
+WIND_SETTINGS = ('wind_speed', 'wind_direction')
 FENDER_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
 
 # The ship as a whole: what the arrangement's top level takes (`ship.mass`, ...).

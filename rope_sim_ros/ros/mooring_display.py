@@ -21,13 +21,17 @@ mooring/markers (visualization_msgs/MarkerArray), in frame_id:
   (mooring/status.py: green below the WLL, amber past it, red past 90 % of the MBL); a parted
   line as a grey, dashed LINE_LIST (every other segment);
 - ns 'labels', id k: its name and utilisation above its middle particle (TEXT_VIEW_FACING);
-- ns 'fairleads', id 0 and ns 'bollards', id 0: the ends as SPHERE_LISTs, white and blue.
+- ns 'fairleads', id 0 and ns 'bollards', id 0: the ends as SPHERE_LISTs, white and blue;
+- ns 'fenders', id f: fender f as a CYLINDER at its contact point, its axis along its
+  normal, green, amber past its rated compression; ns 'fender_labels', id f: its name and
+  reaction [kN].
 
 /diagnostics (diagnostic_msgs/DiagnosticArray): one status per line, named
 '<node>: <line>' (the node's full name: 'mooring: head_1', 'ship_a/mooring:
 head_1'), hardware_id the line's name: OK below the WLL, WARN past it, ERROR once
 it has parted or was restarted since the last report; its values the tension, utilisation,
-peak since the last report, strain, WLL and MBL.
+peak since the last report, strain, WLL and MBL. One status per fender too, '<node>:
+<fender>': OK, WARN past its rated compression; its values the compression and reaction.
 """
 
 from typing import List, Optional, Sequence
@@ -40,7 +44,7 @@ from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
 from .conversions import ns_to_stamp
-from ..mooring.status import COLOURS, PARTED, Rating, WORDS
+from ..mooring.status import ABOVE_WLL, COLOURS, OK, PARTED, Rating, WORDS
 
 LINE_WIDTH = 0.25  # [m]: a 64 mm line drawn at its size is lost beside a 200 m hull
 END_SIZE = 1.0  # [m]: fairlead and bollard spheres
@@ -50,6 +54,7 @@ TEXT_LIFT = 3.0  # [m]: labels float this high above the middle of their line
 # lines behind, and at marker_rate >= 1 Hz they are replaced well before.
 LIFETIME = Duration(sec=2)
 FAIRLEAD_COLOUR = (1.0, 1.0, 1.0)
+FENDER_SIZE = (2.0, 2.0, 1.5)  # [m]: diameter across, length along the normal
 BOLLARD_COLOUR = (0.2, 0.4, 1.0)
 
 
@@ -91,10 +96,89 @@ class LineMarkers:
     def __call__(self, frame_id: str, stamp_ns: int, names: Sequence[str],
                  positions: Sequence[np.ndarray], tensions: Sequence[float],
                  ratings: Sequence[Rating], parted: Sequence[bool],
-                 fairleads: np.ndarray, bollards: np.ndarray) -> MarkerArray:
-        """Return the markers now (see line_markers)."""
-        return _line_markers(self._marker, frame_id, stamp_ns, names, positions, tensions,
-                             ratings, parted, fairleads, bollards)
+                 fairleads: np.ndarray, bollards: np.ndarray,
+                 fenders: Optional['Fenders'] = None) -> MarkerArray:
+        """Return the markers now (see line_markers), the fenders' too if given."""
+        array = _line_markers(self._marker, frame_id, stamp_ns, names, positions, tensions,
+                              ratings, parted, fairleads, bollards)
+        if fenders is not None:
+            array.markers += fenders.markers(self._marker, frame_id, stamp_ns)
+        return array
+
+
+class Fenders:
+    """
+    The fenders' state at one output, for their markers and diagnostics.
+
+    :ivar names: their names; normals: each one's unit normal (F, 3), out of the quay.
+    :ivar rated: each one's rated compression [m].
+    :ivar points: the contact points (F, 3) [m]; compressions [m] (<= 0: untouched);
+        forces: each one's force on the hull (F, 3) [N].
+    """
+
+    def __init__(self, names, normals, rated, points, compressions, forces):
+        """Keep the fenders' state (see the class docstring)."""
+        self.names, self.normals, self.rated = names, np.asarray(normals, dtype=float), rated
+        self.points = np.asarray(points, dtype=float)
+        self.compressions = np.maximum(np.asarray(compressions, dtype=float), 0.0)
+        self.reactions = np.linalg.norm(np.asarray(forces, dtype=float).reshape(-1, 3), axis=1)
+
+    def past_rated(self, f: int) -> bool:
+        """Tell whether fender f is compressed past its rated compression."""
+        return bool(self.compressions[f] > self.rated[f])
+
+    def markers(self, _marker, frame_id: str, stamp_ns: int) -> List[Marker]:
+        """Return each fender's cylinder and label (see the module docstring)."""
+        markers = []
+        for f, name in enumerate(self.names):
+            rgb = COLOURS[ABOVE_WLL if self.past_rated(f) else OK]
+            body = _marker(frame_id, stamp_ns, 'fenders', f, Marker.CYLINDER)
+            x, y, z = self.points[f].tolist()
+            body.pose.position = Point(x=x, y=y, z=z)
+            q = _z_to(self.normals[f])
+            body.pose.orientation.x, body.pose.orientation.y = q[0], q[1]
+            body.pose.orientation.z, body.pose.orientation.w = q[2], q[3]
+            body.scale.x, body.scale.y, body.scale.z = FENDER_SIZE
+            body.color = _colour(rgb)
+            label = _marker(frame_id, stamp_ns, 'fender_labels', f, Marker.TEXT_VIEW_FACING)
+            label.pose.position = Point(x=x, y=y, z=z + TEXT_LIFT)
+            label.scale.z = TEXT_SIZE
+            label.color = _colour(rgb)
+            label.text = f'{name} {self.reactions[f] / 1e3:.0f} kN'
+            markers += [body, label]
+        return markers
+
+    def statuses(self, node: str) -> List[DiagnosticStatus]:
+        """Return one DiagnosticStatus per fender (see the module docstring)."""
+        statuses = []
+        for f, name in enumerate(self.names):
+            status = DiagnosticStatus(name=f'{node}: {name}', hardware_id=name)
+            share = 100.0 * self.compressions[f] / self.rated[f]
+            if self.past_rated(f):
+                status.level = DiagnosticStatus.WARN
+                status.message = f'compressed past its rating: {share:.0f} % of it'
+            else:
+                status.level = DiagnosticStatus.OK
+                status.message = (f'{share:.0f} % of its rated compression'
+                                  if self.compressions[f] > 0.0 else 'not touched')
+            status.values = [KeyValue(key=key, value=value) for key, value in (
+                ('compression [m]', f'{self.compressions[f]:.3f}'),
+                ('rated compression [m]', f'{self.rated[f]:.3f}'),
+                ('reaction [N]', f'{self.reactions[f]:.1f}'),
+            )]
+            statuses.append(status)
+        return statuses
+
+
+def _z_to(direction: np.ndarray) -> List[float]:
+    """Return the unit quaternion (x, y, z, w) turning +z onto a unit direction."""
+    d = direction / max(float(np.linalg.norm(direction)), 1e-12)
+    axis = np.cross([0.0, 0.0, 1.0], d)
+    w = 1.0 + float(d[2])
+    if w < 1e-9:  # straight down: half a turn about x
+        return [1.0, 0.0, 0.0, 0.0]
+    q = np.array([*axis, w])
+    return (q / np.linalg.norm(q)).tolist()
 
 
 def line_markers(frame_id: str, stamp_ns: int, names: Sequence[str],

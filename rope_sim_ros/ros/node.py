@@ -64,7 +64,8 @@ from typing import Any, Deque, Dict, List, Optional, Tuple
 import warnings
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from geometry_msgs.msg import PoseArray, PoseStamped, Wrench, WrenchStamped
+from geometry_msgs.msg import PoseArray, PoseStamped, Vector3Stamped, Wrench, WrenchStamped
+from nav_msgs.msg import Odometry
 import numpy as np
 from rcl_interfaces.msg import SetParametersResult
 import rclpy
@@ -76,23 +77,26 @@ from rclpy.parameter import Parameter
 from rclpy.qos import (DurabilityPolicy, HistoryPolicy, QoSPolicyKind, QoSProfile,
                        ReliabilityPolicy)
 from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions
-from std_msgs.msg import Bool, Float64, String
+from std_msgs.msg import Bool, Float64, Float64MultiArray, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
 from . import conversions
-from .mooring_display import line_diagnostics, LineMarkers
+from .mooring_display import Fenders, line_diagnostics, LineMarkers
 from .outputs import OutputPublishers
 from .parameters import NodeParameters, plain, StartupError
 from .recorder import Recorder
 from .spinning import set_timer_period, signals_ignored, spin_until_shutdown
 from ..bag import BagError
 from ..messages import topics
-from ..messages.encode import OutputEncoder
+from ..messages.encode import encoder_for, stiffness_message
 from ..messages.topics import Layout, LINE_NODE, MOORING_NODE
+from ..model.statics.ship import StaticsError
 from ..mooring.driver import Driver, encode_event, MAX_LAG, Published, SHIP
+from ..mooring.statics import stiffness_now
 from ..mooring.status import Rating
 from ..mooring.trajectory import TrajectoryError
+from ..params import arrangement
 from ..params.arrangement import stored
 from ..params.table import ParameterError
 
@@ -107,7 +111,8 @@ QOS_OVERRIDES_ALLOWED = ('reliability reliable or best_effort, history keep_last
                          'depth >= 1 for keep_last')
 MESSAGE_CLASSES = {topics.POSE_ARRAY: PoseArray, topics.WRENCH: Wrench,
                    topics.POSE_STAMPED: PoseStamped, topics.FLOAT64: Float64,
-                   topics.BOOL: Bool, topics.WRENCH_STAMPED: WrenchStamped}
+                   topics.BOOL: Bool, topics.WRENCH_STAMPED: WrenchStamped,
+                   topics.ODOMETRY: Odometry}
 # whether a line has parted is a state, not a stream: latched, so that a monitor started later
 # sees it
 PARTED_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
@@ -199,9 +204,7 @@ class MooringNode(Node):
         mooring = self.driver.mooring
         self.names = list(mooring.names)
         self.ratings = [Rating.of(line.material) for line in mooring.lines]
-        self.encoder = OutputEncoder(layout, self.names,
-                                     [line.payload for line in mooring.lines],
-                                     setup.shared.frame_id, setup.ship_frame_id)
+        self.encoder = encoder_for(setup, mooring)
         # clock [ns] at each stream's newest pose; the clock since which the node was on time
         self._arrived: Dict[str, int] = {stream: 0 for stream in self.driver.streams}
         self._on_time_since = 0
@@ -233,6 +236,8 @@ class MooringNode(Node):
             self._diagnostics_pub = self._publisher(DiagnosticArray, topics.DIAGNOSTICS, 10)
         self._pose_subs = {}
         for stream in self.driver.streams:
+            if stream == SHIP and mooring.free:
+                continue  # a free ship's pose is an output
             topic = layout.stream_topic(stream)
             self._pose_subs[stream] = self._pose_subscription(
                 topic, functools.partial(self._on_pose, stream))
@@ -240,7 +245,7 @@ class MooringNode(Node):
             if name.startswith('qos_overrides.') and not self.has_parameter(name):
                 self.get_logger().warning(
                     f'ignoring unknown parameter {name!r}: the pose subscriptions take '
-                    f'qos_overrides.{self._pose_subs[SHIP].topic_name}.subscription.'
+                    f'qos_overrides.{self.resolve_topic_name(layout.ship_pose)}.subscription.'
                     'reliability (and .history, .depth; the same for the bollard poses)')
         if any(s.qos_profile.reliability == ReliabilityPolicy.RELIABLE
                for s in self._pose_subs.values()):
@@ -255,6 +260,18 @@ class MooringNode(Node):
             functools.partial(self._on_winch_command, name), 10,
             event_callbacks=SubscriptionEventCallbacks(use_default_callbacks=False))
             for name in self.names]
+        self._external_sub = None
+        self._environment_subs = {}
+        self._stiffness_timer = None
+        if layout.ship_outputs:
+            if mooring.free:
+                self._external_sub = self.create_subscription(
+                    WrenchStamped, topics.EXTERNAL_WRENCH, self._on_external_wrench, 10)
+            self._environment_subs = {topic: self.create_subscription(
+                Vector3Stamped, topic, functools.partial(self._on_environment, topic), 10)
+                for topic in (topics.WIND, topics.CURRENT)}
+            self._stiffness_pub = self._publisher(Float64MultiArray, topics.STIFFNESS, 10)
+            self._set_stiffness_rate(setup.ship.stiffness_rate)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
         rate = setup.shared.publish_rate
         self._timer = self.create_timer(self._tick_period(rate), self._on_tick)
@@ -265,10 +282,16 @@ class MooringNode(Node):
         self._start_recording()
         self.get_logger().info(self._started_text())
 
+    def _waiting_for(self) -> str:
+        """Say what starts the lines: the first ship pose, or a free ship's first tick."""
+        if self.driver.mooring.free:
+            return 'the free ship starts at its start pose at the first tick of the clock'
+        return f'waiting for the first pose on {self._pose_subs[SHIP].topic_name}'
+
     def _started_text(self) -> str:
         """Say what was built and what the node waits for."""
         mooring = self.driver.mooring
-        waiting = f'waiting for the first pose on {self._pose_subs[SHIP].topic_name}'
+        waiting = self._waiting_for()
         if self.parameters.single:
             line = mooring.lines[0]
             p, props = line.params, line.props
@@ -308,6 +331,9 @@ class MooringNode(Node):
             if p.name == 'marker_rate' and self.layout.ship_outputs:
                 set_timer_period(self._markers_timer, 1.0 / float(p.value))
                 self.get_logger().info(f'set marker_rate = {p.value}')
+            if p.name == 'stiffness_rate' and self.layout.ship_outputs:
+                self._set_stiffness_rate(float(p.value))
+                self.get_logger().info(f'set stiffness_rate = {p.value}')
         for line, values in self.parameters.changes(parameters).items():
             try:
                 self.driver.update(line, values)
@@ -416,19 +442,7 @@ class MooringNode(Node):
         self._arrived[SHIP] = self.get_clock().now().nanoseconds
         mooring = self.driver.mooring
         if 'start' in event:
-            self._starting = True  # the first output says which lines start past their WLL
-            for k, length in event['start'].items():  # the lengths in use (a dump holds them)
-                self._show_parameter(f'{self.names[k]}.length', float(length))
-            self._parted_at_restart(range(len(self.names)))
-            if self.parameters.single:
-                point = mooring.free_ends(0, [mooring.time])[0][0, 1]
-                self.get_logger().info(
-                    f'first fairlead pose: rope started on the catenary to {_fmt(point)}')
-            else:
-                chosen = ', '.join(f'{self.names[k]} {length:.3f} m' for k, length
-                                   in event['start'].items())
-                self.get_logger().info('first ship pose: lines started at rest' + (
-                    f'; lengths for their pretension: {chosen}' if chosen else ''))
+            self._started(event['start'], 'first ship pose')
         elif event.get('teleport'):
             # Not throttled: each jump is a restart, a step in the published tension. The
             # ropes restarted at the state time, the last output's: the next output shows it.
@@ -445,6 +459,105 @@ class MooringNode(Node):
                     + ', '.join(self.names[k] for k in event['teleport']))
             self._parted_at_restart(event['teleport'])
         self._advance(stamp_ns)
+
+    def _started(self, lengths: Dict[int, float], why: str) -> None:
+        """Say that the lines started, with the lengths chosen for their pretensions."""
+        self._starting = True  # the first output says which lines start past their WLL
+        for k, length in lengths.items():  # the lengths in use (a dump holds them)
+            self._show_parameter(f'{self.names[k]}.length', float(length))
+        self._parted_at_restart(range(len(self.names)))
+        mooring = self.driver.mooring
+        if self.parameters.single:
+            point = mooring.free_ends(0, [mooring.time])[0][0, 1]
+            self.get_logger().info(
+                f'first fairlead pose: rope started on the catenary to {_fmt(point)}')
+        else:
+            chosen = ', '.join(f'{self.names[k]} {length:.3f} m'
+                               for k, length in lengths.items())
+            self.get_logger().info(f'{why}: lines started at rest' + (
+                f'; lengths for their pretension: {chosen}' if chosen else ''))
+
+    def _start_free(self, now_ns: int) -> None:
+        """Start a free ship's mooring at the first tick the clock runs (no pose needed)."""
+        try:
+            lengths = self.driver.start_free(now_ns)
+        except ParameterError as e:  # a pretension no length gives at the start pose
+            self._warn('start', f"cannot start the lines at the ship's start pose: {e}")
+            return
+        self._event('start', stamp=now_ns)
+        self._started(lengths, 'free ship at rest at its start pose')
+
+    def _on_external_wrench(self, msg: WrenchStamped) -> None:
+        """Hold the external load on the free ship (ship/external_wrench) until the next."""
+        f, m = msg.wrench.force, msg.wrench.torque
+        body = msg.header.frame_id == self.driver.arrangement.ship_frame_id
+        try:
+            self.driver.set_external_load((f.x, f.y, f.z), (m.x, m.y, m.z), body)
+        except ValueError as e:
+            self._warn(topics.EXTERNAL_WRENCH, f'{self._external_sub.topic_name}: ignored: {e}')
+            return
+        self.record(topics.EXTERNAL_WRENCH, msg)
+        self._event('load', force=[f.x, f.y, f.z], moment=[m.x, m.y, m.z],
+                    frame='body' if body else 'world')
+
+    def _on_environment(self, topic: str, msg: Vector3Stamped) -> None:
+        """
+        Take the wind's or the current's velocity (where it goes TO) from its topic.
+
+        In the header's frame: frame_id (or empty), or ship_frame_id (turned with the ship
+        as it is now). The node then uses it as if set as its parameters (wind_speed and
+        wind_direction, current), which read it; an event records it for resim.
+        """
+        setup = self.driver.arrangement
+        v = np.array([msg.vector.x, msg.vector.y, msg.vector.z], dtype=float)
+        frame = msg.header.frame_id
+        name = self._environment_subs[topic].topic_name
+        if not np.all(np.isfinite(v)):
+            self._warn(topic, f'{name}: ignored: {v.tolist()} is not finite')
+            return
+        if frame == setup.ship_frame_id:
+            if self._latest is None:
+                self._warn(topic, f'{name}: ignored: in {frame!r} axes before the ship has '
+                           f'a pose; send it in {setup.shared.frame_id!r}')
+                return
+            v = self._latest.rotation @ v
+        elif frame not in ('', setup.shared.frame_id):
+            self._warn(topic, f'{name}: ignored: header.frame_id {frame!r} is neither '
+                       f'{setup.shared.frame_id!r} nor {setup.ship_frame_id!r} (no tf lookup)')
+            return
+        if topic == topics.WIND:
+            values = {'wind_speed': float(math.hypot(v[0], v[1])),
+                      'wind_direction': float(math.atan2(-v[1], -v[0]))}  # comes FROM
+        else:
+            values = {'current': [float(c) for c in v]}
+        try:
+            for key, value in values.items():
+                arrangement.check_top_value(key, value)
+        except ParameterError as e:
+            self._warn(topic, f'{name}: ignored: {e}')
+            return
+        self.record(topic, msg)
+        self.driver.update(None, values)
+        for key, value in values.items():
+            self._show_parameter(key, value)
+        self._event('set', line=None, values=values)
+
+    def _on_stiffness(self) -> None:
+        """Publish ship/stiffness: the lines' and fenders' 6x6 stiffness where the ship is."""
+        published = self._latest
+        if published is None:
+            return
+        try:
+            matrix = stiffness_now(self.driver.mooring, published.ship_position,
+                                   published.ship_orientation)
+        except (ParameterError, StaticsError) as e:
+            self._warn(topics.STIFFNESS, f'{topics.STIFFNESS}: not published: {e}')
+            return
+        if not np.all(np.isfinite(matrix)):
+            return
+        data = stiffness_message(matrix)
+        self._stiffness_pub.publish(data)
+        self.record(topics.STIFFNESS, data)
 
     def _on_bollard(self, topic: str, name: str, stamp_ns: int, msg: PoseStamped) -> None:
         k = self.names.index(name)
@@ -544,6 +657,9 @@ class MooringNode(Node):
             self._on_time_since = now  # a late tick (or a clock jump): wait anew
         self._last_tick = now
         if not self.driver.started:
+            if self.driver.mooring.free and now:  # under use_sim_time: once /clock runs
+                self._start_free(now)
+                self._advance()
             return
         for stream in self.driver.streams:
             waited = now - max(self._arrived[stream], self._on_time_since)
@@ -642,6 +758,20 @@ class MooringNode(Node):
         while held and (not clock_ns or held[0].stamp_ns + lag - early <= clock_ns):
             self._publish(held.popleft())
 
+    def _ship_pose_source(self) -> str:
+        """Name where the ship's pose comes from: its topic, or a free ship's start pose."""
+        if self.driver.mooring.free:
+            return 'ship.start_position'
+        return self._pose_subs[SHIP].topic_name
+
+    def _set_stiffness_rate(self, rate: float) -> None:
+        """Publish ship/stiffness at this rate [Hz] (0: not at all)."""
+        if self._stiffness_timer is not None:
+            self.destroy_timer(self._stiffness_timer)
+            self._stiffness_timer = None
+        if rate > 0.0:
+            self._stiffness_timer = self.create_timer(1.0 / rate, self._on_stiffness)
+
     def _show_parameter(self, name: str, value: Any) -> None:
         """Make a read-only parameter read `value`: what the node uses (no set event)."""
         if self.has_parameter(name):
@@ -672,7 +802,7 @@ class MooringNode(Node):
                 self.get_logger().warning(
                     f'{name or "the line"} starts at {tension / 1e3:.0f} kN, past its working '
                     f'load limit of {rating.wll / 1e3:.0f} kN ({share:.1f} % of its MBL): is '
-                    f'{self._pose_subs[SHIP].topic_name} where the ship is?')
+                    f'{self._ship_pose_source()} where the ship is?')
 
     def _report(self, published: Published) -> None:
         """Log what the advance to an output did to the lines; keep it for the diagnostics."""
@@ -709,8 +839,7 @@ class MooringNode(Node):
     def _on_reset(self, request: Trigger.Request, response: Trigger.Response):
         if not self.driver.started:
             response.success = False
-            response.message = (f'no pose received on {self._pose_subs[SHIP].topic_name} yet: '
-                                'nothing to reset')
+            response.message = f'not started ({self._waiting_for()}): nothing to reset'
             return response
         self.driver.reset()
         self._event('reset', t=self.driver.time)
@@ -762,7 +891,7 @@ class MooringNode(Node):
             self.driver.arrangement.shared.frame_id, published.stamp_ns, self.names,
             out.positions, np.maximum(out.fairlead_tensions, out.bollard_tensions),
             self.ratings, out.parted, np.array([p[-1] for p in out.positions]),
-            np.array([p[0] for p in out.positions]))
+            np.array([p[0] for p in out.positions]), self._fenders(published))
         self._markers_pub.publish(msg)
 
     def _on_diagnostics(self) -> None:
@@ -772,7 +901,7 @@ class MooringNode(Node):
         if published is None:
             msg = DiagnosticArray(status=[DiagnosticStatus(
                 level=DiagnosticStatus.STALE, name=f'{prefix}: {name}', hardware_id=name,
-                message=f'waiting for the first pose on {self._pose_subs[SHIP].topic_name}',
+                message=self._waiting_for(),
                 values=[KeyValue(key='state', value='not started')]) for name in self.names])
             msg.header.stamp = conversions.ns_to_stamp(self.get_clock().now().nanoseconds)
         else:
@@ -783,7 +912,20 @@ class MooringNode(Node):
                 out.max_strains, self.ratings, out.parted, self._restarted, prefix)
             self._peaks = np.zeros(len(self.names))
             self._restarted = [None] * len(self.names)
+            fenders = self._fenders(published)
+            if fenders is not None:
+                msg.status += fenders.statuses(prefix)
         self._diagnostics_pub.publish(msg)
+
+    def _fenders(self, published: Published) -> Optional[Fenders]:
+        """Return the fenders' state at an output (None: there are none)."""
+        setup = self.driver.arrangement.fenders
+        if not setup:
+            return None
+        out = published.output
+        return Fenders([f.name for f in setup], [f.normal for f in setup],
+                       [f.rated_compression for f in setup], out.fender_points,
+                       out.fender_compressions, out.fender_forces)
 
     def _event(self, kind: str, stream: Optional[str] = None, line: Any = (), **fields: Any):
         """Publish and record a decision taken on the node clock (see the module docstring)."""
@@ -825,6 +967,17 @@ class MooringNode(Node):
                                publisher.qos_profile)
         recorder.add_topic(self.layout.events, self._events_pub.topic_name, topics.STRING,
                            self._events_pub.qos_profile)
+        if self.layout.ship_outputs:
+            recorder.add_topic(topics.STIFFNESS, self._stiffness_pub.topic_name,
+                               topics.FLOAT64_MULTI_ARRAY, self._stiffness_pub.qos_profile)
+        inputs = [(topic, sub, topics.VECTOR3_STAMPED)
+                  for topic, sub in self._environment_subs.items()]
+        if self._external_sub is not None:
+            inputs.append((topics.EXTERNAL_WRENCH, self._external_sub, topics.WRENCH_STAMPED))
+        for topic, subscription, type_name in inputs:
+            recorder.add_topic(topic, subscription.topic_name, type_name,
+                               offered_qos=functools.partial(self._offered_qos,
+                                                             subscription.topic_name))
         self.recorder = recorder
         self.get_logger().info(f'recording the poses, every output and the events to '
                                f'{os.path.abspath(recorder.path)}')

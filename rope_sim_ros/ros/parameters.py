@@ -31,14 +31,15 @@ import difflib
 import math
 from typing import Any, Dict, List, Optional, Tuple
 
-from rcl_interfaces.msg import (FloatingPointRange, IntegerRange, ParameterDescriptor,
-                                ParameterType)
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor, ParameterType
 from rclpy.parameter import Parameter
 
 from ..messages.topics import Layout, LINE_NODE
 from ..params import arrangement
 from ..params.arrangement import (ARRANGEMENT_SPECS, ArrangementParams, LINE_SPECS, LINES,
                                   LINES_DESCRIPTION, OWN_SPECS, SHARED, single_line)
+from ..params.ship import (FENDER_SPECS, FENDERS, FENDERS_DESCRIPTION, PASSING_SHIP, PASSING_SPECS,
+                           SHIP, SHIP_SPECS, WIND_SETTINGS)
 from ..params.table import allowed, check, LineParams, ParameterError, Spec, SPECS
 
 # Parameters rclpy itself declares or reads; not ours to warn about.
@@ -114,10 +115,11 @@ class NodeParameters:
         """Return the Spec of one of the node's parameter names (`head_1.length`: length's)."""
         if self.single:
             return SPECS.get(name)
+        specs = {**ARRANGEMENT_SPECS, **SPECS, **OWN_SPECS, **SHIP_SPECS, **PASSING_SPECS}
         line, dot, base = name.partition('.')
-        if dot:
-            return LINE_SPECS.get(base)
-        return ARRANGEMENT_SPECS.get(name) or SPECS.get(name) or OWN_SPECS.get(name)
+        if dot and line not in (SHIP, PASSING_SHIP):
+            return LINE_SPECS.get(base) if line in self.line_names else FENDER_SPECS.get(base)
+        return specs.get(name)
 
     # -- start ----------------------------------------------------------------------------
 
@@ -155,14 +157,19 @@ class NodeParameters:
 
     def _declare_arrangement(self, node, given: Dict[str, Any], warn) -> ArrangementParams:
         names = arrangement.check_line_names(given.get(LINES))
+        fenders = given.get(FENDERS) or []
+        fenders = fenders if isinstance(fenders, list) else []  # (from_values says why)
         ours = {}
         for name, value in given.items():
             line, dot, _ = name.partition('.')
-            if name == LINES or (dot and line in names) or name in ARRANGEMENT_SPECS or \
-                    name in SPECS or name in OWN_SPECS:
+            if name in (LINES, FENDERS) or (dot and line in (*names, *fenders, SHIP,
+                                                             PASSING_SHIP)) or \
+                    name in ARRANGEMENT_SPECS or name in SPECS or name in OWN_SPECS or \
+                    name in SHIP_SPECS:
                 ours[name] = value
             else:
-                known = [LINES, *SHARED, *ARRANGEMENT_SPECS, *LINE_SPECS]
+                known = [LINES, FENDERS, *SHARED, *ARRANGEMENT_SPECS, *LINE_SPECS, *SHIP_SPECS,
+                         *PASSING_SPECS]
                 warn(f'ignoring unknown parameter {name!r}{nearest(name, known)} (a line '
                      f'takes its settings under its name: {names[0]}.length)')
         setup = arrangement.from_values(ours)
@@ -182,6 +189,19 @@ class NodeParameters:
                                           + arrangement_text(descriptor.description))
                 descriptor.read_only = True
                 declared.append((name, arrangement.check_top_value(name, value), descriptor))
+        ship = {**setup.ship.values(), **setup.passing.values()}
+        declared += [(name, ship[name], describe(name, spec))
+                     for name, spec in [*SHIP_SPECS.items(), *PASSING_SPECS.items()]]
+        if setup.fenders:
+            declared.append((FENDERS, [fender.name for fender in setup.fenders],
+                             ParameterDescriptor(
+                                 name=FENDERS, type=ParameterType.PARAMETER_STRING_ARRAY,
+                                 description=FENDERS_DESCRIPTION, read_only=True)))
+        for fender in setup.fenders:
+            values = fender.values()
+            declared += [(f'{fender.name}.{name}', values[name],
+                          describe(f'{fender.name}.{name}', spec))
+                         for name, spec in FENDER_SPECS.items()]
         for line in setup.lines:
             values = {**line.params.as_dict(), 'pretension': line.pretension}
             for name, spec in LINE_SPECS.items():
@@ -220,7 +240,8 @@ class NodeParameters:
         """
         Return validated run-time changes by line (None: every line, a shared one).
 
-        The arrangement's own parameters (marker_rate) are validated and left out.
+        The arrangement's own parameters (marker_rate, stiffness_rate) are validated and left
+        out; wind_speed and wind_direction are every line's (None), as the Driver takes them.
 
         :raises ParameterError: a bad value, named as the node names it.
         """
@@ -235,8 +256,8 @@ class NodeParameters:
             if dot and line in self.line_names:
                 changes.setdefault(line, {})[base] = arrangement.check_line_value(
                     line, base, value)
-            elif p.name in SHARED:
+            elif p.name in SHARED or p.name in WIND_SETTINGS:
                 changes.setdefault(None, {})[p.name] = arrangement.check_top_value(p.name, value)
-            elif p.name in ARRANGEMENT_SPECS:
+            elif p.name in ARRANGEMENT_SPECS or p.name in SHIP_SPECS:
                 arrangement.check_top_value(p.name, value)
         return changes

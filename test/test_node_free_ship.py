@@ -1,0 +1,214 @@
+# Copyright 2026 rope_sim_ros contributors
+#
+# Licensed under the Apache License, Version 2.0 (the "License");
+# you may not use this file except in compliance with the License.
+# You may obtain a copy of the License at
+#
+#     http://www.apache.org/licenses/LICENSE-2.0
+#
+# Unless required by applicable law or agreed to in writing, software
+# distributed under the License is distributed on an "AS IS" BASIS,
+# WITHOUT WARRANTIES OR CONDITIONS OF ANY KIND, either express or implied.
+# See the License for the specific language governing permissions and
+# limitations under the License.
+
+"""
+The mooring node with a free ship: its parameters, topics, bag, stiffness and resim.
+
+The node runs in this process on sim time that the test sets tick by tick (no sleeping, no
+spinning): the berth of config/berth.yaml made free, a ship passing on its starboard side,
+a tug's push in surge from t = 2 s and a head wind from t = 3 s, each sent as the topic's
+message into its callback.
+"""
+
+from pathlib import Path
+
+from geometry_msgs.msg import Vector3Stamped, WrenchStamped
+from nav_msgs.msg import Odometry
+import numpy as np
+import pytest
+import rclpy
+from rclpy.parameter import Parameter
+from rclpy.serialization import deserialize_message
+from rclpy.signals import SignalHandlerOptions
+from rclpy.time import Time
+from rope_sim_ros.bag import read_messages
+from rope_sim_ros.bag.cdr import decode_pose_array, decode_pose_stamped, decode_wrench_stamped
+from rope_sim_ros.messages import topics
+from rope_sim_ros.model.frames import rotation_matrix
+from rope_sim_ros.model.ship.coefficients import ocimf_loads
+from rope_sim_ros.mooring.statics import ship_stiffness
+from rope_sim_ros.offline.resim import resim, stored_setup
+from rope_sim_ros.params.arrangement import flatten, read_arrangement_file
+from rope_sim_ros.params.ship import read_coefficients
+from rope_sim_ros.ros.mooring_display import Fenders
+from std_msgs.msg import Float64MultiArray
+
+BERTH = Path(__file__).resolve().parents[1] / 'config' / 'berth.yaml'
+RATE = 20.0  # [Hz] outputs
+EPOCH = 1_000_000_000  # [ns] the sim clock's first tick
+PUSH = 2.0e6  # [N] the tug's push along the ship's body x, from PUSH_AT [s]
+PUSH_AT, WIND_AT, END = 2.0, 3.0, 6.0
+WIND = 15.0  # [m/s] a head wind: the air goes to -x, the ship heads +x
+PASSING = {'passing_ship.speed': 4.0, 'passing_ship.separation': 70.0,
+           'passing_ship.start_x': -60.0}
+
+
+def overrides(bag: Path) -> list:
+    """Return config/berth.yaml's parameters, made free, as the node's overrides."""
+    values = flatten(read_arrangement_file(BERTH).values())
+    values.update({'ship_mode': 'free', 'record_path': str(bag), 'publish_rate': RATE,
+                   'stiffness_rate': 2.0, **PASSING})
+    return [Parameter('use_sim_time', value=True)] + [
+        Parameter(name, value=value) for name, value in values.items()]
+
+
+def at(node, t: float) -> None:
+    """Set the node's sim clock to t [s] after EPOCH and run one tick."""
+    node.get_clock().set_ros_time_override(Time(nanoseconds=EPOCH + round(t * 1e9)))
+    node._on_tick()
+
+
+@pytest.fixture(scope='module')
+def run(tmp_path_factory):
+    """Run the free berth for END s; return the node's findings and its bag."""
+    from rope_sim_ros.ros.node import MooringNode
+    bag = tmp_path_factory.mktemp('free') / 'bag'
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    node = MooringNode(context=context, namespace='/free_ship',
+                       parameter_overrides=overrides(bag))
+    found = {}
+    try:
+        found['parameters'] = {name: node.get_parameter(name).value for name in (
+            'ship_mode', 'fenders', 'fender_2.rated_compression', 'passing_ship.speed')}
+        found['read_only'] = node.describe_parameter('ship.mass').read_only
+        at(node, 0.0)
+        found['start_time'] = node.driver.mooring.time
+        node._on_stiffness()  # (its timer's callback)
+        for k in range(1, round(END * RATE) + 1):
+            t = k / RATE
+            if t == PUSH_AT:
+                push = WrenchStamped()
+                push.header.frame_id = 'base_link'  # body axes
+                push.wrench.force.x = PUSH
+                node._on_external_wrench(push)
+            if t == WIND_AT:
+                wind = Vector3Stamped()
+                wind.header.frame_id = 'world'
+                wind.vector.x = -WIND
+                node._on_environment(topics.WIND, wind)
+            at(node, t)
+        found['wind'] = (node.get_parameter('wind_speed').value,
+                         node.get_parameter('wind_direction').value)
+        out = node.driver.mooring.output()
+        found['output'] = out
+        node._on_stiffness()
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+    found['bag'] = bag
+    return found
+
+
+def messages(bag: Path, topic: str) -> list:
+    return [m.data for m in read_messages(bag, [f'/free_ship/{topic}'])]
+
+
+def test_the_node_declares_the_free_ships_parameters(run):
+    params = run['parameters']
+    assert params['ship_mode'] == 'free'
+    assert params['fenders'] == ['fender_1', 'fender_2', 'fender_3', 'fender_4']
+    assert params['fender_2.rated_compression'] == 1.2
+    assert params['passing_ship.speed'] == 4.0
+    assert run['read_only']
+
+
+def test_the_free_ship_starts_at_rest_at_its_start_pose_and_publishes_it(run):
+    poses = [decode_pose_stamped(data) for data in messages(run['bag'], topics.SHIP_POSE)]
+    assert len(poses) == round(END * RATE) + 1  # every output from t = 0
+    first = poses[0]
+    assert first[2] == 'world'
+    np.testing.assert_allclose(first[3], [0.0, -17.6, 0.0], atol=1e-9)
+    odometry = [deserialize_message(data, Odometry)
+                for data in messages(run['bag'], topics.SHIP_ODOMETRY)]
+    assert len(odometry) == len(poses)
+    assert odometry[0].child_frame_id == 'base_link'
+    # the published pose is the one the lines used: the last output's, the model's now
+    np.testing.assert_allclose(poses[-1][3], run['output'].ship.position, atol=1e-12)
+    last = odometry[-1].pose.pose.position
+    np.testing.assert_allclose([last.x, last.y, last.z], poses[-1][3], atol=1e-12)
+
+
+def test_a_push_on_external_wrench_moves_the_ship_ahead(run):
+    poses = [decode_pose_stamped(data)[3] for data in messages(run['bag'], topics.SHIP_POSE)]
+    before = poses[round(PUSH_AT * RATE)][0]
+    surge = poses[-1][0] - before
+    # 2 MN on 8.84e7 kg plus its added mass for 4 s: at most 0.18 m were the springs slack;
+    # the springs hold it back, but not all of it
+    assert 0.02 < surge < 0.18, surge
+    assert run['output'].ship.velocity[0] > 0.0
+
+
+def test_the_wind_topic_sets_the_wind_and_its_load_is_ocimfs(run):
+    speed, direction = run['wind']
+    assert speed == pytest.approx(WIND, rel=1e-12)
+    assert direction == pytest.approx(0.0, abs=1e-12)  # it comes FROM +x
+    out = run['output']
+    setup = read_arrangement_file(BERTH)
+    ship = setup.ship
+    # the air past the ship, in its body axes (the passing ship yawed it a little)
+    relative = (np.array([-WIND, 0.0, 0.0]) - out.ship.velocity) @ rotation_matrix(
+        out.ship.orientation)
+    expected = ocimf_loads(read_coefficients(ship, 'wind_coefficients'),
+                           setup.shared.air_density, relative[:2], ship.wind_area_front,
+                           ship.wind_area_side, ship.length)
+    np.testing.assert_allclose(out.ship_loads[0], expected, rtol=1e-9)
+    assert out.ship_loads[0][0] < -3e4  # a head wind pushes the ship astern
+
+
+def test_the_passing_ship_wrench_is_published_in_body_axes(run):
+    wrenches = [decode_wrench_stamped(data)
+                for data in messages(run['bag'], topics.PASSING_WRENCH)]
+    assert len(wrenches) == round(END * RATE) + 1
+    assert {w[2] for w in wrenches} == {'base_link'}
+    sway = np.array([w[3][1] for w in wrenches])
+    assert np.all(np.isfinite(sway)) and np.abs(sway).max() > 1e4
+    np.testing.assert_allclose(wrenches[-1][3][:2], run['output'].ship_loads[2][:2])
+
+
+def test_ship_stiffness_is_the_statics_stiffness_where_the_ship_is(run):
+    assert run['start_time'] == 0.0
+    sent = [deserialize_message(data, Float64MultiArray)
+            for data in messages(run['bag'], topics.STIFFNESS)]
+    assert len(sent) == 2
+    layout = sent[0].layout
+    dims = [(d.label, d.size, d.stride) for d in layout.dim]
+    assert dims == [('rows', 6, 36), ('cols', 6, 6)]
+    matrix = np.array(sent[0].data).reshape(6, 6)
+    # at the start pose: the stiffness `rope_sim stiffness` prints for the same file
+    expected = ship_stiffness(read_arrangement_file(BERTH))
+    np.testing.assert_allclose(matrix, expected, rtol=1e-9, atol=1e-6 * np.abs(expected).max())
+    end = np.array(sent[1].data).reshape(6, 6)
+    assert end[0, 0] > 0.0 and end[1, 1] > 0.0 and end[5, 5] > 0.0
+    assert not np.array_equal(end, matrix)  # where the ship is now, not where it started
+
+
+def test_resim_replays_the_free_ships_bag(run, tmp_path):
+    resim(run['bag'], tmp_path / 'again', stored_setup(run['bag']))
+    for topic in (topics.SHIP_POSE, 'spring_fwd/' + topics.PARTICLES):
+        node = messages(run['bag'], topic)
+        again = [m.data for m in read_messages(tmp_path / 'again', [f'/free_ship/{topic}'])]
+        assert len(again) == len(node)
+        decode = decode_pose_array if topic.endswith(topics.PARTICLES) else decode_pose_stamped
+        np.testing.assert_allclose(decode(again[-1])[3], decode(node[-1])[3], atol=1e-9)
+
+
+def test_a_fender_past_its_rated_compression_warns():
+    fenders = Fenders(['f1', 'f2'], [[0, -1, 0], [0, -1, 0]], [1.2, 1.2],
+                      [[0, -1.5, 0], [10, -1.5, 0]], [0.3, 1.3], [[0, -4e5, 0], [0, -2e6, 0]])
+    statuses = fenders.statuses('mooring')
+    assert [s.level for s in statuses] == [b'\x00', b'\x01']  # OK, WARN
+    assert statuses[1].name == 'mooring: f2'
+    assert 'past its rating' in statuses[1].message
+    assert dict((v.key, v.value) for v in statuses[0].values)['reaction [N]'] == '400000.0'
