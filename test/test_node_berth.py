@@ -219,7 +219,8 @@ def test_a_start_past_the_working_load_limit_says_so(colcon_install, colcon_env,
     rest = {'head_1': 44.803, 'head_2': 38.836, 'breast_fwd': 16.736, 'spring_fwd': 50.588,
             'spring_aft': 50.588, 'breast_aft': 16.736, 'stern_1': 46.741, 'stern_2': 40.768}
     text = ship_motion_drives_mooring(colcon_install, colcon_env, tmp_path,
-                                      berth_file(tmp_path / 'berth.yaml', rest))
+                                      berth_file(tmp_path / 'berth.yaml', rest),
+                                      '-p', 'mean_position:=[0.0, 0.0, 8.0]')
     warned = re.findall(r'\]: (\w+) starts at (\d+) kN, past its working load limit of (\d+) '
                         r'kN \(([\d.]+) % of its MBL\)', text)
     print('\n'.join(' '.join(w) for w in warned))

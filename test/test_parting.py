@@ -109,6 +109,14 @@ def test_a_line_pulled_past_its_break_load_parts_once_and_both_pieces_hang():
     # the pieces whip and swing from their ends (1 kN of line): the 200 kN are gone
     assert after[-1].fairlead_tension + after[-1].bollard_tension < 0.05 * 2.0e5
     assert math.isinf(sim.reach)
+    # restored where its ends still stand, 3 m past taut, it cannot hold its break load
+    # whole: it parts again at once, and pulls no more than its pieces do
+    sim.restore()
+    again = sim.output()
+    assert again.parted and again.fairlead_tension + again.bollard_tension < 0.05 * 2.0e5
+    # with the fairlead back where the line hangs, it is restored whole
+    sim.push_fairlead(3.1, np.array([38.0, 0.0, 8.0]))
+    sim.advance_to(3.1)
     sim.restore()
     whole = sim.output()
     assert not whole.parted and whole.line_length == L0 and sim.system.lines[0].parted is None
