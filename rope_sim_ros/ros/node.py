@@ -213,6 +213,7 @@ class MooringNode(Node):
         # the oldest output each pose let through
         self._held: Deque[Published] = deque()
         self._lags: Deque[Tuple[int, int]] = deque()
+        self._pose_stamps: Dict[Optional[str], int] = {}  # each stream's newest stamp [ns]
         self._unlogged: List[tuple] = []  # recorded before the node knew any time (record)
         self._last_log_ns = 0
         self._told_payload = False
@@ -458,7 +459,7 @@ class MooringNode(Node):
                     'the ship jumped more than teleport_distance: restarted at rest '
                     + ', '.join(self.names[k] for k in event['teleport']))
             self._parted_at_restart(event['teleport'])
-        self._advance(stamp_ns)
+        self._advance(stamp_ns, SHIP)
 
     def _started(self, lengths: Dict[int, float], why: str) -> None:
         """Say that the lines started, with the lengths chosen for their pretensions."""
@@ -588,7 +589,7 @@ class MooringNode(Node):
                 f'{"line" if name else "rope"} restarted on the catenary there')
             self._parted_at_restart([k])
         if self.driver.started:
-            self._advance(stamp_ns)
+            self._advance(stamp_ns, name)
 
     def _check_norm(self, topic: str, norm: float) -> None:
         if abs(norm - 1.0) > 1e-3:
@@ -678,7 +679,7 @@ class MooringNode(Node):
                            f'the clock from t = {self.driver.time:.3f} s')
         self._advance()
 
-    def _advance(self, pose_ns: int = 0) -> None:
+    def _advance(self, pose_ns: int = 0, stream: Optional[str] = None) -> None:
         """
         Advance the ropes towards the clock, publishing each output they reach (the Driver).
 
@@ -687,7 +688,7 @@ class MooringNode(Node):
         ticks' worth of them, so that a node catching up stays responsive; a node further
         behind than MAX_LAG skips ahead instead of catching up.
 
-        :param pose_ns: the stamp of the pose that called (0: a tick).
+        :param pose_ns: the stamp of the pose that called (0: a tick); stream: its stream.
         """
         driver = self.driver
         clock_ns = self.get_clock().now().nanoseconds
@@ -727,8 +728,14 @@ class MooringNode(Node):
             while self._held:
                 self._publish(self._held.popleft())
             grid = [p for p in report.outputs if p.advance is not None]  # (not a restart's)
-            if len(grid) > 1 and clock_ns:  # poses slower than the outputs
+            # poses slower than the outputs, not a burst of queued poses (a node that stalled
+            # at its start): the lag of such a burst held a stream's last outputs while a
+            # paused sim clock stood still
+            slower = pose_ns - self._pose_stamps.get(stream, pose_ns) > 1.5e9 / driver.rate
+            if len(grid) > 1 and clock_ns and slower:
                 self._lags.append((clock_ns, pose_ns - grid[0].stamp_ns))
+        if pose_ns:
+            self._pose_stamps[stream] = pose_ns
         for published in report.outputs:
             self._report(published)
             self._held.append(published)
