@@ -104,6 +104,21 @@ class Executable(NodeProcess):
         STARTED.append(self)
 
 
+def spin_until(executor, condition, timeout: float, what: str, node=None) -> None:
+    """
+    Spin an executor until condition() holds; fail after `timeout` [s] of the wall clock.
+
+    :param node: a NodeProcess: fail at once, with its log, if it exits meanwhile.
+    """
+    end = time.monotonic() + timeout
+    while not condition():
+        if node is not None and node.process.poll() is not None:
+            raise AssertionError(f'node exited:\n{node.text()}')
+        if time.monotonic() > end:
+            raise AssertionError(f'timed out after {timeout} s waiting for {what}')
+        executor.spin_once(timeout_sec=0.01)
+
+
 def bag_events(bag: Path) -> list:
     """Return the events a node recorded in its bag (decoded JSON), in log-time order."""
     import json
@@ -197,11 +212,7 @@ class SimClient:
 
     def wait_for(self, condition, timeout: float, what: str) -> None:
         """Spin until condition() holds; fail after `timeout` [s] of the wall clock."""
-        end = time.monotonic() + timeout
-        while not condition():
-            if time.monotonic() > end:
-                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
-            self.executor.spin_once(timeout_sec=0.01)
+        spin_until(self.executor, condition, timeout, what)
 
     def wait_for_node(self, node: NodeProcess, timeout: float = 60.0) -> None:
         """Wait until the node matches every topic both ways and serves its parameters."""

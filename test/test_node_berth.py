@@ -26,7 +26,7 @@ import re
 import time
 
 from geometry_msgs.msg import PoseStamped, WrenchStamped
-from node_harness import berth_file, Executable
+from node_harness import berth_file, Executable, spin_until
 import numpy as np
 import rclpy
 from rclpy.executors import SingleThreadedExecutor
@@ -71,13 +71,7 @@ class Client:
         rclpy.try_shutdown(context=self.context)
 
     def wait_for(self, condition, timeout: float, what: str, node=None) -> None:
-        end = time.monotonic() + timeout
-        while not condition():
-            if node is not None and node.process.poll() is not None:
-                raise AssertionError(f'node exited:\n{node.text()}')
-            if time.monotonic() > end:
-                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
-            self.executor.spin_once(timeout_sec=0.01)
+        spin_until(self.executor, condition, timeout, what, node)
 
     def wait_for_node(self, node) -> None:
         self.wait_for(lambda: self.parameters.services_are_ready()

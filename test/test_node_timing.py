@@ -30,7 +30,7 @@ import time
 
 from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
 from node_harness import (bag_events, berth_file, Executable, no_gc_pauses, NodeProcess,
-                          SimClient)
+                          SimClient, spin_until)
 import numpy as np
 import rclpy
 from rclpy.executors import SingleThreadedExecutor
@@ -96,13 +96,7 @@ class WallClient:
         rclpy.try_shutdown(context=self.context)
 
     def wait_for(self, condition, timeout: float, what: str, node=None) -> None:
-        end = time.monotonic() + timeout
-        while not condition():
-            if node is not None and node.process.poll() is not None:
-                raise AssertionError(f'node exited:\n{node.text()}')
-            if time.monotonic() > end:
-                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
-            self.executor.spin_once(timeout_sec=0.01)
+        spin_until(self.executor, condition, timeout, what, node)
 
     def pose(self, position) -> None:
         msg = PoseStamped()
