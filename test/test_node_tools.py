@@ -12,11 +12,9 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""ship_motion, line_monitor and the demo's passing ship: pure functions, then a live demo."""
+"""ship_motion, line_monitor and the scripted passing ship: pure functions."""
 
 import math
-import subprocess
-import sys
 
 from geometry_msgs.msg import PoseArray
 import numpy as np
@@ -91,29 +89,3 @@ def test_passing_ship_moves_the_ship_and_leaves_it_where_it_was():
     # smooth: no step in the velocity (the samples are 0.05 s apart)
     assert np.abs(np.diff(positions, 2, axis=0)).max() < 1e-4
     assert np.allclose([np.linalg.norm(q) for _, q in poses], 1.0)
-
-
-def test_demo_runs_the_berth_and_leaves_its_plots(colcon_install, colcon_env, tmp_path):
-    # the passing ship starts at t = 8 s: 14 s at 4x show the table, the bag and the plots
-    result = subprocess.run(
-        [sys.executable, '-m', 'rope_sim_ros.offline.demo', '--duration', '14', '--speed', '4',
-         '--install', str(colcon_install.parent), '--out', str(tmp_path)],
-        env=colcon_env, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=240)
-    output = result.stdout + result.stderr
-    assert result.returncode == 0, output
-    assert 'Traceback' not in output, output
-    rows = [line.split() for line in result.stdout.splitlines()
-            if line.strip()[:1].isdigit()]
-    assert len(rows) >= 12, output
-    names = set(row[1] for row in rows)
-    assert names <= {'head_1', 'head_2', 'breast_fwd', 'spring_fwd', 'spring_aft',
-                     'breast_aft', 'stern_1', 'stern_2'}, names
-    utilisation = [float(row[3]) for row in rows]
-    # at rest every line holds its pretension, 10 % of its MBL; the passer loads a spring
-    assert utilisation[0] == pytest.approx(10.0, abs=0.3), output
-    assert max(utilisation) > 11.0 and rows[-1][1] == 'spring_fwd', output
-    assert 'stopped mooring, berth_demo' in result.stdout
-    run = next(tmp_path.glob('demo_*'))
-    assert (run / 'bag' / 'metadata.yaml').is_file()
-    for name in ('tensions.png', 'plan.png'):
-        assert (run / name).stat().st_size > 20_000, name

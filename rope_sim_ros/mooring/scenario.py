@@ -13,15 +13,18 @@
 # limitations under the License.
 
 """
-The scripted event of the berth demo: a ship passing close by the moored one.
+A driven ship's scripted track: config/berth.yaml's ship moved as a ship passing it might.
 
-A passing ship first pushes the moored ship ahead, then, once abeam, sucks it off the quay,
-then pulls it astern as it leaves (the pressure field of its hull moving along). Scripted
-as the moored ship's motion (no ship dynamics here): over DURATION s from START, a surge of
-one period ahead then astern of up to SURGE, a sway off the quay of up to SWAY and a yaw of
-up to YAW, all fading in and out with the passer's approach and departure. At rest the ship
-lies at REST heading along the quay (config/berth.yaml). With the berth's lines this loads
-the springs to about 47 % of their MBL, near their working load limit (50 %).
+A pose track for a driven ship (ship_mode: driven) that loads the berth's lines, for the
+driven runs of the study example (examples/study/passing_motions.py) and of the tests: a
+ship passing close by first pushes the moored ship ahead, then, once abeam, sucks it off the
+quay, then pulls it astern as it leaves. Scripted as the moored ship's motion (no ship
+dynamics here): over DURATION s from START, a surge of one period ahead then astern of up to
+SURGE, a sway off the quay of up to SWAY and a yaw of up to YAW, all fading in and out with
+the passer's approach and departure. At rest the ship lies at REST heading along the quay
+(config/berth.yaml). With the berth's lines this loads the springs to about 47 % of their
+MBL, near their working load limit (50 %). A free ship moved by a passing ship's loads
+(passing_ship.*) is the berth demo's (config/berth_demo.yaml).
 """
 
 import math

@@ -13,43 +13,47 @@
 # limitations under the License.
 
 """
-`make demo`: a ship at its berth on eight lines, loaded by a passing ship; recorded, plotted.
+`make demo`: a free ship at its berth on eight lines, a ship passing it; recorded, plotted.
 
 Starts, in their own ROS domain (unless ROS_DOMAIN_ID is set), the colcon-installed mooring
-node with config/berth.yaml (a 225 m bulk carrier on eight lines at 10 % of their MBL,
-use_sim_time, recording to a new bag out/demo_<time>/bag) and the berth demo
-(ros/berth_demo_node.py: the ship's pose and /clock, sim time running at --speed times the
-wall clock, a passing ship's surge and sway loading the springs near their working load
-limit, and the live table: one row a simulated second). The berth demo ends by itself
-after --duration simulated seconds; then the mooring node is stopped with SIGINT, by its
-process id, `rope_sim info` describes the bag, and the plots out/demo_<time>/tensions.png
-(every line's tension against its WLL and MBL, linear scales) and plan.png (the berth from
-above at the most loaded moment) are drawn (arrangement_plot.py).
+node with config/berth.yaml (a 225 m bulk carrier on eight lines at 10 % of their MBL, four
+fenders) and, on top, config/berth_demo.yaml (the event: the ship free, ship_mode: free; a
+200 m ship passing 70 m off at 4.5 m/s from 450 m astern), use_sim_time, recording to a new
+bag out/demo_<time>/bag; and the berth demo (ros/berth_demo_node.py: /clock, sim time
+running at --speed times the wall clock, and the live table, one row a simulated second:
+where the passing ship is, how far the ship moved, the passing ship's force on it and the
+most loaded line). The berth demo ends by itself after --duration simulated seconds (by
+default twice the time the passing ship takes to come abeam: it passes in the middle); then
+the mooring node is stopped with SIGINT, by its process id, `rope_sim info` describes the
+bag, and the plots are drawn (plot.py): out/demo_<time>/event.png, the passing ship's force,
+the ship's motion and every line's tension (% of its MBL, against the WLL) on one time axis,
+and plan.png, the berth from above at the most loaded moment.
 
-    python -m rope_sim_ros.offline.demo [--speed 2] [--install install] [--params FILE] [--out out]
+    python -m rope_sim_ros.offline.demo [--speed 2] [--duration S] [--install install]
+        [--params config/berth.yaml] [--scenario config/berth_demo.yaml] [--out out]
 """
 
 import argparse
 import errno
+import math
 import os
 from pathlib import Path
 import signal
 import subprocess
 import sys
 import time
+from typing import Optional
 
-from ..mooring.scenario import END, START
-from ..params.arrangement import read_arrangement_file
+from .plot import abeam_time
+from ..params.arrangement import ArrangementParams, flatten, NODE_NAME, read_setup
+from ..params.files import read_params_file
 from ..params.table import ParameterError
 
 REPO = Path(__file__).resolve().parents[2]
 PACKAGE = 'rope_sim_ros'
 STOP_TIMEOUT = 10.0
 MAX_SAFE_DOMAIN_ID = 101  # DDS ports of higher ids can collide with ephemeral ports
-PUBLISH_RATE = 20.0  # [Hz] outputs: plenty for the plots, a small bag
-DURATION = END + 8.0  # [s] simulated: the passing ship and the calm after it
-STORY = (f'A ship passing close by pushes the moored ship ahead, draws it off the quay and '
-         f'pulls it astern (t = {START:g}-{END:g} s); the springs hold it')
+QUIET_DURATION = 60.0  # [s] simulated, without a passing ship coming abeam
 
 
 def overlay_environment(prefix: Path) -> dict:
@@ -86,24 +90,76 @@ def stop(children: dict) -> dict:
     return codes
 
 
+def demo_setup(params: Path, scenario: Optional[Path]) -> ArrangementParams:
+    """
+    Read the mooring node's parameters as it reads its two files: the scenario on top.
+
+    :raises ParameterError: an unreadable file or a bad value; a ship that is not free.
+    """
+    if read_setup(params).single:
+        raise ParameterError(f'{params} holds no mooring node parameters (mooring: '
+                             'ros__parameters: lines: ...)')
+    overrides = {} if scenario is None else flatten(read_params_file(scenario, NODE_NAME))
+    setup = read_setup(params, overrides)
+    if not setup.ship.free:
+        raise ParameterError(f"ship_mode is '{setup.ship.mode}': the demo's ship moves by "
+                             'itself: set ship_mode: free')
+    return setup
+
+
+def default_duration(setup: ArrangementParams) -> float:
+    """Return the simulated seconds of the demo: the passing ship abeam in the middle."""
+    when = abeam_time(setup.passing)
+    return QUIET_DURATION if when is None else max(2.0 * when, 10.0)
+
+
+def story(setup: ArrangementParams) -> str:
+    """Return what the run is, a sentence for the top of event.png."""
+    passing = setup.passing
+    if not passing.present:
+        return 'The free ship at its berth, no ship passing'
+    when = abeam_time(passing)
+    side = 'starboard' if passing.separation > 0.0 else 'port'
+    return (f'A {passing.length:g} m ship passes {abs(passing.separation):g} m off the '
+            f'{side} side at {passing.speed:g} m/s ({passing.speed * 3600 / 1852:.1f} kn)'
+            + ('' if when is None else f', abeam at t = {when:.0f} s')
+            + ': it moves the free ship, the lines hold it')
+
+
 def main(argv=None) -> int:
     """Run the demo; return the exit code (0 when every step went through)."""
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--speed', type=float, default=2.0,
                         help='simulated seconds per wall second (default 2)')
-    parser.add_argument('--duration', type=float, default=DURATION,
-                        help=f'simulated seconds (default {DURATION:g})')
+    parser.add_argument('--duration', type=float, default=None,
+                        help='simulated seconds (default: twice the time the passing ship '
+                        'takes to come abeam)')
     parser.add_argument('--install', type=Path, default=REPO / 'install',
-                        help='colcon install base (default: <repo>/install)')
-    parser.add_argument('--params', type=Path, default=REPO / 'config' / 'berth.yaml',
-                        help='parameter file of the mooring node (default config/berth.yaml)')
-    parser.add_argument('--out', type=Path, default=REPO / 'out',
+                        help='colcon install base (default: install/ in the checkout)')
+    parser.add_argument('--params', type=Path, default=None,
+                        help='parameter file of the mooring node (default config/berth.yaml: '
+                        "the checkout's, else the installed package's)")
+    parser.add_argument('--scenario', type=Path, default=None,
+                        help='parameters on top of --params: the free ship and the passing '
+                        'ship (default config/berth_demo.yaml, found as --params)')
+    parser.add_argument('--out', type=Path, default=None,
                         help='where the run directory demo_<time>/ (bag and plots) is made '
-                        '(default: <repo>/out)')
+                        '(default: out/ in the checkout, else in the working directory)')
     args = parser.parse_args(argv)
 
+    for name in ('speed', 'duration'):
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and value > 0.0):
+            print(f'demo: --{name} {value!r} is not allowed: must be a number > 0',
+                  file=sys.stderr)
+            return 2
     prefix = args.install.resolve() / PACKAGE
     executables = prefix / 'lib' / PACKAGE
+    checkout = (REPO / 'config' / 'berth_demo.yaml').is_file()
+    config = REPO / 'config' if checkout else prefix / 'share' / PACKAGE / 'config'
+    args.params = args.params or config / 'berth.yaml'
+    args.scenario = args.scenario or config / 'berth_demo.yaml'
+    args.out = args.out or (REPO / 'out' if checkout else Path('out'))
     missing = [name for name in ('mooring', 'rope_sim')
                if not (executables / name).is_file()]
     if missing:
@@ -111,10 +167,11 @@ def main(argv=None) -> int:
               file=sys.stderr)
         return 2
     try:
-        setup = read_arrangement_file(args.params)
+        setup = demo_setup(args.params, args.scenario)
     except ParameterError as e:
         print(f'demo: {e}', file=sys.stderr)
         return 2
+    duration = args.duration or default_duration(setup)
     try:
         run_dir = new_run_directory(args.out)
     except OSError as e:
@@ -125,19 +182,20 @@ def main(argv=None) -> int:
 
     env = overlay_environment(prefix)
     print(f'demo: ROS_DOMAIN_ID={env["ROS_DOMAIN_ID"]}, {len(setup.lines)} lines from '
-          f'{args.params}, {args.duration:g} s simulated at {args.speed:g}x, recording to '
-          f'{bag}; Ctrl-C stops early', flush=True)
+          f'{args.params} with {args.scenario}; {duration:g} s simulated at {args.speed:g}x, '
+          f'recording to {bag}; Ctrl-C stops early\ndemo: {story(setup)}', flush=True)
     children = {}
     ok = False
     try:
         children['mooring'] = subprocess.Popen(
             [str(executables / 'mooring'), '--ros-args', '--params-file', str(args.params),
-             '-p', f'record_path:={bag}', '-p', 'use_sim_time:=true',
-             '-p', f'publish_rate:={PUBLISH_RATE}'],
+             '--params-file', str(args.scenario), '-p', f'record_path:={bag}',
+             '-p', 'use_sim_time:=true'],
             env=env, stdin=subprocess.DEVNULL)
         children['berth_demo'] = subprocess.Popen(
             [sys.executable, '-m', f'{PACKAGE}.ros.berth_demo_node', '--params',
-             str(args.params), '--speed', str(args.speed), '--duration', str(args.duration)],
+             str(args.params), '--params', str(args.scenario), '--speed', str(args.speed),
+             '--duration', str(duration)],
             env=env, stdin=subprocess.DEVNULL)
         ok = children['berth_demo'].wait() == 0
     except KeyboardInterrupt:
@@ -148,7 +206,7 @@ def main(argv=None) -> int:
     if bad:
         print(f'demo: exit codes {bad}', file=sys.stderr)
     print(f'demo: stopped {", ".join(codes)}', flush=True)
-    shown = show_bag(executables / 'rope_sim', env, bag, run_dir)
+    shown = show_bag(executables / 'rope_sim', env, bag, run_dir, story(setup))
     return 0 if ok and not bad and shown else 1
 
 
@@ -172,13 +230,14 @@ def new_run_directory(base: Path) -> Path:
     raise FileExistsError(errno.EEXIST, 'too many runs this second', str(base / stem))
 
 
-def show_bag(rope_sim: Path, env: dict, bag: Path, run_dir: Path) -> bool:
+def show_bag(rope_sim: Path, env: dict, bag: Path, run_dir: Path, told: str = '') -> bool:
     """
     Describe the recorded bag with `rope_sim info`, draw its plots, say where things are.
 
     A bag left incomplete (mooring had to be killed) is completed with `rope_sim recover`
     first.
 
+    :param told: the story of the run, for the top of event.png.
     :returns: True if the bag was there, described and plotted.
     """
     if not (bag / 'metadata.yaml').is_file():
@@ -190,10 +249,10 @@ def show_bag(rope_sim: Path, env: dict, bag: Path, run_dir: Path) -> bool:
             return False
     print(f'demo: rope_sim info {bag}', flush=True)
     ok = subprocess.run([str(rope_sim), 'info', str(bag)], env=env).returncode == 0
-    from .plot import plot_record
+    from .plot import plot_event
     from ..bag import BagError
     try:
-        plots = plot_record(bag, run_dir, STORY)
+        plots = plot_event(bag, run_dir, told)
     except (BagError, OSError) as e:
         print(f'demo: no plots: {e}', file=sys.stderr)
         return False

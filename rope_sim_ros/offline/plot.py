@@ -26,14 +26,19 @@ WLL and its MBL (one panel each, its peak marked with its utilisation), and the 
 of the lines on the ship (ship/mooring_wrench, body frame); plan.png, the berth from above
 at the moment of the highest utilisation: the quay, the ship (outlined from its fairleads),
 every line coloured by its band (mooring/status.py: green below the WLL, amber past it, red
-past 90 % of the MBL) and labelled with its utilisation then and its peak, at rest in grey.
+past 90 % of the MBL) and labelled with its utilisation then and its peak, at rest in grey,
+and a passing ship (passing_ship.*) where it is then. event.png (plot_event, the berth
+demo's) is a passing ship's event on one time axis: its force on the moored ship
+(ship/passing_ship_wrench), the ship's motion from its first pose (surge, sway, yaw) and
+every line's tension in % of its MBL against the WLL, with the passing ship's stagger on top.
 Times are the outputs' stamps (publish times), from the first output; the arrangement is
 the one the bag stores. No ROS.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import math
 import os
+import textwrap
 from typing import Dict, List, Optional, Tuple
 
 import numpy as np
@@ -44,14 +49,15 @@ from ..bag import bag_info, BagError, BagInfo, read_messages
 from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_wrench,
                        decode_wrench_stamped)
 from ..messages.topics import (BOLLARD_TENSION, FAIRLEAD_TENSION, MOORING_WRENCH, PARTICLES,
-                               SHIP_POSE)
+                               PASSING_WRENCH, SHIP_POSE)
 from ..mooring.status import COLOURS, NEAR_BREAK_FRACTION, Rating
 from ..params.arrangement import ArrangementParams, single_line
+from ..params.ship import PassingShipParams
 from ..params.table import LineParams
 
 WRENCH = f'/{MOORING_WRENCH}'
+PASSING = f'/{PASSING_WRENCH}'
 ENDS = ('fairlead', 'bollard')
-_TENSION_TOPICS = {'fairlead': FAIRLEAD_TENSION, 'bollard': BOLLARD_TENSION}
 _TENSION_TOPICS = {'fairlead': FAIRLEAD_TENSION, 'bollard': BOLLARD_TENSION}
 
 
@@ -253,6 +259,8 @@ class ArrangementRecord:
     :ivar wrench_times: [s], (m,); force, moment: the total on the ship, body frame (m, 3).
     :ivar ship_times: [s], (p,); ship_position (p, 3) [m]; ship_yaw (p,) [rad].
     :ivar start_ns: the first output's stamp [ns].
+    :ivar passing_times: [s], (q,); passing_force (q, 3) [N], passing_moment (q, 3) [N m]:
+        a passing ship's load on the ship (body axes, about its origin); empty without one.
     """
 
     setup: ArrangementParams
@@ -266,6 +274,9 @@ class ArrangementRecord:
     ship_position: np.ndarray
     ship_yaw: np.ndarray
     start_ns: int
+    passing_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    passing_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    passing_moment: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
 
     def peak(self, k: int) -> Tuple[float, float]:
         """Return line k's largest tension [N] and its time [s]."""
@@ -285,15 +296,16 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
                        'by the mooring node)')
     series: Dict[str, List[Tuple[int, float]]] = {line: [] for line in setup.names}
     topics = {f'/{line}/{FAIRLEAD_TENSION}': line for line in setup.names}
-    wrench, ship = [], []
-    for message in read_messages(path, [*topics, WRENCH, f'/{SHIP_POSE}']):
+    wrench, ship, passing = [], [], []
+    for message in read_messages(path, [*topics, WRENCH, PASSING, f'/{SHIP_POSE}']):
         if message.topic in topics:
             force, _ = decode_wrench(message.data)
             series[topics[message.topic]].append(
                 (message.publish_time_ns, float(np.linalg.norm(force))))
-        elif message.topic == WRENCH:
+        elif message.topic in (WRENCH, PASSING):
             sec, nanosec, _, force, moment = decode_wrench_stamped(message.data)
-            wrench.append((sec * 1_000_000_000 + nanosec, force, moment))
+            (wrench if message.topic == WRENCH else passing).append(
+                (sec * 1_000_000_000 + nanosec, force, moment))
         else:
             sec, nanosec, _, position, q = decode_pose_stamped(message.data)
             yaw = math.atan2(2.0 * (q[3] * q[2] + q[0] * q[1]),
@@ -314,7 +326,9 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
         seconds([w[0] for w in wrench]), np.array([w[1] for w in wrench]).reshape(-1, 3),
         np.array([w[2] for w in wrench]).reshape(-1, 3),
         seconds([s[0] for s in ship]), np.array([s[1] for s in ship]).reshape(-1, 3),
-        np.array([s[2] for s in ship]), start)
+        np.array([s[2] for s in ship]), start,
+        seconds([p[0] for p in passing]), np.array([p[1] for p in passing]).reshape(-1, 3),
+        np.array([p[2] for p in passing]).reshape(-1, 3))
 
 
 def _shapes_at(path, record: ArrangementRecord, t: float) -> List[np.ndarray]:
@@ -364,6 +378,179 @@ def plot_record(path, out_dir, story: str = '', tensions: str = 'tensions.png',
     draw_tensions(record, tensions, story)
     draw_plan(path, record, plan)
     return [tensions, plan]
+
+
+def plot_event(path, out_dir, story: str = '', event: str = 'event.png',
+               plan: str = 'plan.png', setup: Optional[ArrangementParams] = None) -> List[str]:
+    """
+    Draw event.png (draw_event) and plan.png of an arrangement's bag into out_dir.
+
+    :param story: what the run was, a sentence for the top of event.png ('' = none).
+    :param event, plan: the images' file names.
+    :param setup: the arrangement (default: the one the bag stores).
+    :returns: the two image paths.
+    :raises BagError: see read_record. OSError: an image cannot be written.
+    """
+    record = read_record(path, setup)
+    os.makedirs(os.fspath(out_dir), exist_ok=True)
+    event = os.path.join(os.fspath(out_dir), event)
+    plan = os.path.join(os.fspath(out_dir), plan)
+    draw_event(record, event, story)
+    draw_plan(path, record, plan)
+    return [event, plan]
+
+
+def stagger(passing: PassingShipParams, t) -> np.ndarray:
+    """
+    Return a passing ship's stagger [m] at times t [s] (0 = the mooring's start).
+
+    Its midship's place along the moored ship's start heading from the moored ship's start
+    position, + ahead: its track as the loads take it (model/ship/loads.py).
+    """
+    return passing.start_x + passing.direction * passing.speed * np.asarray(t, dtype=float)
+
+
+def abeam_time(passing: PassingShipParams) -> Optional[float]:
+    """Return when a passing ship's midship is abeam of the moored ship's start [s], or None."""
+    if not passing.present or passing.start_x * passing.direction > 0.0:
+        return None  # no passing ship, or one moving away
+    return -passing.start_x * passing.direction / passing.speed
+
+
+def ship_offsets(record: ArrangementRecord) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Return the ship's surge and sway [m] and yaw [deg] from its first recorded pose.
+
+    Surge and sway in that pose's body axes (x forward, y to port), each (p,).
+    """
+    if not len(record.ship_times):
+        empty = np.zeros(0)
+        return empty, empty, empty
+    moved = record.ship_position[:, :2] - record.ship_position[0, :2]
+    c, s = math.cos(record.ship_yaw[0]), math.sin(record.ship_yaw[0])
+    yaw = np.unwrap(record.ship_yaw)
+    return (c * moved[:, 0] + s * moved[:, 1], -s * moved[:, 0] + c * moved[:, 1],
+            np.degrees(yaw - yaw[0]))
+
+
+def line_kinds(record: ArrangementRecord) -> List[str]:
+    """
+    Return each line's kind from its lead at the first pose: 'breast', 'spring' or 'end'.
+
+    A breast line leads more across the ship than along it; a spring leads along it towards
+    midships (its bollard nearer amidships than its fairlead); head and stern lines ('end')
+    lead along it away from midships.
+    """
+    ship = record.setup.ship
+    position, yaw = ship.start_position, ship.start_yaw
+    if len(record.ship_times):
+        position, yaw = record.ship_position[0], record.ship_yaw[0]
+    c, s = math.cos(yaw), math.sin(yaw)
+    kinds = []
+    for line in record.setup.lines:
+        offset = line.params.fairlead_offset
+        fairlead = (position[0] + c * offset[0] - s * offset[1],
+                    position[1] + s * offset[0] + c * offset[1])
+        lead = np.subtract(line.params.bollard_position[:2], fairlead)
+        along, across = c * lead[0] + s * lead[1], -s * lead[0] + c * lead[1]
+        if abs(across) > abs(along):
+            kinds.append('breast')
+        else:
+            kinds.append('spring' if along * offset[0] < 0.0 else 'end')
+    return kinds
+
+
+def _zero_in_the_middle(*axes) -> None:
+    """Give each axis limits symmetric about 0: a twin axis's 0 then lies on its parent's."""
+    for axis in axes:
+        reach = max(abs(limit) for limit in axis.get_ylim()) or 1.0
+        axis.set_ylim(-reach, reach)
+
+
+def draw_event(record: ArrangementRecord, out_path, story: str = '') -> None:
+    """Draw a passing ship's force, the ship's motion and the lines' tensions (module)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(12, 11), dpi=100, layout='constrained')
+    FigureCanvasAgg(figure)
+    figure.suptitle('\n'.join(textwrap.fill(part, 130) for part in (story, summary(record))
+                              if part), fontsize='medium', fontweight='bold')
+    force, motion, tension = figure.subplots(3, 1, sharex=True,
+                                             gridspec_kw=dict(height_ratios=[1.0, 1.0, 1.5]))
+    passing = record.setup.passing
+    if len(record.passing_times):
+        force.plot(record.passing_times, record.passing_force[:, 0] / 1e3, color='tab:blue',
+                   label='surge force Fx (+ ahead)')
+        force.plot(record.passing_times, record.passing_force[:, 1] / 1e3, color='tab:purple',
+                   label='sway force Fy (+ to port)')
+        moment = force.twinx()
+        moment.plot(record.passing_times, record.passing_moment[:, 2] / 1e6, color='0.45',
+                    linestyle=':', label='yaw moment Mz (+ bow to port)')
+        moment.set_ylabel('yaw moment [MN m]')
+        _zero_in_the_middle(force, moment)
+        force.legend(handles=force.get_lines() + moment.get_lines(), loc='upper left',
+                     fontsize='small')
+    else:
+        force.text(0.5, 0.5, 'no passing ship recorded (ship/passing_ship_wrench)',
+                   transform=force.transAxes, ha='center', color='0.4')
+    force.axhline(0.0, color='0.6', linewidth=0.8)
+    force.set_ylabel('force [kN]')
+    force.set_title("The passing ship's load on the moored ship (ship/passing_ship_wrench, "
+                    'body axes)')
+    if passing.present:
+        v = passing.direction * passing.speed
+        top = force.secondary_xaxis('top', functions=(lambda t: stagger(passing, t),
+                                                      lambda x: (x - passing.start_x) / v))
+        top.set_xlabel(f'passing ship ({passing.length:g} m at {passing.speed:g} m/s, '
+                       f'{passing.separation:g} m off): its midship ahead of the moored '
+                       "ship's [m]")
+
+    surge, sway, yaw = ship_offsets(record)
+    if len(surge):
+        motion.plot(record.ship_times, surge, color='tab:blue', label='surge (+ ahead) [m]')
+        motion.plot(record.ship_times, sway, color='tab:purple',
+                    label='sway (+ to port) [m]')
+        turn = motion.twinx()
+        turn.plot(record.ship_times, yaw, color='0.45', linestyle=':',
+                  label='yaw (+ bow to port) [deg]')
+        turn.set_ylabel('yaw [deg]')
+        _zero_in_the_middle(motion, turn)
+        motion.legend(handles=motion.get_lines() + turn.get_lines(), loc='upper left',
+                      fontsize='small')
+    motion.axhline(0.0, color='0.6', linewidth=0.8)
+    motion.set_ylabel('moved [m]')
+    motion.set_title("The ship's motion from where it lay (ship/pose, in its axes then)")
+
+    kinds = line_kinds(record)
+    styles = {'spring': dict(linewidth=2.2), 'breast': dict(linewidth=1.2, linestyle='--'),
+              'end': dict(linewidth=0.9)}
+    mbl = np.array([rating.mbl for rating in record.ratings])
+    share = 100.0 * record.tensions / mbl
+    for k, name in enumerate(record.setup.names):
+        tension.plot(record.times, share[:, k], label=f'{name} ({kinds[k]})', **styles[kinds[k]])
+    limits = sorted({round(100.0 * r.wll / r.mbl, 1) for r in record.ratings
+                     if math.isfinite(r.mbl) and r.mbl > 0.0})
+    for limit in limits:
+        tension.axhline(limit, color='tab:red', linestyle='--', linewidth=1.2)
+        tension.annotate(f'WLL ({limit:g} % of MBL)', (1.0, limit), xycoords=('axes fraction',
+                         'data'), textcoords='offset points', xytext=(-4, 3), ha='right',
+                         color='tab:red', fontsize='small')
+    tension.set_ylim(0.0, max([1.15 * float(np.nanmax(share))] + [1.15 * x for x in limits]))
+    tension.set_ylabel('tension [% of MBL]')
+    tension.set_xlabel('time [s]')
+    tension.set_title("Every line's fairlead tension (springs thick, breast lines dashed, head "
+                      'and stern lines thin)')
+    tension.legend(loc='upper left', fontsize='small', ncol=4)
+    when = abeam_time(passing)
+    for axis in (force, motion, tension):
+        axis.grid(True, alpha=0.3)
+        if when is not None and when <= record.times[-1]:
+            axis.axvline(when, color='0.3', linestyle='-.', linewidth=1.0)
+    if when is not None and when <= record.times[-1]:
+        force.annotate('abeam', (when, 1.0), xycoords=('data', 'axes fraction'),
+                       textcoords='offset points', xytext=(3, -12), fontsize='small')
+    figure.savefig(os.fspath(out_path))
 
 
 def summary(record: ArrangementRecord) -> str:
@@ -461,6 +648,11 @@ def draw_plan(path, record: ArrangementRecord, out_path) -> None:
                           f'{moved[0]:+.2f} m along, {moved[1]:+.2f} m across'))]
     points = np.concatenate([p[:, :2] for p in shapes + rest] + [o for o, _ in outlines])
     left, right = points[:, 0].min() - 20.0, points[:, 0].max() + 20.0
+    passer = _passing_outline(record, t)
+    if passer is not None:
+        outline, track, _ = passer
+        near = outline[(outline[:, 0] >= left) & (outline[:, 0] <= right)]
+        points = np.concatenate([points, track, near])
     bottom, top = points[:, 1].min() - 22.0, max(points[:, 1].max() + 10.0, 15.0)
     width = 14.0
     figure = Figure(figsize=(width, min(max(width * (top - bottom) / (right - left), 4.0),
@@ -472,6 +664,8 @@ def draw_plan(path, record: ArrangementRecord, out_path) -> None:
     axis.text(left + 3.0, top - 5.0, 'quay', fontsize='large', color='0.3')
     for outline, style in outlines:
         axis.plot(outline[:, 0], outline[:, 1], linewidth=1.5, **style)
+    if passer is not None:
+        _draw_passing(axis, record, passer, left, right)
     for k, name in enumerate(names):
         rating = record.ratings[k]
         tension = record.tensions[i, k]
@@ -505,6 +699,52 @@ def draw_plan(path, record: ArrangementRecord, out_path) -> None:
                    '(utilisation = tension / MBL)')
     axis.grid(True, alpha=0.3)
     figure.savefig(os.fspath(out_path), bbox_inches='tight')  # the equal axes leave margins
+
+
+def _passing_outline(record: ArrangementRecord, t: float):
+    """
+    Return a passing ship's outline at time t, its track (2 points) and stagger, or None.
+
+    Its track runs along the moored ship's start heading, separation off its start position
+    (model/ship/loads.py); frame_id x, y rows.
+    """
+    passing, ship = record.setup.passing, record.setup.ship
+    if not passing.present:
+        return None
+    half, beam = 0.5 * passing.length, 0.5 * passing.beam
+    shoulder = half - 0.15 * passing.length
+    outline = np.array([[-half, -beam], [shoulder, -beam], [half, 0.0], [shoulder, beam],
+                        [-half, beam], [-half, -beam]])
+    outline[:, 0] *= passing.direction  # its bow where it goes
+    ahead = float(stagger(passing, t))
+    yaw = ship.start_yaw
+    start = np.asarray(ship.start_position[:2], dtype=float)
+    across = np.array([math.sin(yaw), -math.cos(yaw)]) * passing.separation  # to starboard
+    along = np.array([math.cos(yaw), math.sin(yaw)])
+    midship = start + across + ahead * along
+    track = np.array([start + across - 1.0e4 * along, start + across + 1.0e4 * along])
+    return _placed(outline, midship, yaw), track, ahead
+
+
+def _draw_passing(axis, record: ArrangementRecord, passer, left: float, right: float) -> None:
+    """Draw the passing ship's track and the ship (or where it is, when off the plan)."""
+    outline, track, ahead = passer
+    passing = record.setup.passing
+    axis.plot(track[:, 0], track[:, 1], color='tab:cyan', linestyle='--', linewidth=0.8)
+    inside = (outline[:, 0] >= left) & (outline[:, 0] <= right)
+    label = (f'passing ship: {passing.length:g} m at {passing.speed:g} m/s, '
+             f'{passing.separation:g} m off, {abs(ahead):.0f} m '
+             f'{"ahead" if ahead >= 0.0 else "astern"}')
+    if inside.any():  # on the plan (the axes clip what sticks out)
+        axis.fill(outline[:, 0], outline[:, 1], color='tab:cyan', alpha=0.35, label=label)
+        axis.plot(outline[:, 0], outline[:, 1], color='tab:cyan', linewidth=1.2)
+        return
+    edge = (right - 4.0, 'right') if outline[:, 0].min() > right else (left + 4.0, 'left')
+    y = float(np.interp(edge[0], *track[np.argsort(track[:, 0])].T))
+    arrow = '\u2192' if edge[1] == 'right' else '\u2190'
+    text = f'{label} {arrow}' if edge[1] == 'right' else f'{arrow} {label}'
+    axis.annotate(text, (edge[0], y), textcoords='offset points', xytext=(0, 5),
+                  ha=edge[1], fontsize='small', color='tab:blue')
 
 
 def describe_lines(path) -> str:
