@@ -725,8 +725,7 @@ class MooringNode(Node):
         if report.outputs and pose_ns:
             # the next pose's outputs come: those of the one before are due by now, whatever
             # a clock out of step with the stamps says (never held past a pose period)
-            while self._held:
-                self._publish(self._held.popleft())
+            self._flush()
             grid = [p for p in report.outputs if p.advance is not None]  # (not a restart's)
             # poses slower than the outputs, not a burst of queued poses (a node that stalled
             # at its start): the lag of such a burst held a stream's last outputs while a
@@ -740,6 +739,11 @@ class MooringNode(Node):
             self._report(published)
             self._held.append(published)
         self._release(clock_ns)
+
+    def _flush(self) -> None:
+        """Publish every output held back (see _release), in order."""
+        while self._held:
+            self._publish(self._held.popleft())
 
     def _release(self, clock_ns: int) -> None:
         """
@@ -848,6 +852,9 @@ class MooringNode(Node):
             response.success = False
             response.message = f'not started ({self._waiting_for()}): nothing to reset'
             return response
+        # outputs computed ahead of the clock are of the lines before the reset, the last at
+        # the state time, where the reset's fresh output now stands: not published
+        self._held.clear()
         self.driver.reset()
         self._event('reset', t=self.driver.time)
         self._restarted = ['reset'] * len(self.names)
