@@ -139,10 +139,14 @@ SNAP_FLOOR = 28
 # state: 1 when the line's rows of the accelerations (System.accel) are its last step's, which
 # the adaptive integrator's implicit step starts from (kernels.implicit_euler_run); else 0
 HISTORY = 29
+# state, since it was cleared: the largest change of a segment's tension in one step as
+# TENSION_CHANGE, but as a fraction of a scale of at least CALM_FLOOR_FACTOR x SNAP_FLOOR
+# (what tells the adaptive integrator that a line is calm again after a snap)
+CALM_CHANGE = 30
 # the strain-tension curve (tension_curve.py); none of it is state
-CURVE_POINTS = 30
+CURVE_POINTS = 31
 CURVE_CAPACITY = 32
-CURVE_STRAIN = 31
+CURVE_STRAIN = 32
 CURVE_TENSION = CURVE_STRAIN + CURVE_CAPACITY
 CURVE_SLOPE = CURVE_TENSION + CURVE_CAPACITY
 LINE_REAL_COLUMNS = CURVE_SLOPE + CURVE_CAPACITY

@@ -35,8 +35,8 @@ import numpy as np
 
 from .forces.springs import add_springs
 from .layout import (AXIAL, AXIAL_STIFFNESS, BEND_DAMPING, BEND_STIFFNESS, BENDING, BREAK_LOAD,
-                     DAMPING, FIRST, LAST, LENGTH, MASS, PARTED, PARTED_STEP, PEAK_A, PEAK_B,
-                     REST, REST_RATE, SLACK_IMPACT, SNAP_FLOOR, STIFFNESS, TENSION,
+                     CALM_CHANGE, DAMPING, FIRST, LAST, LENGTH, MASS, PARTED, PARTED_STEP, PEAK_A,
+                     PEAK_B, REST, REST_RATE, SLACK_IMPACT, SNAP_FLOOR, STIFFNESS, TENSION,
                      TENSION_BEFORE, TENSION_CHANGE)
 from .winch import elastic_tension, stretch
 
@@ -44,6 +44,9 @@ from .winch import elastic_tension, stretch
 # line's weight nor SNAP_FLOOR_MBL of its MBL (stepping/adaptive.py says why).
 SNAP_FLOOR_WEIGHT = 1.0
 SNAP_FLOOR_MBL = 0.005
+# The calm watch's scale (CALM_CHANGE) is never below this many times the snap watch's floor:
+# a slack line's tension rings about nothing, and is calm (stepping/adaptive.py says why).
+CALM_FLOOR_FACTOR = 10.0
 PARTED_REST = 1e300  # [m]: the rest length of a parted segment, never stretched
 
 
@@ -69,7 +72,8 @@ def check_segments(x, v, particles, lines, line_real, rest, step):
     On the way, for the adaptive integrator (adaptive.py), each segment's spring tension goes
     to its TENSION column (the one before to TENSION_BEFORE), and each line's TENSION_CHANGE
     and SLACK_IMPACT are raised to, as fractions of the step's tension scale (the largest
-    segment tension, spring and damper, at least SNAP_FLOOR): the largest change of a
+    segment tension, spring and damper, at least SNAP_FLOOR; CALM_CHANGE the same change
+    against a scale of at least CALM_FLOOR_FACTOR x SNAP_FLOOR): the largest change of a
     segment's spring tension per step over this step and the one before (from NaN, a tension
     not yet measured, none), and the largest impact of a slack segment, the tension
     sqrt(EA m) |u| it would take if it came taut at its stretch rate u now.
@@ -101,6 +105,8 @@ def check_segments(x, v, particles, lines, line_real, rest, step):
                              * abs(rate - particles[i, REST_RATE]))
         scale = max(worst, real[SNAP_FLOOR])
         real[TENSION_CHANGE] = max(real[TENSION_CHANGE], change / scale)
+        real[CALM_CHANGE] = max(real[CALM_CHANGE],
+                                change / max(worst, CALM_FLOOR_FACTOR * real[SNAP_FLOOR]))
         real[SLACK_IMPACT] = max(real[SLACK_IMPACT], impact / scale)
         if real[PARTED] < 0.0 and worst > real[BREAK_LOAD]:  # the most loaded one goes
             part(particles, lines, rest, k, where)

@@ -73,6 +73,14 @@ and it is what implicit steps then take off a peak. At 2 % the cases' cycle peak
 to 4.7 % low, at 1 % 3.7 %. A tension rising with the ship changes by far less (a few
 tenths of a per cent per step on those springs), so holds end once the ringing has died.
 
+The calm watch's scale is at least model/parting.py's CALM_FLOOR_FACTOR (10) times the snap
+watch's floor: a line fallen slack rings about almost nothing. On the snap watch's floor
+alone (0.5 % of the MBL) a slack 44 mm HMPE spring of a berth in ship motion, at 1 kN,
+rang by 0.36 kN a step and was never calm: it stayed in improved Euler the whole run, and
+the sixteen-line berth with it took 75 % of a core; with the floor, 37-44 %. The slack-taut
+case above: mean -0.1 %, cycle peaks -1.3 %, -0.4 %, -0.9 % (improved Euler 35 % of the
+time); at 40 times the floor, -0.8 % and up to -2.3 %, for no further speed.
+
 Measured and left: less numerical damping instead (gamma 0.50-0.51) still left cycle peaks
 from 7 % low to 4.6 % high, the first implicit step after a hold being implicit Euler's
 (Newmark's needs the accelerations of the step before); starting that step from the state's
@@ -90,7 +98,8 @@ import numba
 import numpy as np
 
 from .kernels import run_kernel
-from ..model.layout import HISTORY, PARTED, PARTED_STEP, SLACK_IMPACT, TENSION_CHANGE
+from ..model.layout import (CALM_CHANGE, HISTORY, PARTED, PARTED_STEP, SLACK_IMPACT,
+                            TENSION_CHANGE)
 
 SNAP_TOLERANCE = 0.05
 CALM_TOLERANCE = 0.01
@@ -231,8 +240,8 @@ def _take(system, integrator, dt, drive_x, drive_v, first, parts, max_iterations
     _clear_watch(system.line_real, whole)
     run_kernel(system, integrator, dt, drive_x, drive_v, max_iterations, implicit_bending,
                compiled, newmark)
-    tolerance = SNAP_TOLERANCE if integrator == 'implicit_euler' else CALM_TOLERANCE
-    return _read_watch(system.line_real, whole, first, parts, snapped, tolerance)
+    return _read_watch(system.line_real, whole, first, parts, snapped,
+                       integrator != 'implicit_euler')
 
 
 @numba.njit(cache=True)
@@ -240,26 +249,29 @@ def _clear_watch(line_real, whole):
     """Clear every line's watch columns; note which lines are whole (in `whole`)."""
     for k in range(line_real.shape[0]):
         line_real[k, TENSION_CHANGE] = 0.0
+        line_real[k, CALM_CHANGE] = 0.0
         line_real[k, SLACK_IMPACT] = 0.0
         whole[k] = line_real[k, PARTED] < 0.0
 
 
 @numba.njit(cache=True)
-def _read_watch(line_real, whole, first, parts, snapped, tolerance):
+def _read_watch(line_real, whole, first, parts, snapped, calm):
     """
     Set `snapped` to the lines whose tensions changed faster than implicit steps follow.
 
-    In a step of the run, a spring tension changing by more than `tolerance` of the line's
-    scale (parts improved Euler steps count as one implicit step), or a slack segment that
-    would come taut with more than SNAP_TOLERANCE. Also times the partings of the run.
-    Returns whether any line snapped.
+    In a step of the run, a spring tension changing by more than SNAP_TOLERANCE of the line's
+    scale (with `calm`, a run of improved Euler steps: CALM_TOLERANCE of its calm scale; parts
+    improved Euler steps count as one implicit step), or a slack segment that would come taut
+    with more than SNAP_TOLERANCE. Also times the partings of the run. Returns whether any
+    line snapped.
     """
     anything = False
     for k in range(line_real.shape[0]):
         if whole[k] and line_real[k, PARTED] >= 0.0:
             line_real[k, PARTED_STEP] = first + (line_real[k, PARTED_STEP] + 1.0) / parts - 1.0
-        snapped[k] = (line_real[k, TENSION_CHANGE] * parts > tolerance
-                      or line_real[k, SLACK_IMPACT] > SNAP_TOLERANCE)
+        change = (line_real[k, CALM_CHANGE] * parts > CALM_TOLERANCE if calm
+                  else line_real[k, TENSION_CHANGE] * parts > SNAP_TOLERANCE)
+        snapped[k] = change or line_real[k, SLACK_IMPACT] > SNAP_TOLERANCE
         anything |= snapped[k]
     return anything
 
