@@ -43,8 +43,8 @@ from rope_sim_ros.offline import cli
 from rope_sim_ros.offline.run import ratings
 from rope_sim_ros.offline.study import run_study
 from rope_sim_ros.offline.study_file import prepare, read_study
-from rope_sim_ros.offline.study_results import summarise
-from rope_sim_ros.offline.study_run import StudyProgress
+from rope_sim_ros.offline.study_results import OK, summarise
+from rope_sim_ros.offline.study_run import job_of, run_case, StudyProgress
 from rope_sim_ros.params.arrangement import read_setup
 import yaml
 
@@ -423,3 +423,32 @@ def test_the_progress_bar_counts_cases():
     assert bar.text().startswith('[####....] 2/4 cases, 1 failed, 0:00')
     bar.finish()
     assert stream.getvalue().endswith('\n') and stream.getvalue().count('\r') == 2
+
+
+def test_a_free_ships_case_runs_under_its_loads_and_reports_its_excursions(tmp_path):
+    # The berth's four lines on a free ship pushed off the quay for 4 s (LOADS.csv), as two
+    # cases of the spring's material: each case's summary is the free run's own OUT.csv's.
+    write_study(tmp_path, '')
+    with open(tmp_path / 'loads.csv', 'w', newline='') as stream:
+        writer = csv.writer(stream)
+        writer.writerow(['t', 'force_x', 'force_y', 'force_z', 'moment_x', 'moment_y',
+                         'moment_z'])
+        writer.writerow([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        writer.writerow([1.0, 2.0e6, -2.0e6, 0.0, 0.0, 0.0, 0.0])
+    path = tmp_path / 'free.yaml'
+    path.write_text(f'study:\n  arrangement: berth4.yaml\n  duration: {SECONDS}\n'
+                    f'  loads: loads.csv\n  rate: {RATE}\n  set: {{ship_mode: free}}\n'
+                    f'  factors:\n    spring_fwd.material: {json.dumps(MATERIALS)}\n')
+    study = read_study(path)
+    prepared = prepare(study)
+    assert [item.streams for item in prepared] == [None, None]  # no motion: free runs
+    outcomes = [run_case(job_of(study, item), None) for item in prepared]
+    assert [o.status for o in outcomes] == [OK, OK], [o.status for o in outcomes]
+    for item, outcome in zip(prepared, outcomes):
+        out = tmp_path / f'case_{item.case.index}.csv'
+        out.write_bytes(outcome.csv)
+        assert outcome.summary == summarise(out, LINES, ratings(item.setup))
+        # 2 MN ahead and off the quay for 3 s move the ship ahead and off
+        assert 0.01 < outcome.summary['max_surge'] < 0.5, outcome.summary
+        assert 0.01 < outcome.summary['max_sway'] < 0.5, outcome.summary
+    assert outcomes[0].summary != outcomes[1].summary  # the spring's material counts

@@ -42,7 +42,7 @@ several losses the case is left undone and reported, and the next start runs it 
 """
 
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import importlib
 import logging
 import math
@@ -54,8 +54,8 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
 
 from distributed.diagnostics.plugin import WorkerPlugin
 
-from .motion import MotionError, Streams
-from .run import ratings, run_motion
+from .motion import MotionError, read_loads, Streams
+from .run import ratings, run_free, run_motion
 from .study_file import PreparedCase, Study, StudyError
 from .study_results import OK, summarise
 from ..bag import BagError
@@ -63,6 +63,7 @@ from ..model.materials import MaterialError
 from ..model.statics.pretension import PretensionError
 from ..mooring.trajectory import TrajectoryError
 from ..params.arrangement import ArrangementParams
+from ..params.ship import SHIP_SPECS
 from ..params.table import ParameterError
 
 WORKER_ENV = {'NUMBA_NUM_THREADS': '1', 'OMP_NUM_THREADS': '1', 'OPENBLAS_NUM_THREADS': '1',
@@ -72,19 +73,9 @@ PLUGIN_NAME = 'rope_sim_ros-kernels'
 INPUT_ERRORS = (ParameterError, PretensionError, MaterialError, TrajectoryError, MotionError,
                 BagError)
 CONNECT_TIMEOUT = 10.0  # [s] to reach a scheduler
-NEEDS_FREE_SHIP_RUN = ('this case needs a free ship run (ship_mode free, loads and duration), '
-                       'which the study cannot run yet: give the driven ship a motion '
-                       '(SHIP.csv)')
-
-# ---------------------------------------------------------------------------------------
-# THE ONE PLACE for a free-ship case (ship_mode free: its loads file, if any, and the
-# duration): set FREE_SHIP_RUN to the function that runs it, called as
-#     FREE_SHIP_RUN(setup, duration, loads, out_path, rate, bag_path, seed) -> RunSummary
-# (loads: a LOADS.csv path or None; out_path: OUT.csv to write with the ship's pose columns
-# x, y, z, qx, qy, qz, qw; bag_path: None or a new bag directory). While it is None, a study
-# with such a case refuses at once (check_runnable) with NEEDS_FREE_SHIP_RUN.
-FREE_SHIP_RUN: Optional[Callable[..., Any]] = None
-# ---------------------------------------------------------------------------------------
+# A free ship's case keeps its OUT.csv; its bags are the mooring node's to record.
+FREE_SHIP_KEEPS = ("a free ship's case keeps OUT.csv (keep: csv); record a free ship's bag "
+                   'with the mooring node')
 
 
 @dataclass(frozen=True)
@@ -247,7 +238,7 @@ def run_case(job: Job, streams: Optional[Streams]) -> Outcome:
                 if streams is not None:
                     run_motion(job.setup, streams, out_path, job.rate, bag_path)
                 else:
-                    _free_ship(job, out_path, bag_path)
+                    _free_ship(job, out_path)
                 outcome.summary = summarise(out_path, job.setup.names, ratings(job.setup))
             except Exception as e:  # noqa: B902 (every failure of a case is its result)
                 outcome.status = reason(e)
@@ -266,22 +257,29 @@ def run_case(job: Job, streams: Optional[Streams]) -> Outcome:
     return outcome
 
 
-def _free_ship(job: Job, out_path: str, bag_path: Optional[str]) -> None:
-    if FREE_SHIP_RUN is None:
-        raise StudyError(NEEDS_FREE_SHIP_RUN)
-    FREE_SHIP_RUN(job.setup, job.duration, job.loads, out_path, job.rate, bag_path, job.seed)
+def _free_ship(job: Job, out_path: str) -> None:
+    """
+    Run a free ship's case from rest under its loads file (if any) into OUT.csv.
+
+    The case's seed is its gusts' (wind_seed), unless the case sets wind_seed itself.
+    """
+    setup = job.setup
+    if setup.ship.wind_seed == SHIP_SPECS['wind_seed'].default:
+        setup = replace(setup, ship=replace(setup.ship, wind_seed=job.seed))
+    loads = read_loads(job.loads) if job.loads else None
+    run_free(setup, job.duration, loads, out_path, job.rate)
 
 
 def check_runnable(study: Study, prepared: List[PreparedCase]) -> None:
     """
-    Refuse at once a study with a case this runner cannot run (a free ship, for now).
+    Refuse at once a study with a case this runner cannot run (a free ship's bag).
 
     :raises StudyError: one line naming the first such case.
     """
     for item in prepared:
-        if item.streams is None and FREE_SHIP_RUN is None:
+        if item.streams is None and study.keep in ('bag', 'both'):
             raise StudyError(f'{study.path}: case {item.case.index} ({item.case.describe()}): '
-                             f'{NEEDS_FREE_SHIP_RUN}')
+                             f'{FREE_SHIP_KEEPS}')
 
 
 def job_of(study: Study, item: PreparedCase) -> Job:
