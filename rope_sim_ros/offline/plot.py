@@ -371,13 +371,7 @@ def plot_record(path, out_dir, story: str = '', tensions: str = 'tensions.png',
     :returns: the two image paths.
     :raises BagError: see read_record. OSError: an image cannot be written.
     """
-    record = read_record(path, setup)
-    os.makedirs(os.fspath(out_dir), exist_ok=True)
-    tensions = os.path.join(os.fspath(out_dir), tensions)
-    plan = os.path.join(os.fspath(out_dir), plan)
-    draw_tensions(record, tensions, story)
-    draw_plan(path, record, plan)
-    return [tensions, plan]
+    return _plot_with_plan(path, out_dir, draw_tensions, tensions, story, plan, setup)
 
 
 def plot_event(path, out_dir, story: str = '', event: str = 'event.png',
@@ -385,19 +379,21 @@ def plot_event(path, out_dir, story: str = '', event: str = 'event.png',
     """
     Draw event.png (draw_event) and plan.png of an arrangement's bag into out_dir.
 
-    :param story: what the run was, a sentence for the top of event.png ('' = none).
-    :param event, plan: the images' file names.
-    :param setup: the arrangement (default: the one the bag stores).
-    :returns: the two image paths.
-    :raises BagError: see read_record. OSError: an image cannot be written.
+    Arguments and errors as plot_record's.
     """
+    return _plot_with_plan(path, out_dir, draw_event, event, story, plan, setup)
+
+
+def _plot_with_plan(path, out_dir, draw, name: str, story: str, plan: str,
+                    setup: Optional[ArrangementParams]) -> List[str]:
+    """Draw draw(record, out_dir/name, story) and the plan view; return both paths."""
     record = read_record(path, setup)
     os.makedirs(os.fspath(out_dir), exist_ok=True)
-    event = os.path.join(os.fspath(out_dir), event)
+    first = os.path.join(os.fspath(out_dir), name)
     plan = os.path.join(os.fspath(out_dir), plan)
-    draw_event(record, event, story)
+    draw(record, first, story)
     draw_plan(path, record, plan)
-    return [event, plan]
+    return [first, plan]
 
 
 def stagger(passing: PassingShipParams, t) -> np.ndarray:

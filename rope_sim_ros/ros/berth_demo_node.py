@@ -55,6 +55,7 @@ from ..params.materials import load_materials
 from ..params.table import ParameterError
 
 START_TIMEOUT = 90.0  # [s] a first start compiles or loads the kernels
+DISCOVERY_SETTLE = 1.0  # [s] of wall time for the node to match the demo's subscriptions
 CLOCK_ORIGIN = 1000.0  # [s] sim time at the demo's t = 0 (0 would read as 'no clock yet')
 CLOCK_RATE = 50.0  # [Hz] /clock messages per simulated second
 HOLD = 0.5  # [s] simulated: the clock waits here for the free ship's start
@@ -246,6 +247,11 @@ class BerthDemo(Node):
             if (self.clock_pub.get_subscription_count() and self.count_publishers(SHIP_POSE)
                     and all(self.count_publishers(f'{name}/{FAIRLEAD_TENSION}')
                             for name in self.names)):
+                # the node may see these subscriptions a little after they see it (DDS
+                # discovery is not symmetric): its first outputs would reach nobody
+                settled = time.monotonic() + DISCOVERY_SETTLE
+                while time.monotonic() < settled:
+                    rclpy.spin_once(self, timeout_sec=0.05)
                 return True
             rclpy.spin_once(self, timeout_sec=0.1)
         return False
