@@ -41,7 +41,7 @@ from rope_sim_ros.mooring.statics import ship_stiffness
 from rope_sim_ros.offline.resim import resim, stored_setup
 from rope_sim_ros.params.arrangement import flatten, read_arrangement_file
 from rope_sim_ros.params.ship import read_coefficients
-from rope_sim_ros.ros.mooring_display import Fenders
+from rope_sim_ros.ros.mooring_display import Fenders, LineMarkers
 from std_msgs.msg import Float64MultiArray
 
 BERTH = Path(__file__).resolve().parents[1] / 'config' / 'berth.yaml'
@@ -212,3 +212,20 @@ def test_a_fender_past_its_rated_compression_warns():
     assert statuses[1].name == 'mooring: f2'
     assert 'past its rating' in statuses[1].message
     assert dict((v.key, v.value) for v in statuses[0].values)['reaction [N]'] == '400000.0'
+
+
+def test_the_fenders_are_drawn_at_their_contact_points():
+    fenders = Fenders(['f1', 'f2'], [[0, -1, 0], [0, -1, 0]], [1.2, 1.2],
+                      [[0, -1.5, 0], [10, -1.5, 0]], [0.3, 1.3], [[0, -4e5, 0], [0, -2e6, 0]])
+    markers = LineMarkers()('world', 1_000_000_000, [], [], [], [], [], np.zeros((0, 3)),
+                            np.zeros((0, 3)), fenders).markers
+    bodies = [m for m in markers if m.ns == 'fenders']
+    labels = [m.text for m in markers if m.ns == 'fender_labels']
+    assert [(m.pose.position.x, m.pose.position.y) for m in bodies] == [(0.0, -1.5),
+                                                                        (10.0, -1.5)]
+    assert labels == ['f1 400 kN', 'f2 2000 kN']
+    # the cylinder's axis (its z) along the normal, -y: a quarter turn about +x
+    q = bodies[0].pose.orientation
+    assert [q.x, q.y, q.z, q.w] == pytest.approx([np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)])
+    assert bodies[0].color.g > bodies[0].color.r  # green: within its rating
+    assert bodies[1].color.r > bodies[1].color.g  # amber: past it
