@@ -37,7 +37,9 @@ from rope_sim_ros.model.body import Body, Fender
 from rope_sim_ros.model.rope import RopeProperties
 from rope_sim_ros.model.statics.pretension import length_for_tension
 from rope_sim_ros.model.statics.ship import Pose, ShipStatics, StaticLine, StaticsError
-from rope_sim_ros.mooring.statics import ship_equilibrium, ship_statics, ship_stiffness
+from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.mooring.statics import (ship_equilibrium, ship_statics, ship_stiffness,
+                                          stiffness_now)
 from rope_sim_ros.offline import cli
 from rope_sim_ros.params.arrangement import read_setup
 
@@ -356,3 +358,23 @@ def test_rope_sim_stiffness_of_a_single_line(capsys, repo_root):
     assert cli.main(['stiffness', '--params', params, '--set', 'payload_mass=100.0']) == 2
     err = capsys.readouterr().err.strip()
     assert '\n' not in err and 'payload' in err, err
+
+
+def test_the_stiffness_of_a_running_driven_mooring_where_its_ship_is(repo_root):
+    # What ship/stiffness publishes for a driven ship: the running Mooring's lines at the
+    # ship's pose. At the start pose it is `rope_sim stiffness`; 0.5 m off the quay, the
+    # breast lines stiffen the sway and the fenders let go.
+    setup = read_setup(repo_root / 'config' / 'berth.yaml')
+    mooring = Mooring(setup)
+    rest = np.array(setup.ship.start_position)
+    quaternion = np.array([0.0, 0.0, 0.0, 1.0])
+    mooring.push_ship(0.0, rest, quaternion)
+    mooring.start(0.0)
+    at_rest = stiffness_now(mooring, rest, quaternion)
+    np.testing.assert_allclose(at_rest, ship_stiffness(setup), rtol=1e-9,
+                               atol=1e-9 * np.abs(at_rest).max())
+    off = stiffness_now(mooring, rest + [0.0, -0.5, 0.0], quaternion)
+    lines_only = ship_statics(setup).stiffness([*(rest + [0.0, -0.5, 0.0]), 0.0, 0.0, 0.0],
+                                               fenders=False)
+    np.testing.assert_allclose(off, lines_only, rtol=1e-9, atol=1e-9 * np.abs(off).max())
+    assert off[1, 1] > ship_statics(setup).stiffness(fenders=False)[1, 1]
