@@ -16,7 +16,6 @@
 
 import math
 
-import moorpy
 import numpy as np
 import pytest
 
@@ -24,9 +23,11 @@ from rope_sim_ros.model import frames
 from rope_sim_ros.model.forces import assembly
 from rope_sim_ros.model.forces.body import place_points
 from rope_sim_ros.model.layout import BODY_LINEAR_DAMPING
+from rope_sim_ros.model.statics.ship import Pose
 from rope_sim_ros.mooring.mooring import Mooring
 from rope_sim_ros.mooring.statics import mooring_statics
 from rope_sim_ros.params import arrangement
+from test_ship_statics import moorpy_system
 
 WATER, G = 1025.0, 9.81
 START = (0.0, -17.6, 0.0)
@@ -86,22 +87,7 @@ def settled():
 def moorpy_equilibrium(mooring: Mooring):
     """Return MoorPy's pose (6,) and fairlead tensions of the same ship, lines and load."""
     ship = mooring_statics(mooring, LOAD)
-    body = ship.body
-    centre = -np.asarray(body.origin)
-    system = moorpy.System(depth=500.0, rho=WATER, g=G)
-    vessel = system.addBody(0, [*START, 0.0, 0.0, 0.0], m=body.mass, v=body.mass / WATER,
-                            rCG=centre, AWP=body.restoring[0] / (WATER * G),
-                            rM=centre + [0.0, 0.0, 3.0], f6Ext=np.array(LOAD))
-    for k, line in enumerate(ship.lines):
-        props = line.props
-        system.setLineType(dnommm=1e3 * props.diameter, name=f'type_{k}',
-                           mass=props.mass_per_length, w=props.weight_per_length,
-                           EA=props.axial_stiffness)
-        bollard = system.addPoint(1, line.bollard)
-        fairlead = system.addPoint(1, line.fairlead, body=1)
-        system.addLine(props.length, f'type_{k}', pointA=bollard.number,
-                       pointB=fairlead.number)
-    system.initialize()
+    system, vessel = moorpy_system(ship, Pose.of([*START, 0.0, 0.0, 0.0]))
     assert system.solveEquilibrium(tol=1e-7, maxIter=1000)
     return vessel.r6.copy(), np.array([line.TB for line in system.lineList])
 
