@@ -36,6 +36,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros.bag import read_messages
+from rope_sim_ros.ros.node import MooringNode
 
 REPO = Path(__file__).resolve().parent.parent
 SECOND = 1_000_000_000
@@ -110,22 +111,21 @@ class WallClient:
     @no_gc_pauses()
     def stream(self, seconds: float, rate: float, position, at=None) -> list:
         """
-        Publish poses at `rate` for `seconds` of the wall clock; return the gaps, longest first.
+        Publish poses at `rate` for `seconds` of the wall clock; return when each went out.
 
-        at(t), if given, runs before each pose and returns False to send none then.
+        at(t), if given, runs before each pose and returns False to send none then. The
+        times are time.monotonic() [s]: a machine that stalls this process shows in them.
         """
         wall = time.monotonic()
-        last, gaps = wall, []
+        sent = []
         for k in range(round(seconds * rate)):
             while time.monotonic() - wall < k / rate:
                 self.executor.spin_once(timeout_sec=0.002)
             if at is not None and at(k / rate) is False:
                 continue
-            now = time.monotonic()
-            gaps.append(now - last)
-            last = now
+            sent.append(time.monotonic())
             self.pose(position)
-        return sorted(gaps, reverse=True)
+        return sent
 
 
 def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
@@ -144,7 +144,7 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
     try:
         client.wait_for(lambda: client.pub.get_subscription_count() > 0
                         and client.sub.get_publisher_count() > 0, 90.0, 'the node', node)
-        client.stream(2.0, 50.0, [0.0, -17.6, 0.0])  # started, settled
+        first = client.stream(2.0, 50.0, [0.0, -17.6, 0.0])[0]  # started, settled
         stopped = []
 
         def scenario(t):
@@ -160,7 +160,7 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
                 stopped.append(t)
             return not 14.0 <= t < 14.6  # the real gap
 
-        gaps = client.stream(18.0, 50.0, [0.0, -17.6, 0.0], at=scenario)
+        sent = np.array(client.stream(18.0, 50.0, [0.0, -17.6, 0.0], at=scenario)) - first
         for poke in pokes:
             poke.wait(30)
         assert node.interrupt() == 0
@@ -172,15 +172,24 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
         if node.process.poll() is None:
             os.kill(node.process.pid, signal.SIGCONT)
             node.interrupt()
-    print(f"{len(pokes)} probes; the test publisher's longest gaps {gaps[0]:.3f} s (the "
-          f'real one) and {gaps[1]:.3f} s')
-    # this process kept the stream steady but for the real gap
-    assert 0.55 < gaps[0] < 0.7 and gaps[1] < 0.15, gaps[:3]
+    # The gaps as sent, [start, end] in simulated time (0: the first pose). A busy machine
+    # may stall this process too (0.33 s once, in a pytest run beside other work): such a
+    # gap is as real as the planned one, and the node may take the stream for silent in it
+    # (less 50 ms: delivery may stretch a gap that much).
+    gaps, live = np.diff(sent), MooringNode.LIVE_INPUT - 0.05
+    real = [(round(sent[k], 3), round(sent[k + 1], 3)) for k in np.flatnonzero(gaps > live)]
+    print(f'{len(pokes)} probes; gaps over {live} s as sent: {real}; the longest others: '
+          f'{np.sort(gaps[gaps <= live])[-3:]}')
+    assert len(pokes) == 10
+    assert any(15.9 < start < 16.1 and 16.5 < end < 16.8 for start, end in real), real
     silent = [e for e in bag_events(bag) if e['event'] == 'silent']
     warnings = log_lines(node, 'no new pose for 0.25 s')
-    assert len(silent) == 1 and len(warnings) == 1, (silent, warnings, node.text())
-    # at the real gap: simulated 0 is the first pose, 2 s before the scenario's 0
-    assert 15.8 < silent[0]['t'] < 16.7, silent
+    # Silent only in a real gap (t: how far the ropes had gone when the node took it for
+    # silent, at most a pose period past the last pose), and in the planned one.
+    assert all(any(start - 0.05 < e['t'] < end + 0.05 for start, end in real)
+               for e in silent), (silent, real)
+    assert any(15.8 < e['t'] < 16.7 for e in silent), silent
+    assert 1 <= len(warnings) <= len(silent) <= len(real), (silent, warnings, node.text())
     assert 'skipped ahead' not in node.text() and '[ERROR]' not in node.text()
 
 
