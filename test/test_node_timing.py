@@ -177,7 +177,8 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
     # gap is as real as the planned one, and the node may take the stream for silent in it
     # (less 50 ms: delivery may stretch a gap that much).
     gaps, live = np.diff(sent), MooringNode.LIVE_INPUT - 0.05
-    real = [(round(sent[k], 3), round(sent[k + 1], 3)) for k in np.flatnonzero(gaps > live)]
+    real = [(round(float(sent[k]), 3), round(float(sent[k + 1]), 3))
+            for k in np.flatnonzero(gaps > live)]
     print(f'{len(pokes)} probes; gaps over {live} s as sent: {real}; the longest others: '
           f'{np.sort(gaps[gaps <= live])[-3:]}')
     assert len(pokes) == 10
