@@ -20,6 +20,9 @@ import sys
 
 from conftest import REPO_ROOT
 import pytest
+import rclpy
+from rclpy.parameter import Parameter
+from rope_sim_ros.ros.spinning import executor_for
 
 # A node whose timer fails as rclpy does when Ctrl-C lands inside a message conversion:
 # pybind11 turns the KeyboardInterrupt into a RuntimeError (seen in CI, line_monitor).
@@ -63,3 +66,20 @@ def test_an_error_without_a_signal_is_raised():
     assert result.returncode == 1, result.stdout
     assert 'RuntimeError: Unable to convert call argument' in result.stderr, result.stderr
     assert 'returned quietly' not in result.stdout
+
+
+@pytest.mark.parametrize('sim_time, expected', [(True, 'SingleThreadedExecutor'),
+                                                (False, 'EventsExecutor')])
+def test_a_node_on_sim_time_spins_on_rclpys_own_executor(sim_time, expected):
+    # the events executor stood still for 30 s under a creeping /clock on a busy machine
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    try:
+        node = rclpy.create_node('executor_choice', context=context, parameter_overrides=[
+            Parameter('use_sim_time', value=sim_time)])
+        executor = executor_for(node)
+        assert type(executor).__name__ == expected
+        executor.shutdown()
+        node.destroy_node()
+    finally:
+        rclpy.try_shutdown(context=context)
