@@ -49,6 +49,7 @@ from rosgraph_msgs.msg import Clock
 from ..messages.topics import FAIRLEAD_TENSION, PASSING_WRENCH, SHIP_POSE
 from ..model.ship.loads import PassingShip
 from ..model.ship.passing import Hull
+from ..mooring.driver import MAX_LAG
 from ..params import arrangement
 from ..params.files import read_params_file
 from ..params.materials import load_materials
@@ -58,9 +59,12 @@ START_TIMEOUT = 90.0  # [s] a first start compiles or loads the kernels
 DISCOVERY_SETTLE = 1.0  # [s] of wall time for the node to match the demo's subscriptions
 CLOCK_ORIGIN = 1000.0  # [s] sim time at the demo's t = 0 (0 would read as 'no clock yet')
 CLOCK_RATE = 50.0  # [Hz] /clock messages per simulated second
-HOLD = 0.5  # [s] simulated: the clock waits here for the free ship's start
 MAX_AHEAD = 0.4  # [s] simulated: the clock's most ahead of the ship's newest output
-CREEP = 0.05  # [s] wall: a clock held back still ticks this often (BerthDemo.run)
+# A clock held back still ticks (BerthDemo.run): every CREEP s of wall time up to MAX_CREEP
+# ahead (a node MAX_LAG behind skips ahead), every STALLED_CREEP s from there.
+CREEP = 0.05  # [s] wall
+MAX_CREEP = 0.8 * MAX_LAG  # [s] simulated
+STALLED_CREEP = 1.0  # [s] wall
 GRACE = 10.0  # [s] simulated: how long the clock waits past --duration for the outputs
 # The table: (group, [(column, width)]), its numbers right-aligned in those widths.
 COLUMNS = (('', [('t [s]', 7)]),
@@ -282,24 +286,26 @@ class BerthDemo(Node):
         return format_row(t, where, offsets(ship.start_position, ship.start_yaw, position, yaw),
                           force, line)
 
-    def behind(self, t: float) -> bool:
-        """Tell whether the clock at t [s] is to wait for the mooring node (see run)."""
-        if self.pose is None:
-            return t >= HOLD
-        return CLOCK_ORIGIN + t - self.pose[0] / 1e9 > MAX_AHEAD
+    def ahead(self, t: float) -> float:
+        """Return how far the clock at t [s] is ahead of the ship's newest output [s]."""
+        newest = CLOCK_ORIGIN if self.pose is None else self.pose[0] / 1e9
+        return CLOCK_ORIGIN + t - newest
 
     def run(self, duration: float, speed: float) -> None:
         """
         Publish /clock at `speed` until the ship's outputs reach `duration` (or GRACE s past it).
 
         The clock holds back whenever it is more than MAX_AHEAD s of sim time ahead of the
-        ship's newest output, and at HOLD s until the free ship's first output (its start:
-        the lines' lengths for their pretensions take a moment): a node that falls a second
-        behind the clock skips ahead and restarts the ropes at rest, and on a busy machine
-        the demo had better run slower than that. Holding back, it still creeps on, a tick
-        every CREEP s of wall time: the node steps in its timer, which only a moving clock
-        fires. `held` adds up the wall time the clock lost so [s]. Gives up when the node
-        answers nothing for START_TIMEOUT s.
+        ship's newest output (before the first, of the free ship's start at t = 0: the lines'
+        lengths for their pretensions take a moment): a node that falls MAX_LAG behind the
+        clock skips ahead and restarts the ropes at rest, and on a busy machine the demo had
+        better run slower than that. Holding back, it still creeps on, a tick every CREEP s
+        of wall time: the node steps in its timer, which only a moving clock fires, and each
+        step it publishes lets the clock on. Up to MAX_CREEP ahead: there, only a tick every
+        STALLED_CREEP s, for outputs that never reach the demo (the node may match its
+        subscriptions late) without taking the node near MAX_LAG. `held` adds up the wall
+        time the clock lost so [s]. Gives up when the node answers nothing for
+        START_TIMEOUT s.
         """
         start = progress = published = time.monotonic()
         newest = None
@@ -314,10 +320,11 @@ class BerthDemo(Node):
             now = time.monotonic()
             if self.pose is not newest:
                 newest, progress = self.pose, now
-            if self.behind(t):
+            ahead = self.ahead(t)
+            if ahead > MAX_AHEAD:
                 if now - progress > START_TIMEOUT:
                     return
-                if now - published >= CREEP:
+                if now - published >= (CREEP if ahead < MAX_CREEP else STALLED_CREEP):
                     self.publish_clock(t)
                     tick += 1
                     published = now
