@@ -28,9 +28,13 @@ demo: build
 # test/conftest.py gives the run its own ROS_DOMAIN_ID (1..101) unless one is set. The
 # kernels are compiled first, once: the tests load them, and the colcon build of the tests
 # copies them into its install (setup.py's seed_cache) instead of compiling them again.
+# The tests that need no node process run side by side, a worker a core (each worker its
+# own ROS_DOMAIN_ID); then those that run the installed nodes on the wall clock (marked
+# `alone` by test/conftest.py), one at a time: their timing is what they test.
 test: venv
 	$(BIN)/python -m rope_sim_ros.mooring.precompile
-	$(BIN)/python -m pytest -q test
+	$(BIN)/python -m pytest -q -n auto -m 'not alone' test
+	$(BIN)/python -m pytest -q -m alone test
 
 lint: venv
 	$(BIN)/python -m pytest -q test/test_flake8.py test/test_pep257.py test/test_copyright.py

@@ -21,6 +21,7 @@ node created in this run (in-process or as a subprocess) sees the same settings:
 - ``ROS_DOMAIN_ID``: kept when set, else derived from the pid in 1..101. Domain 0 is what
   every unconfigured ROS machine uses; ids above 101 map DDS ports into Linux's ephemeral
   range (32768..60999) and can collide with unrelated sockets (ROS 2 docs, About Domain ID).
+  Under ``pytest -n`` each worker takes the next ids after it, one each.
 - ``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``: discovery never leaves this machine.
 - ``AMENT_PREFIX_PATH`` includes ``sys.prefix``, where the PyPI ROS wheels put their share/.
 - The repository root is on ``sys.path`` so tests import the source tree.
@@ -55,6 +56,11 @@ def _domain_id_for(pid):
 def _configure_environment():
     if not os.environ.get('ROS_DOMAIN_ID'):
         os.environ['ROS_DOMAIN_ID'] = str(_domain_id_for(os.getpid()))
+    worker = os.environ.get('PYTEST_XDIST_WORKER', '')  # 'gw0', 'gw1', ... under -n
+    if worker.startswith('gw'):
+        # each worker its own domain, next to the run's: their nodes never meet
+        os.environ['ROS_DOMAIN_ID'] = str(
+            _domain_id_for(int(os.environ['ROS_DOMAIN_ID']) + int(worker[2:])))
     os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 
     prefixes = [p for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
@@ -79,11 +85,25 @@ def _refresh_kernel_cache():
 _refresh_kernel_cache()
 
 
+# The fixtures of the tests that run the installed nodes as processes over DDS.
+NODE_FIXTURES = {'colcon_build', 'colcon_install', 'colcon_env'}
+
+
 def pytest_configure(config):
     # ament_flake8 and ament_pep257 register their own markers; ament_lint (which registers
     # 'linter') and ament_copyright are not installed here.
     config.addinivalue_line('markers', 'linter: marks tests that run a linter')
     config.addinivalue_line('markers', 'copyright: marks tests checking copyright headers')
+    config.addinivalue_line(
+        'markers', 'alone: runs the installed nodes on the wall clock: `make test` runs these '
+        'one at a time, after the others have run side by side (pytest -n)')
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark `alone` every test that runs the installed nodes (NODE_FIXTURES)."""
+    for item in items:
+        if NODE_FIXTURES & set(getattr(item, 'fixturenames', ())):
+            item.add_marker(pytest.mark.alone)
 
 
 @pytest.hookimpl(hookwrapper=True)
