@@ -236,7 +236,8 @@ def run_moordyn(driver: Driver, duration: float) -> tuple:
     return wall, init, step
 
 
-def node_run(values: dict, seconds: float, every_output: bool) -> dict:
+def node_run(values: dict, seconds: float, every_output: bool,
+             late_stamps: bool = False) -> dict:
     """
     Run the installed mooring node on the lines, fed 100 Hz ship poses for `seconds`.
 
@@ -273,7 +274,7 @@ def node_run(values: dict, seconds: float, every_output: bool) -> dict:
         publisher = client.create_publisher(PoseStamped, 'ship/pose', 1000)
         try:
             return installed_node.feed(node, client, publisher, 'ship/mooring_wrench',
-                                       seconds, RATE, _place_ship, received)
+                                       seconds, RATE, _place_ship, received, late_stamps)
         finally:
             client.destroy_node()
             rclpy.try_shutdown()
@@ -316,6 +317,9 @@ def main():
                         'the range (on a shared machine one run can move by 10-20 %%)')
     parser.add_argument('--node', action='store_true', help='also time the mooring node')
     parser.add_argument('--node-seconds', type=float, default=30.0)
+    parser.add_argument('--late-stamps', action='store_true',
+                        help='stamp each ship pose when sent, a millisecond or two after the '
+                        'time it is the pose of (see benchmarks/installed_node.py feed)')
     args = parser.parse_args()
     os.environ.setdefault('NUMBA_NUM_THREADS', '1')
     run_mooring(berth('mixed'), 0.1)  # every kernel loaded (or compiled) before timing
@@ -351,7 +355,8 @@ def main():
     if args.node:
         for kind, every_output in ((kind, every) for kind in MATERIALS for every in (0, 1)):
             results = [node_run(dict(berth(kind), integrator=args.integrator),
-                                args.node_seconds, every_output) for _ in range(args.repeat)]
+                                args.node_seconds, every_output, args.late_stamps)
+                       for _ in range(args.repeat)]
             taken = 'every output' if every_output else 'ship/mooring_wrench only'
             share = _percent([result['cpu'] for result in results])
             print(f'mooring node, {kind}, {taken} subscribed: {share} % of one core while '

@@ -57,9 +57,15 @@ def cpu_seconds(pid: int) -> float:
 
 
 def feed(node: subprocess.Popen, client, publisher, output: str, seconds: float, rate: float,
-         place: Callable, received: list) -> dict:
+         place: Callable, received: list, late_stamps: bool = False) -> dict:
     """
     Wait for the node, then publish a PoseStamped at `rate` for `seconds` + 1 s of wall time.
+
+    Each pose is where the motion is at its stamp, as a simulator sends the sample of its own
+    time. With late_stamps it is where the motion was at its due time, stamped when sent, up
+    to a millisecond or two later (this loop's own jitter): a sender that stamps at publish.
+    That jitter is motion the lines feel: their ends jerk along the cubic through the
+    samples, and the adaptive step follows each jerk with improved Euler.
 
     :param client: the rclpy node that publishes and receives.
     :param publisher: its PoseStamped publisher to the node's pose topic.
@@ -76,7 +82,7 @@ def feed(node: subprocess.Popen, client, publisher, output: str, seconds: float,
         if time.monotonic() > deadline or node.poll() is not None:
             raise SystemExit(f'the node did not come up (no {output})')
         rclpy.spin_once(client, timeout_sec=0.1)
-    sent, start = 0, time.monotonic()
+    sent, start, start_ns = 0, time.monotonic(), client.get_clock().now().nanoseconds
     while time.monotonic() - start < seconds + 1.0:
         t = sent / rate
         if time.monotonic() - start >= t:
@@ -84,8 +90,9 @@ def feed(node: subprocess.Popen, client, publisher, output: str, seconds: float,
                 cpu, wall, first = cpu_seconds(node.pid), time.monotonic(), len(received)
             msg = PoseStamped()
             msg.header.frame_id = 'world'
-            msg.header.stamp = client.get_clock().now().to_msg()
-            place(msg.pose, t)
+            stamp = client.get_clock().now()
+            msg.header.stamp = stamp.to_msg()
+            place(msg.pose, t if late_stamps else (stamp.nanoseconds - start_ns) * 1e-9)
             publisher.publish(msg)
             sent += 1
         rclpy.spin_once(client, timeout_sec=0.001)

@@ -23,7 +23,8 @@ fairlead/tension is subscribed (a ship simulator taking the force), or with --ev
 every output. Prints the node process's CPU (user + system, /proc) over that time, one core
 = 100 %, and the tensions received per second.
 
-    python benchmarks/line_node_cpu.py [--seconds 15] [--every-output] [--repeat 3]
+    python benchmarks/line_node_cpu.py [--seconds 15] [--every-output] [--late-stamps]
+        [--repeat 3]
 """
 
 import argparse
@@ -40,7 +41,7 @@ OUTPUTS = {'rope/particles': 'PoseArray', 'fairlead/tension': 'Wrench',
            'bollard/peak_tension': 'Float64', 'winch/length': 'Float64'}
 
 
-def run(seconds: float, every_output: bool) -> dict:
+def run(seconds: float, every_output: bool, late_stamps: bool = False) -> dict:
     """Return the node's share of a core and the tensions received a second (feed's)."""
     from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
     from std_msgs.msg import Float64
@@ -61,7 +62,7 @@ def run(seconds: float, every_output: bool) -> dict:
     publisher = client.create_publisher(PoseStamped, 'fairlead/pose', 1000)
     try:
         return installed_node.feed(node, client, publisher, 'fairlead/tension', seconds, RATE,
-                                   _place_fairlead, received)
+                                   _place_fairlead, received, late_stamps)
     finally:
         client.destroy_node()
         rclpy.try_shutdown()
@@ -81,11 +82,15 @@ def main():
     parser.add_argument('--seconds', type=float, default=15.0)
     parser.add_argument('--every-output', action='store_true')
     parser.add_argument('--repeat', type=int, default=3)
+    parser.add_argument('--late-stamps', action='store_true',
+                        help='stamp each pose when sent, a millisecond or two after the time '
+                        'it is the pose of (see benchmarks/installed_node.py feed)')
     args = parser.parse_args()
     taken = 'every output' if args.every_output else 'fairlead/tension only'
+    stamps = ', stamped late' if args.late_stamps else ''
     for _ in range(args.repeat):
-        result = run(args.seconds, args.every_output)
-        print(f'mooring_line, 50 segments, 100 Hz poses and outputs, {taken} subscribed: '
+        result = run(args.seconds, args.every_output, args.late_stamps)
+        print(f'mooring_line, 50 segments, 100 Hz poses{stamps} and outputs, {taken} subscribed: '
               f'{100 * result["cpu"]:.1f} % of one core, {result["outputs"]:.1f} tensions a '
               'second received', flush=True)
 
