@@ -546,7 +546,7 @@ class MooringNode(Node):
     def _on_stiffness(self) -> None:
         """Publish ship/stiffness: the lines' and fenders' 6x6 stiffness where the ship is."""
         published = self._latest
-        # Not worked out for nobody: 10 % of the 16-line node's CPU at 1 Hz, taken or not.
+        # only for a subscriber or the bag: at 1 Hz it took 10 % of a 16-line node's CPU
         if published is None or not self._taken.taken(topics.STIFFNESS, self.recorder):
             return
         try:
