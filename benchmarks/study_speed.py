@@ -34,12 +34,13 @@ study, does not hide the cost per case). Printed per size:
   numba's cache) apart, a cost per study, not per case; the client's CPU seconds (the
   study's own process, with the local scheduler).
 
-    python benchmarks/study_speed.py [--cases 48] [--duration 30] [--workers 1 2]
+    python benchmarks/study_speed.py [--cases 48] [--duration 30] [--workers 1 2] [--repeat 1]
 """
 
 import argparse
 import os
 from pathlib import Path
+import statistics
 import tempfile
 import time
 
@@ -66,23 +67,30 @@ def write_study(folder: Path, cases: int, duration: float) -> Path:
 
 
 def main() -> None:
-    """Run the study with 1 and 2 workers; print the table."""
+    """Run the study with 1 and 2 workers (--repeat rounds, alternating); print the table."""
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--cases', type=int, default=48, help='cases in the study')
     parser.add_argument('--duration', type=float, default=30.0, help='seconds per case')
     parser.add_argument('--workers', type=int, nargs='+', default=[1, 2],
                         help='local cluster sizes to run')
+    parser.add_argument('--repeat', type=int, default=1,
+                        help='rounds, each running every size once in turn (this machine '
+                        'varies by 20 %% from run to run)')
     args = parser.parse_args()
-    results = {}
+    rounds = []
     with tempfile.TemporaryDirectory(prefix='study_speed_') as folder:
         study = write_study(Path(folder), args.cases, args.duration)
-        for workers in args.workers:
-            start, cpu = time.monotonic(), time.process_time()
-            report = run_study(study, Path(folder) / f'workers_{workers}', workers=workers,
-                               say=lambda text: None, progress=False)
-            total, cpu = time.monotonic() - start, time.process_time() - cpu
-            assert report.ran == args.cases and not report.failed and not report.lost, report
-            results[workers] = (report, total, cpu)
+        for round_ in range(args.repeat):
+            results = {}
+            for workers in args.workers:
+                start, cpu = time.monotonic(), time.process_time()
+                report = run_study(study, Path(folder) / f'round_{round_}_workers_{workers}',
+                                   workers=workers, say=lambda text: None, progress=False)
+                total, cpu = time.monotonic() - start, time.process_time() - cpu
+                assert report.ran == args.cases and not report.failed and not report.lost, \
+                    report
+                results[workers] = (report, total, cpu)
+            rounds.append(results)
     load = os.getloadavg()[0]
     print(f'study: {args.cases} cases of {args.duration:g} s (config/berth.yaml, 8 lines), '
           f'{os.cpu_count()} cores, load average {load:.2f} after the runs')
@@ -90,24 +98,32 @@ def main() -> None:
               'speed-up (study)', 'case time [s]', 'on CPU', 'run [s]', 'overhead',
               'fixed', 'cluster start [s]', 'study [s]', 'client CPU [s]')
     print(' | '.join(header))
-    base = None
-    for workers, (report, total, cpu) in results.items():
-        run = report.timings['run']
-        per_worker = report.case_wall / workers
-        overhead = run - per_worker
-        finishing = sum(report.timings.get(stage, 0.0)
-                        for stage in ('prepare', 'results', 'plots'))
-        rate_run, rate_study = 60.0 * args.cases / run, 60.0 * args.cases / total
-        if base is None:
-            base = (rate_run, rate_study)
-        print(' | '.join([
-            f'{workers}', f'{rate_run:.1f}', f'{rate_study:.1f}',
-            f'{rate_run / base[0]:.2f}', f'{rate_study / base[1]:.2f}',
-            f'{report.case_wall:.1f}', f'{100.0 * report.case_cpu / report.case_wall:.0f} %',
-            f'{run:.1f}',
-            f'{overhead:.2f} s ({100.0 * overhead / per_worker:.1f} %)',
-            f'{finishing:.2f} s ({100.0 * finishing / per_worker:.1f} %)',
-            f'{report.timings["cluster"]:.1f}', f'{total:.1f}', f'{cpu:.1f}']))
+    speedups = {workers: [] for workers in args.workers}
+    for results in rounds:
+        base = None
+        for workers, (report, total, cpu) in results.items():
+            run = report.timings['run']
+            per_worker = report.case_wall / workers
+            overhead = run - per_worker
+            finishing = sum(report.timings.get(stage, 0.0)
+                            for stage in ('prepare', 'results', 'plots'))
+            rate_run, rate_study = 60.0 * args.cases / run, 60.0 * args.cases / total
+            if base is None:
+                base = (rate_run, rate_study)
+            speedups[workers].append(rate_study / base[1])
+            print(' | '.join([
+                f'{workers}', f'{rate_run:.1f}', f'{rate_study:.1f}',
+                f'{rate_run / base[0]:.2f}', f'{rate_study / base[1]:.2f}',
+                f'{report.case_wall:.1f}',
+                f'{100.0 * report.case_cpu / report.case_wall:.0f} %', f'{run:.1f}',
+                f'{overhead:.2f} s ({100.0 * overhead / per_worker:.1f} %)',
+                f'{finishing:.2f} s ({100.0 * finishing / per_worker:.1f} %)',
+                f'{report.timings["cluster"]:.1f}', f'{total:.1f}', f'{cpu:.1f}']))
+    if len(rounds) > 1:
+        for workers, values in speedups.items():
+            print(f'{workers} workers: speed-up (study) against {args.workers[0]} in the same '
+                  f'round, median {statistics.median(values):.2f} '
+                  f'({min(values):.2f}-{max(values):.2f}) over {len(values)} rounds')
 
 
 if __name__ == '__main__':
