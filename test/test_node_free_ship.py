@@ -25,9 +25,11 @@ from pathlib import Path
 
 from geometry_msgs.msg import Vector3Stamped, WrenchStamped
 from nav_msgs.msg import Odometry
+from node_harness import spin_until
 import numpy as np
 import pytest
 import rclpy
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.serialization import deserialize_message
 from rclpy.signals import SignalHandlerOptions
@@ -229,3 +231,41 @@ def test_the_fenders_are_drawn_at_their_contact_points():
     assert [q.x, q.y, q.z, q.w] == pytest.approx([np.sqrt(0.5), 0.0, 0.0, np.sqrt(0.5)])
     assert bodies[0].color.g > bodies[0].color.r  # green: within its rating
     assert bodies[1].color.r > bodies[1].color.g  # amber: past it
+
+
+def test_ship_stiffness_is_worked_out_only_for_a_subscriber(monkeypatch):
+    # unrecorded, unsubscribed: no statics at all (it cost 10 % of a 16-line node's CPU)
+    from rope_sim_ros.ros import node as node_module
+    worked = []
+    real = node_module.stiffness_now
+    monkeypatch.setattr(node_module, 'stiffness_now',
+                        lambda *args: worked.append(1) or real(*args))
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    node = node_module.MooringNode(context=context, namespace='/stiffness_taken',
+                                   parameter_overrides=[
+                                       p for p in overrides(Path('unused'))
+                                       if p.name != 'record_path'])
+    probe = rclpy.create_node('stiffness_probe', context=context)
+    executor = SingleThreadedExecutor(context=context)
+    executor.add_node(node)
+    executor.add_node(probe)
+    try:
+        at(node, 0.0)
+        at(node, 1.0 / RATE)
+        node._on_stiffness()
+        assert worked == []
+        got = []
+        probe.create_subscription(Float64MultiArray, f'/stiffness_taken/{topics.STIFFNESS}',
+                                  got.append, 10)
+        spin_until(executor, lambda: node._taken.subscribed(topics.STIFFNESS), 10.0,
+                   'the subscriber')
+        node._on_stiffness()  # (its timer may fire in the spin too)
+        spin_until(executor, lambda: got, 10.0, 'ship/stiffness')
+        assert len(worked) >= 1
+        assert np.array(got[0].data).reshape(6, 6)[1, 1] > 0.0
+    finally:
+        executor.shutdown()
+        probe.destroy_node()
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
