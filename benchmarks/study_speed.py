@@ -120,7 +120,7 @@ def main() -> None:
                 f'{finishing:.2f} s ({100.0 * finishing / per_worker:.1f} %)',
                 f'{report.timings["cluster"]:.1f}', f'{total:.1f}', f'{cpu:.1f}']))
     if len(rounds) > 1:
-        for workers, values in speedups.items():
+        for workers, values in list(speedups.items())[1:]:
             print(f'{workers} workers: speed-up (study) against {args.workers[0]} in the same '
                   f'round, median {statistics.median(values):.2f} '
                   f'({min(values):.2f}-{max(values):.2f}) over {len(values)} rounds')

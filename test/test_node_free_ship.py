@@ -22,6 +22,7 @@ message into its callback.
 """
 
 from pathlib import Path
+from typing import Optional
 
 from geometry_msgs.msg import Vector3Stamped, WrenchStamped
 from nav_msgs.msg import Odometry
@@ -56,11 +57,13 @@ PASSING = {'passing_ship.speed': 4.0, 'passing_ship.separation': 70.0,
            'passing_ship.start_x': -60.0}
 
 
-def overrides(bag: Path) -> list:
-    """Return config/berth.yaml's parameters, made free, as the node's overrides."""
+def overrides(bag: Optional[Path]) -> list:
+    """Return config/berth.yaml's parameters, made free, recorded into bag unless it is None."""
     values = flatten(read_arrangement_file(BERTH).values())
-    values.update({'ship_mode': 'free', 'record_path': str(bag), 'publish_rate': RATE,
-                   'stiffness_rate': 2.0, **PASSING})
+    values.update({'ship_mode': 'free', 'publish_rate': RATE, 'stiffness_rate': 2.0,
+                   **PASSING})
+    if bag is not None:
+        values['record_path'] = str(bag)
     return [Parameter('use_sim_time', value=True)] + [
         Parameter(name, value=value) for name, value in values.items()]
 
@@ -243,9 +246,7 @@ def test_ship_stiffness_is_worked_out_only_for_a_subscriber(monkeypatch):
     context = rclpy.Context()
     rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
     node = node_module.MooringNode(context=context, namespace='/stiffness_taken',
-                                   parameter_overrides=[
-                                       p for p in overrides(Path('unused'))
-                                       if p.name != 'record_path'])
+                                   parameter_overrides=overrides(None))
     probe = rclpy.create_node('stiffness_probe', context=context)
     executor = SingleThreadedExecutor(context=context)
     executor.add_node(node)

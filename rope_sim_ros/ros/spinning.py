@@ -81,7 +81,7 @@ def executor_for(node: Node) -> Executor:
     in rclpy 7.1; its timers were written for the system clock, ros2/rclcpp issue 2457)
     did not follow a simulated clock on a busy machine: under a /clock that crept on a tick
     at a time, the mooring node took neither a tick nor a /clock message for 30 s at a
-    stretch, its ropes fell behind the clock and skipped ahead, 3 times in 40 simulated
+    stretch, its ropes fell behind the clock and skipped ahead, 2-4 times in 40 simulated
     seconds; on rclpy's own executor, under the same load, never. So under use_sim_time a
     node spins on rclpy's. The choice is made once, at the start, from use_sim_time then.
     """
