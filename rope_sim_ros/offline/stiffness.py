@@ -61,7 +61,7 @@ def stiffness_report(setup: ArrangementParams, materials: Any = None,
     touching = [f'{fender.name} {r / 1e3:.1f} kN' for fender, r in
                 zip(setup.fenders, loads.fender_reactions) if r > 0.0]
     if setup.fenders:
-        report.append('fenders in contact: ' + (', '.join(touching) or 'none'))
+        report.append('fenders compressed: ' + (', '.join(touching) or 'none'))
     if not np.all(np.isfinite(matrix)):
         raise ParameterError('the stiffness is not finite at the start pose: a line or a '
                              'fender meets the hull where it has no slope')
