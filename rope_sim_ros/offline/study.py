@@ -35,11 +35,13 @@ from dataclasses import dataclass, field
 import json
 import os
 import shutil
+import threading
 import time
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from .run import ratings
 from .study_file import prepare, PreparedCase, read_study, Study, StudyError
+from .study_plots import load_matplotlib, plot_study
 from .study_results import (case_name, CASES_DIR, OK, read_record, result_rows, write_atomic,
                             write_record, write_results)
 
@@ -219,6 +221,10 @@ def run_study(path, out, workers: Optional[int] = None, scheduler: Optional[str]
         f'{len(todo)} to run' + (f', {len(records)} done before' if records else '')
         + f' -> {folder}')
     lines = _lines(prepared)
+    if plots and todo:
+        # matplotlib takes about a second to import: while the workers run the cases, the
+        # study's own process waits on them, so the plots at the end need not wait for it
+        threading.Thread(target=load_matplotlib, daemon=True).start()
     try:  # a Ctrl-C after the cases ran is an interruption like one during them
         if todo:
             _run(study, prepared, todo, folder, records, report, workers, scheduler, say,
@@ -229,7 +235,6 @@ def run_study(path, out, workers: Optional[int] = None, scheduler: Optional[str]
         report.files = write_results(folder, study, records, lines)
         report.timings['results'] = time.monotonic() - mark
         if plots:
-            from .study_plots import plot_study
             mark = time.monotonic()
             rows = result_rows(study, records)
             report.files += plot_study(folder, study, rows, lines, _wll_fraction(prepared))

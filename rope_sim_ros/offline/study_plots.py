@@ -74,6 +74,14 @@ def _levels(study: Study, name: str, rows: Sequence[Mapping[str, Any]]) -> List[
     return values
 
 
+def load_matplotlib():
+    """Import matplotlib's pyplot on the Agg backend (no display) and return it."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    return plt
+
+
 def plot_study(folder, study: Study, rows: Sequence[Mapping[str, Any]], lines: Sequence[str],
                wll_fraction: Optional[float] = None) -> List[str]:
     """
@@ -83,10 +91,7 @@ def plot_study(folder, study: Study, rows: Sequence[Mapping[str, Any]], lines: S
     :param wll_fraction: the smallest WLL / MBL of the lines (drawn across), or None.
     :returns: the files written.
     """
-    import matplotlib
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-
+    plt = load_matplotlib()
     folder = os.fspath(folder)
     ok = [row for row in rows if row.get('status') == OK]
     failed = len(rows) - len(ok)
