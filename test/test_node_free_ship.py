@@ -182,6 +182,59 @@ def test_the_passing_ship_wrench_is_published_in_body_axes(run):
     np.testing.assert_allclose(wrenches[-1][3][:2], run['output'].ship_loads[2][:2])
 
 
+def test_the_odometry_twist_is_the_ships_velocity_in_its_body_axes(run):
+    odometry = [deserialize_message(data, Odometry)
+                for data in messages(run['bag'], topics.SHIP_ODOMETRY)]
+    positions = np.array([[o.pose.pose.position.x, o.pose.pose.position.y,
+                           o.pose.pose.position.z] for o in odometry])
+    assert np.abs(positions[-1] - positions[0]).max() > 0.02  # the ship moved
+    means = np.diff(positions, axis=0) * RATE  # mean velocity of each output interval
+    misses, speeds = [], []
+    for i in range(2, len(odometry) - 2):
+        # the velocity at output i from the two intervals before it, and from the two after
+        # (each linear through their means): one of them is whole where the push starts at
+        # an output and the acceleration jumps; in the ship's axes (R^T v)
+        q = odometry[i].pose.pose.orientation
+        rotation = rotation_matrix([q.x, q.y, q.z, q.w])
+        before = (1.5 * means[i - 1] - 0.5 * means[i - 2]) @ rotation
+        after = (1.5 * means[i] - 0.5 * means[i + 1]) @ rotation
+        t = odometry[i].twist.twist.linear
+        twist = np.array([t.x, t.y, t.z])
+        misses.append(min(np.abs(twist - before).max(), np.abs(twist - after).max()))
+        speeds.append(np.abs(twist).max())
+    assert max(speeds) > 0.02  # [m/s] (measured 0.068: the passing ship)
+    assert max(misses) < 2e-5  # [m/s] (measured 2.2e-6; in world axes 3.6e-5)
+    out = run['output']
+    last = odometry[-1].twist.twist
+    rotation = rotation_matrix(out.ship.orientation)
+    np.testing.assert_allclose([last.linear.x, last.linear.y, last.linear.z],
+                               out.ship.velocity @ rotation, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose([last.angular.x, last.angular.y, last.angular.z],
+                               out.ship.omega @ rotation, rtol=1e-12, atol=1e-15)
+
+
+def test_each_fender_publishes_its_reaction_on_the_hull(run):
+    setup = read_arrangement_file(BERTH)
+    out = run['output']
+    pushed = 0.0
+    for f, fender in enumerate(setup.fenders):
+        sent = [decode_wrench_stamped(data) for data in
+                messages(run['bag'], f'{fender.name}/{topics.FENDER_REACTION}')]
+        assert len(sent) == round(END * RATE) + 1
+        assert {w[2] for w in sent} == {'world'}
+        np.testing.assert_allclose(sent[-1][3], out.fender_forces[f], rtol=1e-12)
+        normal = np.asarray(fender.normal, dtype=float) / np.linalg.norm(fender.normal)
+        for w in sent:
+            force, torque = w[3], w[4]
+            assert not torque.any()  # at its contact point
+            along = float(force @ normal)
+            assert along >= 0.0  # a fender pushes, never pulls
+            # the rest is the hull's friction on it, at most friction x the push
+            assert np.linalg.norm(force - along * normal) <= fender.friction * along + 1e-6
+            pushed = max(pushed, along)
+    assert pushed > 1e4  # [N]: the lines hold the ship against its fenders
+
+
 def test_ship_stiffness_is_the_statics_stiffness_where_the_ship_is(run):
     assert run['start_time'] == 0.0
     sent = [deserialize_message(data, Float64MultiArray)
