@@ -31,9 +31,11 @@ import time
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
 import numpy as np
+from node_harness import spin_until
 from one_line import OneLine
 import pytest
 import rclpy
+import rclpy.time
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
@@ -543,3 +545,70 @@ def test_a_marker_rate_change_is_logged(mooring):
     node, client = mooring
     set_parameter(client, 'marker_rate', 5.0)
     client.wait_for(lambda: 'set marker_rate = 5.0' in node.text(), 10.0, 'the log line')
+
+
+def in_process_mooring(context, namespace: str, **values):
+    """Return a MooringNode of the three lines in this process, in `namespace`."""
+    from rope_sim_ros.ros.node import MooringNode
+    overrides = arrangement.flatten({**line_values(), **values})
+    return MooringNode(context=context, namespace=namespace, parameter_overrides=[
+        Parameter(name, value=value) for name, value in overrides.items()])
+
+
+def test_two_namespaced_moorings_name_their_diagnostics_apart():
+    # /diagnostics is one global topic: each status names its node in full (two ships'
+    # `mooring: easy` collided)
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    executor = SingleThreadedExecutor(context=context)
+    nodes = [in_process_mooring(context, namespace) for namespace in ('/ship_a', '/ship_b')]
+    client = rclpy.create_node('diagnostics_reader', context=context)
+    seen = {}
+    client.create_subscription(
+        DiagnosticArray, '/diagnostics',
+        lambda msg: seen.update({s.name: s.hardware_id for s in msg.status}), 10)
+    try:
+        for node in (*nodes, client):
+            executor.add_node(node)
+        # (the nodes wait for their first ship pose: their statuses say so, once a second)
+        spin_until(executor, lambda: len(seen) == 6, 10.0, 'both nodes\' diagnostics')
+    finally:
+        executor.shutdown()
+        for node in (*nodes, client):
+            node.destroy_node()
+        rclpy.try_shutdown(context=context)
+    assert seen == {f'{ship}/mooring: {name}': name
+                    for ship in ('ship_a', 'ship_b') for name in NAMES}
+
+
+def test_a_non_unit_quaternion_is_normalised_with_one_warning(capfd):
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    node = in_process_mooring(context, '/quaternion', use_sim_time=True)
+    try:
+        for k in range(20):  # |q| = 2 at every pose
+            t = k / RATE
+            ns = SIM_START + round(t * 1e9)
+            node.get_clock().set_ros_time_override(rclpy.time.Time(nanoseconds=ns))
+            position, orientation = ship_pose(t)
+            msg = PoseStamped()
+            msg.header.frame_id = 'world'
+            msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(ns, 1_000_000_000)
+            msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = position
+            (msg.pose.orientation.x, msg.pose.orientation.y, msg.pose.orientation.z,
+             msg.pose.orientation.w) = [2.0 * c for c in orientation]
+            node._on_pose('ship', msg)  # (the subscription's callback)
+        mooring = node.driver.mooring
+        used = mooring.ship_pose(mooring.time)
+        out = mooring.output()
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+    # the lines follow the unit quaternion (the pose the mooring keeps is normalised)
+    np.testing.assert_allclose(used[1], ship_pose(mooring.time)[1], atol=1e-12)
+    assert mooring.time > 0.3 and out.finite
+    assert not out.parted.any()
+    assert np.all(out.fairlead_tensions < OneLine(from_values(LINE)).material.mbl)
+    warnings = [line for line in capfd.readouterr().err.splitlines()
+                if 'normalised a non-unit quaternion (|q| = 2)' in line]
+    assert len(warnings) == 1, warnings  # throttled: one a stream
