@@ -20,8 +20,9 @@ Launch a ship's mooring arrangement: the mooring node with an arrangement file.
     ros2 launch rope_sim_ros mooring.launch.py ship_motion:=true
 
 With ship_motion:=true a scripted ship (the ship_motion node, in the same namespace) drives
-the mooring: its fairlead/pose remapped to ship/pose, oscillating around mean_position (the
-ship's origin at rest, default config/berth.yaml's (0, -17.6, 0)).
+the mooring: its fairlead/pose remapped to ship/pose, its parameters config/berth_motion.yaml
+(motions config/berth.yaml's lines hold), oscillating around mean_position (the ship's
+origin at rest, default config/berth.yaml's (0, -17.6, 0)).
 
 Every topic of the node is relative, so two ships run side by side, one namespace each. The
 parameter file must be an arrangement (`mooring: ros__parameters: lines: [...]`, as
@@ -60,8 +61,8 @@ def check_params_file(context):
 
 
 def generate_launch_description():
-    default_params_file = os.path.join(
-        get_package_share_directory('rope_sim_ros'), 'config', 'berth.yaml')
+    config = os.path.join(get_package_share_directory('rope_sim_ros'), 'config')
+    default_params_file = os.path.join(config, 'berth.yaml')
     return LaunchDescription([
         DeclareLaunchArgument(
             'namespace', default_value='',
@@ -100,6 +101,7 @@ def generate_launch_description():
             condition=IfCondition(LaunchConfiguration('ship_motion')),
             remappings=[('fairlead/pose', 'ship/pose')],
             parameters=[
+                os.path.join(config, 'berth_motion.yaml'),
                 {'mean_position': LaunchConfiguration('mean_position'),  # read as YAML
                  'use_sim_time': ParameterValue(LaunchConfiguration('use_sim_time'),
                                                 value_type=bool)},

@@ -193,17 +193,46 @@ def ship_motion_drives_mooring(colcon_install, colcon_env, folder: Path, berth: 
 
 
 def test_ship_motion_drives_the_berth_as_the_docs_say(colcon_install, colcon_env, tmp_path):
-    # docs/ros.md: ship_motion remapped to ship/pose, its mean_position the berth's rest
-    # pose. The lines start at their pretensions, below their working load limits.
+    # docs/ros.md: ship_motion remapped to ship/pose, with the installed
+    # config/berth_motion.yaml (its mean_position the berth's rest pose). The lines start at
+    # their pretensions, below their working load limits.
+    motion = colcon_install / 'share' / 'rope_sim_ros' / 'config' / 'berth_motion.yaml'
     text = ship_motion_drives_mooring(colcon_install, colcon_env, tmp_path,
                                       berth_file(tmp_path / 'berth.yaml'),
-                                      '-p', 'mean_position:=[0.0, -17.6, 0.0]')
+                                      '--params-file', str(motion))
     assert 'working load limit' not in text and '[ERROR]' not in text, text
     # the ship at its berth (it began to move as the mooring node subscribed)
     head = float(re.search(r'lengths for their pretension: head_1 ([\d.]+) m', text).group(1))
     assert abs(head - 44.8) < 0.5, head
     received = int(re.search(r'ship/pose: (\d+) received', text).group(1))
     assert received > 100, text
+
+
+def test_a_minute_of_berth_motion_keeps_every_line_below_its_wll():
+    # What the node test above cannot wait for: config/berth_motion.yaml's motion past its
+    # ramp, through the mooring node's driver (the node's rules, without DDS). ship_motion's
+    # own defaults took both springs to their break load (parted at 11.3 and 27.0 s).
+    from rope_sim_ros.mooring.driver import Driver
+    from rope_sim_ros.offline.run import ratings
+    from rope_sim_ros.params.arrangement import read_arrangement_file
+    from rope_sim_ros.params.files import read_params_file
+    from rope_sim_ros.ros import ship_motion_node
+    values = {name: spec[0] for name, spec in ship_motion_node.PARAMETERS.items()}
+    values.update(read_params_file(REPO / 'config' / 'berth_motion.yaml', 'ship_motion'))
+    assert values['mean_position'] == REST
+    setup = read_arrangement_file(BERTH)
+    driver = Driver(setup)
+    peaks = np.zeros(len(NAMES))
+    for k in range(60 * 50 + 1):  # 50 Hz poses, as ship_motion publishes them
+        t = k / 50.0
+        driver.push_ship(START + k * 20_000_000, *ship_motion_node.ship_pose(t, values))
+        for published in driver.advance(t).outputs:
+            out = published.output
+            assert not out.parted.any(), t
+            peaks = np.maximum(peaks, out.peaks)
+    shares = peaks / [rating.wll for rating in ratings(setup)]
+    assert shares.max() < 0.9, shares  # (measured: the springs at 0.77 and 0.79 of it)
+    assert shares.min() > 0.2  # every line works
 
 
 def test_a_start_past_the_working_load_limit_says_so(colcon_install, colcon_env, tmp_path):

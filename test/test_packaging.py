@@ -38,10 +38,12 @@ SHARE_FILES = (
     'package.xml',
     'config/mooring_line.yaml',
     'config/berth.yaml',
+    'config/berth_motion.yaml',
     'config/mooring.foxglove.json',
     'config/mooring.rviz',
     'config/materials.yaml',
     'launch/mooring_line.launch.py',
+    'launch/mooring.launch.py',
 )
 
 
