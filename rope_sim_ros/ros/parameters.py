@@ -75,8 +75,9 @@ def describe(name: str, spec: Spec) -> ParameterDescriptor:
 
 def arrangement_text(text: str, line: str = '<line>') -> str:
     """Return a line parameter's description as the mooring node's topics name things."""
-    return text.replace('fairlead/pose', 'ship/pose').replace('bollard/pose',
-                                                              f'{line}/bollard/pose')
+    return (text.replace('fairlead/pose', 'ship/pose')
+            .replace('bollard/pose', f'{line}/bollard/pose')
+            .replace('winch/command', f'{line}/winch/command'))
 
 
 def _is_number(value: Any) -> bool:
