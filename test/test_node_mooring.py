@@ -30,17 +30,17 @@ import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
-import numpy as np
 from node_harness import spin_until
+import numpy as np
 from one_line import OneLine
 import pytest
 import rclpy
-import rclpy.time
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.signals import SignalHandlerOptions
+from rclpy.time import Time
 from rope_sim_ros.model.frames import pose_point
 from rope_sim_ros.model.statics.pretension import length_for_tension
 from rope_sim_ros.mooring.status import COLOURS
@@ -571,7 +571,7 @@ def test_two_namespaced_moorings_name_their_diagnostics_apart():
         for node in (*nodes, client):
             executor.add_node(node)
         # (the nodes wait for their first ship pose: their statuses say so, once a second)
-        spin_until(executor, lambda: len(seen) == 6, 10.0, 'both nodes\' diagnostics')
+        spin_until(executor, lambda: len(seen) == 6, 10.0, "both nodes' diagnostics")
     finally:
         executor.shutdown()
         for node in (*nodes, client):
@@ -589,7 +589,7 @@ def test_a_non_unit_quaternion_is_normalised_with_one_warning(capfd):
         for k in range(20):  # |q| = 2 at every pose
             t = k / RATE
             ns = SIM_START + round(t * 1e9)
-            node.get_clock().set_ros_time_override(rclpy.time.Time(nanoseconds=ns))
+            node.get_clock().set_ros_time_override(Time(nanoseconds=ns))
             position, orientation = ship_pose(t)
             msg = PoseStamped()
             msg.header.frame_id = 'world'
