@@ -58,10 +58,10 @@ def stiffness_report(setup: ArrangementParams, materials: Any = None,
     tensions = ', '.join(f'{line.name or "the line"} {t / 1e3:.1f} kN'
                          for line, t in zip(statics.lines, loads.fairlead_tensions))
     report.append(f'fairlead tensions: {tensions}')
-    touching = [f'{fender.name} {r / 1e3:.1f} kN' for fender, r in
-                zip(setup.fenders, loads.fender_reactions) if r > 0.0]
+    compressed = [f'{fender.name} {r / 1e3:.1f} kN' for fender, r in
+                  zip(setup.fenders, loads.fender_reactions) if r > 0.0]
     if setup.fenders:
-        report.append('fenders compressed: ' + (', '.join(touching) or 'none'))
+        report.append('fenders compressed: ' + (', '.join(compressed) or 'none'))
     if not np.all(np.isfinite(matrix)):
         raise ParameterError('the stiffness is not finite at the start pose: a line or a '
                              'fender meets the hull where it has no slope')
