@@ -95,8 +95,8 @@ def pose_point(position: Sequence[float], orientation: Sequence[float], offset) 
 def _checked_pose(position: Sequence[float], orientation: Sequence[float]) -> tuple:
     """Return the position and orientation as float tuples and |q| (PoseError: see pose_point)."""
     px, py, pz = position
-    position = (float(px), float(py), float(pz))
-    if not all(map(math.isfinite, position)):
+    position = px, py, pz = float(px), float(py), float(pz)
+    if not (math.isfinite(px) and math.isfinite(py) and math.isfinite(pz)):
         raise PoseError(f'non-finite position {list(position)}')
     return (position,) + _checked_orientation(orientation)
 
@@ -105,13 +105,15 @@ def _checked_orientation(orientation: Sequence[float]) -> tuple:
     """
     Return the orientation as a float tuple and |q|.
 
-    In plain floats: this runs for every pose, where numpy's checks took 8 us, these 2 us.
+    In plain floats, without generators: this runs for every pose, where numpy's checks took
+    8 us, these 1 us.
     """
     ox, oy, oz, ow = orientation
-    q = (float(ox), float(oy), float(oz), float(ow))
-    if not all(map(math.isfinite, q)):
+    q = ox, oy, oz, ow = float(ox), float(oy), float(oz), float(ow)
+    if not (math.isfinite(ox) and math.isfinite(oy) and math.isfinite(oz)
+            and math.isfinite(ow)):
         raise PoseError(f'non-finite orientation {list(q)}')
-    norm = math.sqrt(sum(c * c for c in q))
+    norm = math.sqrt(ox * ox + oy * oy + oz * oz + ow * ow)
     if norm < MIN_QUATERNION_NORM:
         raise PoseError(f'zero quaternion {list(q)}')
     return q, norm
@@ -127,10 +129,22 @@ def pose_points(position: Sequence[float], orientation: Sequence[float],
 
     :raises PoseError: as pose_point.
     """
-    (x, y, z), q, norm = _checked_pose(position, orientation)
-    ux, uy, uz, w = (c / norm for c in q)
+    return unit_pose_points(position, orientation, offsets)[1]
+
+
+def unit_pose_points(position: Sequence[float], orientation: Sequence[float],
+                     offsets) -> Tuple[np.ndarray, np.ndarray]:
+    """
+    Return the unit quaternion (x, y, z, w) of a pose and its points pose ⊕ offset (n, 3).
+
+    unit_quaternion and pose_points with the pose checked once: a ship pose needs both.
+
+    :raises PoseError: as pose_point.
+    """
+    (x, y, z), (qx, qy, qz, qw), norm = _checked_pose(position, orientation)
+    ux, uy, uz, w = qx / norm, qy / norm, qz / norm, qw / norm
     offsets = np.ascontiguousarray(offsets, dtype=float).reshape(-1, 3)
-    return _pose_points(x, y, z, ux, uy, uz, w, offsets)
+    return np.array((ux, uy, uz, w)), _pose_points(x, y, z, ux, uy, uz, w, offsets)
 
 
 @numba.njit(cache=True)
@@ -168,6 +182,29 @@ def _cross_rows(a, b):
         out[i, 1] = a[i, 2] * b[i, 0] - a[i, 0] * b[i, 2]
         out[i, 2] = a[i, 0] * b[i, 1] - a[i, 1] * b[i, 0]
     return out
+
+
+def distances_beyond(a: np.ndarray, b: np.ndarray, limits: np.ndarray,
+                     out: np.ndarray) -> int:
+    """
+    Write the distances between the rows of a and b (n, 3) into out (n,) [m].
+
+    Compiled (numpy's took 8 us a ship pose, flagging the jumps as many again).
+
+    :returns: how many of them are farther than their limit (n,) [m].
+    """
+    return _distances_beyond(np.ascontiguousarray(a, dtype=float),
+                             np.ascontiguousarray(b, dtype=float), limits, out)
+
+
+@numba.njit(cache=True)
+def _distances_beyond(a, b, limits, out):
+    count = 0
+    for i in range(len(a)):
+        out[i] = math.sqrt((a[i, 0] - b[i, 0]) ** 2 + (a[i, 1] - b[i, 1]) ** 2
+                           + (a[i, 2] - b[i, 2]) ** 2)
+        count += out[i] > limits[i]
+    return count
 
 
 def stamp_ns(sec: int, nanosec: int) -> int:

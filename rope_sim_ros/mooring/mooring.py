@@ -77,7 +77,7 @@ from .ship import fenders, ship_body, ship_loads, ship_wind
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 from ..model.forces.body import place_points
 from ..model.forces.fender import fender_force
-from ..model.frames import cross_rows, pose_points, rotation_matrix, unit_quaternion
+from ..model.frames import cross_rows, distances_beyond, rotation_matrix, unit_pose_points
 from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
                             BODY_POSITION, BODY_QUATERNION, BODY_STATE, BODY_VELOCITY,
                             FENDER_COLUMNS, WINCH_SPEED)
@@ -89,13 +89,18 @@ from ..params.arrangement import ArrangementParams
 from ..params.materials import load_materials
 from ..params.table import ParameterError
 from ..stepping.rules import (drive_lines, end_distances, fine_steps, implicit_bending,
-                              lines_motion_spreads, step_divisions)
+                              lines_motion_spreads, lowest_bound, step_divisions)
 from ..stepping.step import step
 
 # An end found further than END_TOLERANCE [m] off its trajectory (late samples changed the
 # trajectory under the rope) is brought back onto it over END_BLEND_TIME [s] (an EndBlend).
 END_TOLERANCE = 1e-6
 END_BLEND_TIME = 1.0  # see trajectory.py for what it costs
+# A state time past the settled part of an end's track (what a new sample cannot change) by
+# no more than this [s] is on it: step times and sample stamps differ by rounding alone, and
+# counting that as a moved track sent a fifth to half of a steady stream's outputs through
+# the end check (a drive of the line, 25 us) to find the ends where they were.
+SETTLED_TOLERANCE = 1e-9
 
 
 def mooring_wrench(fairlead_forces: np.ndarray, offsets: np.ndarray,
@@ -202,7 +207,7 @@ class MooringOutput:
         return np.maximum(self.fairlead_peaks, self.bollard_peaks)
 
 
-@dataclass(frozen=True)
+@dataclass
 class MooringAdvance:
     """
     What one advance_to call did.
@@ -497,8 +502,7 @@ class Mooring:
         if self.free:
             raise TrajectoryError('the ship is free (ship_mode free): its pose is an output '
                                   'of the mooring, not an input')
-        q, _ = unit_quaternion(orientation)
-        points = pose_points(position, orientation, self.offsets)
+        q, points = unit_pose_points(position, orientation, self.offsets)
         if self._ship and t <= self._ship[-1][0]:
             raise TrajectoryError(f'ship pose at t={t:.6f} s is not after the newest one '
                                   f'({self._ship[-1][0]:.6f} s)')
@@ -515,19 +519,20 @@ class Mooring:
             for k in owns:
                 own = self._own_fairlead[k]
                 before[k] = own.last_position
-                self._off_track[k] |= started and self.time > own.settled_until
+                self._off_track[k] |= started and self.time > own.settled_until + SETTLED_TOLERANCE
                 own.push(t, points[k])
         if before is None:
             self.last_jumps[:] = 0.0
+            farther = 0
         else:
-            self.last_jumps[:] = np.sqrt(((points - before) ** 2).sum(axis=1))
+            farther = distances_beyond(points, before, self._line_arrays()[1], self.last_jumps)
         self._last_fairleads = points
-        if started and self.time > settled:  # the samples may have moved the shared track
+        if started and self.time > settled + SETTLED_TOLERANCE:  # they may have moved the track
             shared_lines = np.ones(len(self.lines), dtype=bool)
             shared_lines[owns] = False
             self._off_track |= shared_lines
-        jumped = [int(k) for k in np.flatnonzero(self.last_jumps > self._line_arrays()[1])] \
-            if started else []
+        jumped = np.flatnonzero(self.last_jumps > self._line_arrays()[1]).tolist() \
+            if started and farther else []
         if jumped:
             self._ends_version += 1
         if jumped and len(jumped) == len(self.lines):  # the whole ship: start over
@@ -562,7 +567,7 @@ class Mooring:
         track.push(t, point)
         self._bollards[k] = track
         started = self.started
-        self._off_track[k] |= started and self.time > settled
+        self._off_track[k] |= started and self.time > settled + SETTLED_TOLERANCE
         self.last_jumps[k] = math.dist(point, last)
         if line.payload:
             return ''
@@ -658,7 +663,10 @@ class Mooring:
 
     def _drive_group(self, group: _Group, times: np.ndarray) -> tuple:
         """
-        Return a group's driven points at `times` (n, Q, 3) twice and its distances (n, L).
+        Return a group's driven points, its lines' end distances, and whether one is too far.
+
+        The points at `times` (n, Q, 3) twice, the distances (n, L), and whether a line's ends
+        are farther apart than its reach at one of them.
 
         drive() of each line. The lines whose bollards stand still and whose fairleads
         follow the shared trajectory get the same numbers from one sampling of every
@@ -670,18 +678,21 @@ class Mooring:
         distances = np.empty((n, count))
         reach = group.rules.reach
         shared, bollards, others = self._drive_plan(group)
+        far = False
         for j in others:
             ends, velocities, distances[:, j] = self.drive(group.members[j], times)
             drive_x[:, 2 * j:2 * j + 2] = ends
             drive_v[:, 2 * j:2 * j + 2] = velocities
+            far |= bool(distances[:, j].max() > reach[j])
         if len(shared):
-            beyond = drive_lines(drive_x, drive_v, distances, *self._fairleads.sample(times),
-                                 shared, bollards, reach)
-            if beyond.any():
+            beyond = np.empty(len(shared), dtype=bool)
+            if drive_lines(drive_x, drive_v, distances, *self._fairleads.sample(times), shared,
+                           bollards, reach, beyond):
+                far = True
                 for j, _ in shared[beyond]:
                     hold_beyond_reach(drive_x[:, 2 * j:2 * j + 2],
                                       drive_v[:, 2 * j:2 * j + 2], distances[:, j], reach[j])
-        return drive_x, drive_v, distances
+        return drive_x, drive_v, distances, far
 
     def _drive_plan(self, group: _Group) -> tuple:
         """
@@ -715,7 +726,7 @@ class Mooring:
         late samples then moved the trajectory under the rope. The offline runner's ends are
         always on their trajectories: its numbers never change here.
         """
-        if not self._off_track[group.index].any():
+        if not self._off_track.any() or not self._off_track[group.index].any():
             return  # the common case, and the offline runner's only one
         for j, k in enumerate(group.members):
             if not self._off_track[k]:
@@ -908,31 +919,28 @@ class Mooring:
 
         Every group ends within a step of t; the state time is the earliest group's.
         """
-        start = self.time
         done = MooringAdvance(0, 0.0)  # what the groups' steps did, gathered
-        steps = 0
         for group in self.groups:
-            count = max(0, int(math.floor((t - group.time) / group.step + 1e-9)))
-            if count:
-                steps = max(steps, count)
+            count = int(math.floor((t - group.time) / group.step + 1e-9))
+            if count > 0:
+                done.steps = max(done.steps, count)
                 self._advance_group(group, group.time + group.step * np.arange(1, count + 1),
                                     done)
-        self.time = min(group.time for group in self.groups)
-        if not steps:
-            return MooringAdvance(0, t - start)
-        return MooringAdvance(steps, t - self.time, done.restarted, done.beyond_reach,
-                              done.parted)
+        groups = self.groups
+        self.time = groups[0].time if len(groups) == 1 else min(g.time for g in groups)
+        done.lag = t - self.time
+        return done
 
     def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
         """Take the steps of one group to `times`: held at the reach, back within it."""
         if self.free:
             self._set_body_loads(group.system, group.time, float(times[-1]))
-        drive_x, drive_v, distances = self._drive_group(group, times)
-        held = self.held[group.index]
-        beyond = distances > group.rules.reach
-        if not (beyond.any() or held.any()):  # the common case
+        drive_x, drive_v, distances, far = self._drive_group(group, times)
+        if not (far or self.held.any()):  # the common case
             self._step(group, times, drive_x, drive_v, done)
             return
+        held = self.held[group.index]
+        beyond = distances > group.rules.reach
         back = ~beyond & np.vstack([held, beyond[:-1]])
         for j in np.flatnonzero(beyond.any(axis=0)):
             k = group.members[j]
@@ -982,7 +990,7 @@ class Mooring:
 
     def _run_divided(self, group: _Group, fine: np.ndarray, done: MooringAdvance) -> None:
         """Take a group's steps to the divided times `fine`, its ends driven there."""
-        fine_x, fine_v, _ = self._drive_group(group, fine)
+        fine_x, fine_v = self._drive_group(group, fine)[:2]
         self._blend_ends(group, fine, fine_x, fine_v)
         self._run(group, (fine[-1] - group.time) / len(fine), fine_x, fine_v, done)
 
@@ -1109,9 +1117,10 @@ class Mooring:
                 self.restart_line(k)
         finite, largest = system.largest_load()
         rules = group.rules
+        if finite and largest <= lowest_bound(rules.bound_at_rest, rules.bound_per_speed,
+                                              end_speeds):
+            return  # the common case: no line near its bound
         bounds = rules.bound_at_rest + rules.bound_per_speed * end_speeds
-        if finite and largest <= bounds.min():  # the common case: no line near its bound
-            return
         if not finite:  # which lines? (the kernel stops at the first)
             rows = np.isfinite(system.x).all(axis=1) & np.isfinite(system.v).all(axis=1)
             finite = np.logical_and.reduceat(rows, group.starts[:-1])
@@ -1217,11 +1226,9 @@ class Mooring:
             system = group.system
             members = group.members
             group_forces, group_strains = system.loads()
-            group_tensions = np.sqrt((group_forces * group_forces).sum(axis=2))
-            # every step's largest, and the tension now: never below its own tension
-            group_peaks = np.maximum(system.take_peaks(), group_tensions)
             x = system.x.copy()  # one copy; each line's particles are a view of it
-            total += float(x.sum()) + float(group_forces.sum()) + float(group_peaks.sum())
+            group_tensions, group_peaks, group_total = system.take_tensions(group_forces, x)
+            total += group_total
             if single:
                 forces, strains, tensions, peaks = (group_forces, group_strains,
                                                     group_tensions, group_peaks)

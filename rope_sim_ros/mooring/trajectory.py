@@ -66,6 +66,7 @@ class EndTrajectory:
         self.method = method
         self.keep = keep
         self.width = width
+        self._shape = (3,) if width is None else (width, 3)  # a sample's
         # samples live in [_first, _count) of arrays that grow by doubling: a push at 1 kHz
         # must not copy the whole history
         self._times = np.empty(64)
@@ -73,10 +74,6 @@ class EndTrajectory:
         self._first = 0
         self._count = 0
         self.version = 0  # counts the changes (pushes and clears): a copy can tell it holds
-
-    @property
-    def _shape(self) -> tuple:
-        return (3,) if self.width is None else (self.width, 3)
 
     @property
     def _t(self) -> np.ndarray:

@@ -297,7 +297,8 @@ def end_distances(ends):
 
 
 @numba.njit(cache=True)
-def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bollards, reach):
+def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bollards, reach,
+                beyond):
     """
     Drive lines whose bollards stand still and whose fairleads were sampled together.
 
@@ -307,9 +308,11 @@ def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bol
     :param shared: (j, k) of each such line: its line in the System (points 2 j, 2 j + 1),
         its column of fairlead_x, fairlead_v (n, K, 3); its bollard (3,) is in bollards.
     :param reach: the reach [m] of every line of the System (L,), by j.
-    :returns: which of them are beyond their reach at some step (to be held there).
+    :param beyond: (S,) bool, written: which of them are beyond their reach at some step
+        (to be held there).
+    :returns: how many are.
     """
-    beyond = np.zeros(len(shared), dtype=np.bool_)
+    count = 0
     for i in range(len(shared)):
         j, k = shared[i, 0], shared[i, 1]
         for n in range(drive_x.shape[0]):
@@ -320,7 +323,20 @@ def drive_lines(drive_x, drive_v, distances, fairlead_x, fairlead_v, shared, bol
         apart = end_distances(drive_x[:, 2 * j:2 * j + 2])
         distances[:, j] = apart
         beyond[i] = apart.max() > reach[j]
-    return beyond
+        count += beyond[i]
+    return count
+
+
+@numba.njit(cache=True)
+def lowest_bound(at_rest, per_speed, speeds):
+    """Return the lowest of the lines' load bounds at_rest + per_speed * speeds (L,) [N]."""
+    lowest = np.inf
+    for j in range(len(speeds)):
+        bound = at_rest[j] + per_speed[j] * speeds[j]
+        if np.isnan(bound):
+            return np.nan  # (no load is within it)
+        lowest = min(lowest, bound)
+    return lowest
 
 
 # A step in which a particle would move more than MAX_STEP_MOTION of a segment against the

@@ -41,7 +41,7 @@ from .springs import add_springs
 from ..layout import (ADDED_MASS, AXIAL, BENDING, BODY_CLOCK, BODY_OMEGA, CARRIED, DIAMETER, DRAG,
                       DRAG_AREA, END_A, ENV_AIR_DENSITY, ENV_CURRENT, ENV_GRAVITY, ENV_QUAY_NORMAL,
                       ENV_SEABED_LEVEL, ENV_WATER_DENSITY, ENV_WATER_LEVEL, FIRST, FLUID, FREE,
-                      KIND, LAST, LENGTH, MASS, NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS,
+                      KIND, LAST, LENGTH, MASS, NORMAL_ADDED_MASS, NORMAL_DRAG, OWN_MASS, PEAK_A,
                       POINT_BODY, POINT_SINK, REST, SINK, SIZE, TANGENTIAL_ADDED_MASS,
                       TANGENTIAL_DRAG, TANGENTS, TOTAL_MASS, VOLUME, VOLUME_AREA, VOLUME_DIAMETER)
 from ..linalg import dense_cholesky_solve, inverse3
@@ -438,6 +438,32 @@ def max_strain(x, rest):
                     + (x[i + 1, 2] - x[i, 2]) ** 2)
         worst = max(worst, d / rest[i] - 1.0)
     return worst
+
+
+@numba.njit(cache=True)
+def take_tensions(forces, line_real, x, tensions, peaks):
+    """
+    Write each line's end tensions (L, 2) and their peaks since the last call (L, 2) [N].
+
+    forces (L, 2, 3) are end_forces of this state; a peak is the largest of the steps'
+    (held in line_real, cleared here) and this state's tension. One pass instead of five
+    numpy calls on small arrays: it runs at every output.
+
+    :returns: the sum of x, the forces and the peaks (finite only if every one is).
+    """
+    total = 0.0
+    for k in range(forces.shape[0]):
+        for e in range(2):
+            tension = np.sqrt(forces[k, e, 0] ** 2 + forces[k, e, 1] ** 2 + forces[k, e, 2] ** 2)
+            held = line_real[k, PEAK_A + e]
+            peak = tension if tension >= held else held  # (a NaN held stays: total tells)
+            tensions[k, e] = tension
+            peaks[k, e] = peak
+            line_real[k, PEAK_A + e] = 0.0
+            total += forces[k, e, 0] + forces[k, e, 1] + forces[k, e, 2] + peak
+    for i in range(x.shape[0]):
+        total += x[i, 0] + x[i, 1] + x[i, 2]
+    return total
 
 
 @numba.njit(cache=True)
