@@ -64,6 +64,7 @@ class OutputEncoder:
     :ivar line_topics: {topic: (line index, relative name)} of every line output but the
         latched parted flag.
     :ivar parted_topics: each line's parted topic.
+    :ivar output_topics: every topic an output may publish on: the lines', then the ship's.
     """
 
     def __init__(self, layout: Layout, names: Sequence[str], payloads: Sequence[bool],
@@ -100,17 +101,14 @@ class OutputEncoder:
                               for f, name in enumerate(fenders)}
         self.ship_topics.update({topic: topics.WRENCH_STAMPED for topic in self.fender_topics})
         self.types.update(self.ship_topics)
+        # one tuple for the node's life: which of them are taken is kept while it is the same
+        self.output_topics = tuple(self.line_topics) + tuple(self.ship_topics)
         self._parted: List[Optional[bool]] = [None] * len(names)  # what was said last
 
     def has_header(self, topic: str) -> bool:
         """Tell whether an output topic's messages carry a header stamp (the ship's do)."""
         line = self.line_topics.get(topic)
         return topic in self.ship_topics if line is None else line[1] in topics.STAMPED
-
-    @property
-    def output_topics(self) -> List[str]:
-        """Return every topic an output may publish on: the lines', then the ship's."""
-        return list(self.line_topics) + list(self.ship_topics)
 
     def messages(self, published: Published,
                  wanted: Optional[Iterable[str]] = None) -> List[Tuple[str, bytes]]:
