@@ -28,6 +28,7 @@ from rope_sim_ros.model.ship.passing import Hull, passing_loads
 from rope_sim_ros.mooring.mooring import Mooring
 from rope_sim_ros.offline import berth_check, cli
 from rope_sim_ros.params import arrangement
+from rope_sim_ros.params.table import from_values
 
 # a table the test can compute by hand: cx = -0.9 cos, cy = -0.7 sin, cmz = -0.1 sin 2theta
 TABLE = parse_coefficient_csv('angle_deg,cx,cy,cmz\n' + '\n'.join(
@@ -116,6 +117,30 @@ def free_berth(repo_root, **values):
     flat = {k: v for k, v in flat.items() if not k.endswith('.segments')}
     flat.update({'ship_mode': 'free', 'segments': 12, **values})
     return arrangement.from_values(flat)
+
+
+def test_a_current_pushes_a_driven_ship_but_not_a_single_lines(repo_root):
+    """A single line's current drags its line; there is no ship for it to push."""
+    current = [0.0, 0.5, 0.0]  # [m/s] off the quay
+    flat = arrangement.flatten(arrangement.read_setup(repo_root / 'config' / 'berth.yaml')
+                               .values())
+    flat = {k: v for k, v in flat.items() if not k.endswith('.segments')}
+    berth = arrangement.from_values({**flat, 'segments': 8, 'current': current})
+    line = arrangement.single_line(from_values({'segments': 8, 'current': current}))
+    outputs = []
+    for setup in (berth, line):
+        mooring = Mooring(setup, output_interval=0.01)
+        for t in (0.0, 0.01, 0.02):
+            mooring.push_ship(t, [0.0, -17.6 if setup is berth else 0.0, 0.0],
+                              [0.0, 0.0, 0.0, 1.0])
+        mooring.start(0.0)
+        mooring.advance_to(0.01)
+        outputs.append(mooring.output())
+    # the berth's ship, heading +x, feels the current from its starboard side (body -y)
+    fx, fy, mz = outputs[0].ship_loads[1]
+    assert fy > 1e4 and abs(fx) < 0.1 * fy, (fx, fy, mz)
+    assert not outputs[0].ship_loads[0].any() and not outputs[0].ship_loads[2].any()
+    assert not outputs[1].ship_loads.any()
 
 
 def test_the_berth_check_finds_where_a_run_settles(repo_root):

@@ -929,6 +929,7 @@ class Mooring:
         groups = self.groups
         self.time = groups[0].time if len(groups) == 1 else min(g.time for g in groups)
         done.lag = t - self.time
+        self.forget_ship()  # (a run fed every pose first found the one in use at the end)
         return done
 
     def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
@@ -1252,7 +1253,9 @@ class Mooring:
         if ship is not None:
             loads = self.ship_loads.at(self.time, ship.position,
                                        rotation_matrix(ship.orientation), ship.velocity)
-        elif self.ship_loads.acts:  # (a driven ship: worked out only when asked for)
+        elif not self.arrangement.single and self.ship_loads.acts:
+            # a driven ship's, when something acts on it: a single line's current acts on
+            # the line alone (its node and CSV have no ship loads)
             position, orientation = self.ship_pose(self.time)
             loads = self.ship_loads.at(self.time, position, rotation_matrix(orientation),
                                        np.zeros(3))
