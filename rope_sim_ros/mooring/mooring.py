@@ -507,12 +507,11 @@ class Mooring:
             raise TrajectoryError(f'ship pose at t={t:.6f} s is not after the newest one '
                                   f'({self._ship[-1][0]:.6f} s)')
         shared = self._fairleads
-        settled = shared.settled_until
+        started = self.started
+        settled = shared.settled_until if started else math.inf
         before = self._last_fairleads
         shared.push(t, points)
-        self._ship.append((t, np.array(position, dtype=float), q))
-        self.forget_ship()
-        started = self.started
+        self._ship.append((t, np.array(position, dtype=float), q))  # (advance_to forgets)
         owns = [k for k, own in enumerate(self._own_fairlead) if own is not None]
         if owns:  # a line that teleported: its own samples (its last point is theirs)
             before = before.copy()

@@ -129,7 +129,7 @@ class EndTrajectory:
             if point.shape != self._shape:
                 raise TrajectoryError(f'a sample of {self.width} points has shape '
                                       f'{self._shape}, not {point.shape}')
-            finite = bool(np.isfinite(point).all())
+            finite = _all_finite(point.reshape(-1))  # (numpy's isfinite().all(): 3 us)
         if not (finite and math.isfinite(t)):
             raise TrajectoryError(f'non-finite sample at t={t}: {np.asarray(point).tolist()}')
         if self._count > self._first and t <= self._times[self._count - 1]:
@@ -164,6 +164,14 @@ class EndTrajectory:
         """
         times = np.ascontiguousarray(times, dtype=float)
         return _sample(self._t, self._p, times, self.coast_time, self.method == 'cubic')
+
+
+@numba.njit(cache=True)
+def _all_finite(values):
+    for value in values:
+        if not np.isfinite(value):
+            return False
+    return True
 
 
 @numba.njit(cache=True)
