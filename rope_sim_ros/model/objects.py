@@ -778,7 +778,7 @@ class System:
                     whole = np.arange(line.segments) != int(real[PARTED])
                     line.rest[whole] = rest[whole]
                     line.rest[~whole] = real[UNSTRETCHED] - rest[whole].sum()
-        # (one look at the column: a look a line took 1 us, sixteen lines' every output)
+        # one look at the partings' column: looking line by line took 1 us a line an output
         if self.line_real[:, PARTED].max() >= 0.0:
             for k in np.flatnonzero(self.line_real[:, PARTED] >= 0.0):
                 line, real = self.lines[k], self.line_real[k]

@@ -928,7 +928,7 @@ class Mooring:
         groups = self.groups
         self.time = groups[0].time if len(groups) == 1 else min(g.time for g in groups)
         done.lag = t - self.time
-        self.forget_ship()  # (a run fed every pose first found the one in use at the end)
+        self.forget_ship()  # (else a run fed every pose first searches them all at each output)
         return done
 
     def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
