@@ -44,29 +44,8 @@ import tempfile
 import time
 
 HERE = Path(__file__).resolve().parents[1]
-FAIRLEAD = (36.0, 0.0, 8.0)
 BLOCK = 200  # outputs a turn
-LINES = {'polyester': (0.064, 2.6, 5.0e7, 2903.43), 'wire': (0.040, 6.5, 1.0e8, 6492.27)}
-
-
-def line_values(case: str, segments: int, integrator: str) -> dict:
-    """Return the parameters of physics_vs_moordyn.py's line."""
-    diameter, mass, ea, ba = LINES[case]
-    return dict(segments=segments, length=40.0, diameter=diameter, mass_per_length=mass,
-                axial_stiffness=ea, axial_damping=ba, bending_stiffness_ratio=0.0,
-                bending_damping_ratio=0.0, integrator=integrator, gravity=[0.0, 0.0, -9.81],
-                air_density=1.225, normal_drag_coefficient=1.2,
-                tangential_drag_coefficient=0.008, normal_added_mass_coefficient=1.0,
-                tangential_added_mass_coefficient=0.0, volume_diameter=diameter)
-
-
-def motion(count: int):
-    """Return the fairlead every 10 ms: 2 m along the chord, 10 s period, 10 s ramp."""
-    import numpy as np
-    t = np.arange(count) * 0.01
-    chord = np.array(FAIRLEAD) / np.linalg.norm(FAIRLEAD)
-    ramp = np.where(t < 10.0, 0.5 * (1.0 - np.cos(np.pi * t / 10.0)), 1.0)
-    return np.array(FAIRLEAD) + (2.0 * np.sin(2.0 * np.pi * t / 10.0) * ramp)[:, None] * chord
+CASES = ('polyester', 'wire', 'hmpe')  # physics_vs_moordyn.py's lines
 
 
 class Line:
@@ -117,7 +96,9 @@ class Line:
 
 def compare(values: dict, rounds: int) -> dict:
     """Return each tree's mean us an output, its parts, and the ratio of their totals."""
-    points = motion((rounds + 3) * BLOCK + 2)
+    import numpy as np
+    from physics_vs_moordyn import fairlead_motion
+    points = fairlead_motion(np.arange((rounds + 3) * BLOCK + 2) * 0.01)
     lines = {name: Line(name, values, points) for name in ('before_tree', 'this_tree')}
     blocks = {name: [] for name in lines}
     first = 2
@@ -141,7 +122,7 @@ def main() -> None:
     parser.add_argument('--before', required=True, type=Path,
                         help='a checkout of the tree to compare with (its rope_sim_ros/)')
     parser.add_argument('--segments', type=int, nargs='+', default=[20, 50])
-    parser.add_argument('--cases', nargs='+', default=list(LINES), choices=list(LINES))
+    parser.add_argument('--cases', nargs='+', default=['polyester', 'wire'], choices=CASES)
     parser.add_argument('--integrators', nargs='+',
                         default=['adaptive', 'implicit_euler', 'improved_euler'])
     parser.add_argument('--rounds', type=int, default=30)
@@ -161,6 +142,8 @@ def main() -> None:
         link.symlink_to(tree / 'rope_sim_ros')
     os.environ['NUMBA_CACHE_DIR'] = str(args.cache / 'numba')  # before numba is imported
     sys.path.insert(0, str(names))
+    # the benchmark's line (this tree's package under its own name beside the two)
+    from physics_vs_moordyn import line_values
     print(f'## One line an output: {args.before} against this tree, interleaved in blocks of '
           f'{BLOCK} outputs, {args.rounds} rounds')
     print()

@@ -96,17 +96,22 @@ def fairlead_motion(t):
     return FAIRLEAD + (2.0 * np.sin(2.0 * np.pi * t / 10.0) * ramp)[..., None] * CHORD
 
 
-def run_ours(case, segments, integrator, duration):
-    """Fairlead force magnitudes at 100 Hz, wall seconds and the step of this model."""
+def line_values(case, segments, integrator) -> dict:
+    """Return the parameters of a benchmark line: MoorDyn's line in air."""
     diameter, mass, ea, ba = _case(case)
-    # MoorDyn's line in air: its coefficients on one diameter (drag, buoyancy, added mass)
-    params = from_values(dict(
+    # MoorDyn's coefficients on one diameter (drag, buoyancy, added mass)
+    return dict(
         segments=segments, length=LENGTH, diameter=diameter, mass_per_length=mass,
         axial_stiffness=ea, axial_damping=ba, bending_stiffness_ratio=0.0,
         bending_damping_ratio=0.0, integrator=integrator, gravity=[0.0, 0.0, -GRAVITY],
         air_density=AIR, normal_drag_coefficient=1.2, tangential_drag_coefficient=0.008,
         normal_added_mass_coefficient=1.0, tangential_added_mass_coefficient=0.0,
-        volume_diameter=diameter))
+        volume_diameter=diameter)
+
+
+def run_ours(case, segments, integrator, duration):
+    """Fairlead force magnitudes at 100 Hz, wall seconds and the step of this model."""
+    params = from_values(line_values(case, segments, integrator))
     mooring = Mooring(single_line(params), output_interval=OUTPUT)
     samples = np.arange(0.0, duration + 2 * SAMPLES, SAMPLES)
     positions = fairlead_motion(samples)

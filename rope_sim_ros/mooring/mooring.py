@@ -73,7 +73,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .line import MooringLine, Parting
-from .ship import fenders, ship_body, ship_loads, ship_wind
+from .ship import fenders, reports_ship_loads, ship_body, ship_loads, ship_wind
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
 from ..model.forces.body import place_points
 from ..model.forces.fender import fender_force
@@ -518,7 +518,7 @@ class Mooring:
             for k in owns:
                 own = self._own_fairlead[k]
                 before[k] = own.last_position
-                self._off_track[k] |= started and self.time > own.settled_until + SETTLED_TOLERANCE
+                self._off_track[k] |= started and self._past(own.settled_until)
                 own.push(t, points[k])
         if before is None:
             self.last_jumps[:] = 0.0
@@ -526,7 +526,7 @@ class Mooring:
         else:
             farther = distances_beyond(points, before, self._line_arrays()[1], self.last_jumps)
         self._last_fairleads = points
-        if started and self.time > settled + SETTLED_TOLERANCE:  # they may have moved the track
+        if started and self._past(settled):  # the samples may have moved the shared track
             shared_lines = np.ones(len(self.lines), dtype=bool)
             shared_lines[owns] = False
             self._off_track |= shared_lines
@@ -566,7 +566,7 @@ class Mooring:
         track.push(t, point)
         self._bollards[k] = track
         started = self.started
-        self._off_track[k] |= started and self.time > settled + SETTLED_TOLERANCE
+        self._off_track[k] |= started and self._past(settled)
         self.last_jumps[k] = math.dist(point, last)
         if line.payload:
             return ''
@@ -577,6 +577,10 @@ class Mooring:
             self.restart_line(k)
             return 'teleport'
         return ''
+
+    def _past(self, settled: float) -> bool:
+        """Tell whether the state time is past a track's settled part (SETTLED_TOLERANCE)."""
+        return self.time > settled + SETTLED_TOLERANCE
 
     def ship_pose(self, t: float) -> Tuple[np.ndarray, np.ndarray]:
         """
@@ -1252,9 +1256,9 @@ class Mooring:
         if ship is not None:
             loads = self.ship_loads.at(self.time, ship.position,
                                        rotation_matrix(ship.orientation), ship.velocity)
-        elif not self.arrangement.single and self.ship_loads.acts:
-            # a driven ship's, when something acts on it: a single line's current acts on
-            # the line alone (its node and CSV have no ship loads)
+        elif self.ship_loads.acts and reports_ship_loads(self.arrangement):
+            # a driven ship's, worked out only where they are outputs: a single line's
+            # current acts on the line alone
             position, orientation = self.ship_pose(self.time)
             loads = self.ship_loads.at(self.time, position, rotation_matrix(orientation),
                                        np.zeros(3))
