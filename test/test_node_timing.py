@@ -36,7 +36,7 @@ import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
 from rope_sim_ros.bag import read_messages
-from rope_sim_ros.ros.node import MooringNode
+from rope_sim_ros.mooring.pacing import Pacer
 
 REPO = Path(__file__).resolve().parent.parent
 SECOND = 1_000_000_000
@@ -176,7 +176,7 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
     # may stall this process too (0.33 s once, in a pytest run beside other work): such a
     # gap is as real as the planned one, and the node may take the stream for silent in it
     # (less 50 ms: delivery may stretch a gap that much).
-    gaps, live = np.diff(sent), MooringNode.LIVE_INPUT - 0.05
+    gaps, live = np.diff(sent), Pacer.LIVE_INPUT - 0.05
     real = [(round(float(sent[k]), 3), round(float(sent[k + 1]), 3))
             for k in np.flatnonzero(gaps > live)]
     real.append((round(float(sent[-1]), 3), np.inf))  # the stream's end, before the Ctrl-C

@@ -35,32 +35,24 @@ stamped on receipt, a parameter set and a winch commanded at run time) and parti
 published on the events topic (std_msgs/String, one JSON object each) and recorded, so that
 `rope_sim resim` of the node's bag takes them at the same points and reproduces its outputs.
 
-Time: the ropes follow the node clock, so use_sim_time and /clock work. Under use_sim_time,
-until the first /clock message the poses alone set the pace (every output they reach goes
-out at once), and the bag logs on the poses' stamps. When no pose of a stream has arrived
-for LIVE_INPUT seconds of a node that was itself on time all that while, the stream is
-silent: its ends coast to a stop, the ropes go on to now and a warning says so; poses that
-come late bring the ends back onto their tracks smoothly. Outputs that one pose lets
-through together (poses slower than publish_rate) go out at their own times on the node
-clock, each the same time after its stamp, so that they come evenly spaced.
-
-Inputs: a pose stamped more than STAMP_AHEAD_LIMIT ahead of the node clock or
-STAMP_BEHIND_LIMIT behind it is dropped and counted, like a non-finite one; a jump of an end
-larger than teleport_distance restarts its line there. The pose queues hold
-POSE_QUEUE_DEPTH poses; poses DDS lost before they reached the node are counted.
+Time: the ropes follow the node clock, so use_sim_time and /clock work. The clock rules (when
+a stream is silent, which stamps are taken, how many outputs one call reaches, when a held
+output goes out) are mooring/pacing.py's Pacer: the node hands it each reading of its clock
+with what happened and acts on what it decides. A pose jump larger than teleport_distance
+restarts its line there. The pose queues hold POSE_QUEUE_DEPTH poses; poses DDS lost before
+they reached the node are counted.
 
 Recording (record_path): every received pose and published message also goes to a bag
 through recorder.Recorder, which never blocks the tick; Ctrl-C and SIGTERM close the bag,
 after SIGKILL `rope_sim recover` completes it.
 """
 
-from collections import deque
 import functools
 import gc
 import math
 import os
 import sys
-from typing import Any, Deque, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional
 import warnings
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
@@ -92,7 +84,8 @@ from ..messages import topics
 from ..messages.encode import encoder_for, stiffness_message
 from ..messages.topics import Layout, LINE_NODE, MOORING_NODE
 from ..model.statics.ship import StaticsError
-from ..mooring.driver import Driver, encode_event, MAX_LAG, Published, SHIP
+from ..mooring.driver import Driver, encode_event, Published, SHIP
+from ..mooring.pacing import Pace, Pacer
 from ..mooring.statics import stiffness_now
 from ..mooring.status import Rating
 from ..mooring.trajectory import TrajectoryError
@@ -135,39 +128,6 @@ def _fmt(point) -> str:
 class MooringNode(Node):
     """A mooring of one or many lines; see the module docstring and docs/ros.md."""
 
-    # A pose stream is live until the node has run this long [s] without a new sample of it:
-    # the ropes wait for its next sample instead of guessing. Measured on the node clock from
-    # the newest pose's arrival, but only over time the node was on time: a tick more than
-    # LATE_TICK after its due time starts the wait again, so that a node that was itself
-    # stalled (its timer late, its ticks run back to back after it) first reads the poses
-    # queued meanwhile. Counting ticks took a burst of late ticks for 0.25 s of silence.
-    LIVE_INPUT = 0.25
-    LATE_TICK = 0.25 * LIVE_INPUT
-    # Outputs held back to go out evenly (see _release) are published this early [ticks].
-    EARLY = 0.5
-    # The lag of the outputs behind the clock is the largest of the last LAG_WINDOW [s].
-    LAG_WINDOW = 2.0
-    # Falling further behind than this [s] restarts the ropes at now instead of catching up.
-    MAX_LAG = MAX_LAG
-    # One tick or pose callback simulates and publishes at most this many output periods of
-    # a tick, so that a node catching up stays responsive (ticks and poses together catch up
-    # fast enough).
-    OUTPUTS_PER_CALL = 2
-    # The timer ticks at publish_rate, but no faster than this [Hz]; faster rates publish
-    # several outputs per tick, their stamps still 1 / rate apart. At publish_rate 1000 with
-    # 50 Hz poses the single-line node took 54 % of a core with 1 kHz ticks, 38 % with these
-    # (both delivered 1000 outputs a second).
-    MAX_TICK_RATE = 200.0
-    # A pose stamped further than this [s] ahead of the node clock is dropped. One stamped
-    # 1 h ahead froze the fairlead for the hour (every later pose was not after the newest
-    # one), one 15 s ahead for 15 s, then a 335 kN spike. Poses do not come from the future:
-    # this allows for clocks a little out of sync (NTP keeps them within milliseconds).
-    STAMP_AHEAD_LIMIT = 1.0
-    # ... or further than this [s] behind it. A late pose is mostly harmless (the ropes
-    # follow the stream, late), but a stream that late holds the outputs back as long
-    # after each silence. Poses wait for the node in transport and in its queue: the node
-    # took the last of a burst of 10,000 1.9 s after its stamp (3.7 s while recording).
-    STAMP_BEHIND_LIMIT = 10.0
     THROTTLE = 5.0  # seconds between repeated warnings of one kind
     DIAGNOSTICS_PERIOD = 1.0  # [s] of the node's clock
 
@@ -205,15 +165,7 @@ class MooringNode(Node):
         self.names = list(mooring.names)
         self.ratings = [Rating.of(line.material) for line in mooring.lines]
         self.encoder = encoder_for(setup, mooring)
-        # clock [ns] at each stream's newest pose; the clock since which the node was on time
-        self._arrived: Dict[str, int] = {stream: 0 for stream in self.driver.streams}
-        self._on_time_since = 0
-        self._last_tick = 0
-        # outputs computed, not yet published (see _release), and (clock, lag) [ns] of
-        # the oldest output each pose let through
-        self._held: Deque[Published] = deque()
-        self._lags: Deque[Tuple[int, int]] = deque()
-        self._pose_stamps: Dict[Optional[str], int] = {}  # each stream's newest stamp [ns]
+        self.pacer = Pacer(self.driver)  # the clock rules: silence, stamps, what goes out when
         self._unlogged: List[tuple] = []  # recorded before the node knew any time (record)
         self._last_log_ns = 0
         self._told_payload = False
@@ -275,7 +227,7 @@ class MooringNode(Node):
             self._set_stiffness_rate(setup.ship.stiffness_rate)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
         rate = setup.shared.publish_rate
-        self._timer = self.create_timer(self._tick_period(rate), self._on_tick)
+        self._timer = self.create_timer(self.pacer.tick_period(rate), self._on_tick)
         if layout.ship_outputs:
             self._markers_timer = self.create_timer(1.0 / setup.marker_rate, self._on_markers)
             self._diagnostics_timer = self.create_timer(self.DIAGNOSTICS_PERIOD,
@@ -344,7 +296,7 @@ class MooringNode(Node):
             self._event('set', line=line, values=values)
             if 'publish_rate' in values:
                 # the driver re-anchored the outputs; the ticks follow the rate
-                set_timer_period(self._timer, self._tick_period(self.driver.rate))
+                set_timer_period(self._timer, self.pacer.tick_period())
             self.get_logger().info(f'set {line + "." if line else ""}' + ', '.join(
                 f'{k} = {v}' for k, v in values.items()))
 
@@ -414,7 +366,8 @@ class MooringNode(Node):
         """Take a pose of a stream: record it, check it, push it, advance."""
         topic = self.layout.stream_topic(stream)
         self.received[topic] += 1
-        stamp_ns = self._stamp(topic, stream, msg)  # its events go to the bag before the pose
+        now_ns = self.get_clock().now().nanoseconds
+        stamp_ns = self._stamp(topic, stream, msg, now_ns)  # its events go to the bag first
         self.record(topic, msg)
         if stamp_ns is None:
             return
@@ -424,11 +377,11 @@ class MooringNode(Node):
                        f'{msg.header.frame_id!r}, not {frame_id!r}: taken as {frame_id!r} '
                        '(no tf lookup)')
         if stream == SHIP:
-            self._on_ship(topic, stamp_ns, msg)
+            self._on_ship(topic, stamp_ns, msg, now_ns)
         else:
-            self._on_bollard(topic, stream, stamp_ns, msg)
+            self._on_bollard(topic, stream, stamp_ns, msg, now_ns)
 
-    def _on_ship(self, topic: str, stamp_ns: int, msg: PoseStamped) -> None:
+    def _on_ship(self, topic: str, stamp_ns: int, msg: PoseStamped, now_ns: int) -> None:
         p, o = msg.pose.position, msg.pose.orientation
         try:
             norm = conversions.unit_quaternion(o)[1]
@@ -440,7 +393,7 @@ class MooringNode(Node):
             self._drop(topic, e)
             return
         self._check_norm(topic, norm)
-        self._arrived[SHIP] = self.get_clock().now().nanoseconds
+        self.pacer.arrived(SHIP, now_ns)
         mooring = self.driver.mooring
         if 'start' in event:
             self._started(event['start'], 'first ship pose')
@@ -459,7 +412,7 @@ class MooringNode(Node):
                     'the ship jumped more than teleport_distance: restarted at rest '
                     + ', '.join(self.names[k] for k in event['teleport']))
             self._parted_at_restart(event['teleport'])
-        self._advance(stamp_ns, SHIP)
+        self._act(self.pacer.after_pose(SHIP, stamp_ns, now_ns))
 
     def _started(self, lengths: Dict[int, float], why: str) -> None:
         """Say that the lines started, with the lengths chosen for their pretensions."""
@@ -477,16 +430,6 @@ class MooringNode(Node):
                                for k, length in lengths.items())
             self.get_logger().info(f'{why}: lines started at rest' + (
                 f'; lengths for their pretension: {chosen}' if chosen else ''))
-
-    def _start_free(self, now_ns: int) -> None:
-        """Start a free ship's mooring at the first tick the clock runs (no pose needed)."""
-        try:
-            lengths = self.driver.start_free(now_ns)
-        except ParameterError as e:  # a pretension no length gives at the start pose
-            self._warn('start', f"cannot start the lines at the ship's start pose: {e}")
-            return
-        self._event('start', stamp=now_ns)
-        self._started(lengths, 'free ship at rest at its start pose')
 
     def _on_external_wrench(self, msg: WrenchStamped) -> None:
         """Hold the external load on the free ship (ship/external_wrench) until the next."""
@@ -561,7 +504,8 @@ class MooringNode(Node):
         self._stiffness_pub.publish(data)
         self.record(topics.STIFFNESS, data)
 
-    def _on_bollard(self, topic: str, name: str, stamp_ns: int, msg: PoseStamped) -> None:
+    def _on_bollard(self, topic: str, name: str, stamp_ns: int, msg: PoseStamped,
+                    now_ns: int) -> None:
         k = self.names.index(name)
         offset = self.driver.mooring.lines[k].params.bollard_offset
         try:
@@ -580,7 +524,7 @@ class MooringNode(Node):
                     f'{self.layout.line_topic(name, topics.PAYLOAD_POSE)}')
             return
         self._check_norm(topic, point.quaternion_norm)
-        self._arrived[name] = self.get_clock().now().nanoseconds
+        self.pacer.arrived(name, now_ns)
         if event == 'teleport':
             line = self.driver.mooring.lines[k]
             self.get_logger().warning(
@@ -590,37 +534,23 @@ class MooringNode(Node):
                 f'{"line" if name else "rope"} restarted on the catenary there')
             self._parted_at_restart([k])
         if self.driver.started:
-            self._advance(stamp_ns, name)
+            self._act(self.pacer.after_pose(name, stamp_ns, now_ns))
 
     def _check_norm(self, topic: str, norm: float) -> None:
         if abs(norm - 1.0) > 1e-3:
             self._warn(f'{topic}: norm', f'{topic}: normalised a non-unit quaternion '
                        f'(|q| = {norm:.4g})')
 
-    def _stamp(self, topic: str, stream: str, msg: PoseStamped) -> Optional[int]:
-        """
-        Return the sample stamp [ns] of a pose, or None if its stamp is too far off the clock.
-
-        Both decisions depend on the node clock: they are events (see _event).
-        """
-        stamp_ns = conversions.stamp_to_ns(msg.header.stamp)
-        now_ns = self.get_clock().now().nanoseconds
-        if stamp_ns == 0 and now_ns:  # (a bag replayed from time 0 has both at 0 at first)
-            stamp_ns = now_ns
-            self._event('restamp', stream=stream, stamp=now_ns)
-            self._warn(f'{topic}: unstamped', f'{topic}: header.stamp is zero: using the '
-                       'receive time as the sample time')
-        # Under use_sim_time the clock reads 0 until the first /clock: nothing to compare.
-        skew = (stamp_ns - now_ns) * 1e-9
-        if now_ns and not -self.STAMP_BEHIND_LIMIT <= skew <= self.STAMP_AHEAD_LIMIT:
-            side, limit = (('ahead of', self.STAMP_AHEAD_LIMIT) if skew > 0
-                           else ('behind', self.STAMP_BEHIND_LIMIT))
-            self._event('drop', stream=stream, stamp=stamp_ns)
-            self._drop(topic, ValueError(
-                f'stamp {side} the node clock by {abs(skew):.3f} s, more than {limit:g} s: '
-                'are the clocks in sync (use_sim_time)?'))
-            return None
-        return stamp_ns
+    def _stamp(self, topic: str, stream: str, msg: PoseStamped, now_ns: int) -> Optional[int]:
+        """Return the sample stamp [ns] of a pose, or None if it is dropped for its stamp."""
+        admission = self.pacer.admit(stream, conversions.stamp_to_ns(msg.header.stamp), now_ns)
+        for kind, fields in admission.events:
+            self._event(kind, **fields)
+        if admission.stamp_ns is None:
+            self._drop(topic, ValueError(admission.problem))
+        elif admission.problem:
+            self._warn(f'{topic}: unstamped', f'{topic}: {admission.problem}')
+        return admission.stamp_ns
 
     def _drop(self, topic: str, reason: Exception) -> None:
         count = self.dropped[topic] = self.dropped.get(topic, 0) + 1
@@ -646,129 +576,55 @@ class MooringNode(Node):
 
     # -- time -----------------------------------------------------------------------------
 
-    def _tick_period(self, rate: float) -> float:
-        """Return the timer period [s] at publish_rate `rate` (see MAX_TICK_RATE)."""
-        return 1.0 / min(rate, self.MAX_TICK_RATE)
-
     def _on_tick(self) -> None:
-        """Take a stream for silent if it brought no pose while the node was on time; advance."""
-        now = self.get_clock().now().nanoseconds
-        period = self._tick_period(self.driver.rate)
-        if not self._last_tick or not 0 <= now - self._last_tick <= (
-                period + self.LATE_TICK) * 1e9:
-            self._on_time_since = now  # a late tick (or a clock jump): wait anew
-        self._last_tick = now
-        if not self.driver.started:
-            if self.driver.mooring.free and now:  # under use_sim_time: once /clock runs
-                self._start_free(now)
-                self._advance()
-            return
-        for stream in self.driver.streams:
-            waited = now - max(self._arrived[stream], self._on_time_since)
-            if self.driver.live(stream) and waited >= self.LIVE_INPUT * 1e9:
-                self.driver.silence(stream)
-                self._event('silent', stream=stream, t=self.driver.time)
-                topic = self.layout.stream_topic(stream)
-                if self.parameters.single:
-                    what = 'the fairlead' if stream == SHIP else 'the bollard'
-                    rest = 'the rope goes'
-                else:
-                    what = 'the ship' if stream == SHIP else f"{stream}'s bollard"
-                    rest = 'the lines go'
-                self._warn(f'{stream}: silent', f'{topic}: no new pose for '
-                           f'{self.LIVE_INPUT:g} s: {what} coasts to a stop and {rest} on with '
-                           f'the clock from t = {self.driver.time:.3f} s')
-        self._advance()
+        """Judge the streams' silence and move the ropes on, at the timer's tick."""
+        self._act(self.pacer.tick(self.get_clock().now().nanoseconds))
 
-    def _advance(self, pose_ns: int = 0, stream: Optional[str] = None) -> None:
-        """
-        Advance the ropes towards the clock, publishing each output they reach (the Driver).
-
-        Outputs go out as soon as the input reaches them: from a pose callback when a pose
-        stream is live, else from the tick. One call publishes at most OUTPUTS_PER_CALL
-        ticks' worth of them, so that a node catching up stays responsive; a node further
-        behind than MAX_LAG skips ahead instead of catching up.
-
-        :param pose_ns: the stamp of the pose that called (0: a tick); stream: its stream.
-        """
-        driver = self.driver
-        clock_ns = self.get_clock().now().nanoseconds
-        # With use_sim_time the clock reads 0 until the first /clock message: until then
-        # the poses alone say how far the ropes may go.
-        now = driver.seconds(clock_ns) if clock_ns and driver.epoch_ns is not None else math.inf
-        if not clock_ns and driver.last_sample(SHIP) > self.LIVE_INPUT:
+    def _act(self, pace: Pace) -> None:
+        """Record, log and publish what the clock rules decided (the Pacer's Pace)."""
+        if pace.start_error:
+            self._warn('start', f"cannot start the lines at the ship's start pose: "
+                       f'{pace.start_error}')
+        if pace.no_clock:
             self._warn('no clock', 'use_sim_time is true but no /clock message has come: '
                        'the ropes follow the pose stamps alone')
-        rate = driver.rate
-        # without a clock no tick runs: a pose must take every output it lets through
-        limit = math.inf if math.isinf(now) else self.OUTPUTS_PER_CALL * math.ceil(
-            rate * self._tick_period(rate) - 1e-9)
-        report = driver.advance(now, limit, self.MAX_LAG)
-        if report.clock_back:
-            self._held.clear()
-            self._lags.clear()
-            self._event('clock_back', back=report.clock_back)
+        for kind, fields in pace.events:
+            self._event(kind, **fields)
+        if pace.started is not None:
+            self._started(pace.started, 'free ship at rest at its start pose')
+        for stream in pace.silenced:
+            self._say_silent(stream)
+        if pace.clock_back:
             self.get_logger().warning(
-                f'clock jumped back by {report.clock_back:.2f} s: waiting for the next '
+                f'clock jumped back by {pace.clock_back:.2f} s: waiting for the next '
                 f'{self.layout.ship_pose} pose to restart the ropes')
-            return
-        if report.skipped:
+        if pace.skipped:
             self.skips += 1
-            self._event('skip', t=report.skip_to)
             # Not throttled: each skip is a restart, a step in the published tension, and
             # there is at most one per MAX_LAG.
             self.get_logger().warning(
-                f'simulation fell {report.skipped:.2f} s behind the clock: skipped ahead and '
+                f'simulation fell {pace.skipped:.2f} s behind the clock: skipped ahead and '
                 f'restarted the ropes at rest (skips so far: {self.skips})')
-        for t in report.faults:
+        for t in pace.faults:
             self.get_logger().error(f'non-finite output at t = {t:.3f} s: not published; '
                                     'ropes restarted')
-        if report.outputs and pose_ns:
-            # the next pose's outputs come: those of the one before are due by now, whatever
-            # a clock out of step with the stamps says (never held past a pose period)
-            self._flush()
-            grid = [p for p in report.outputs if p.advance is not None]  # (not a restart's)
-            # poses slower than the outputs, not a burst of queued poses (a node that stalled
-            # at its start): the lag of such a burst held a stream's last outputs while a
-            # paused sim clock stood still
-            slower = pose_ns - self._pose_stamps.get(stream, pose_ns) > 1.5e9 / driver.rate
-            if len(grid) > 1 and clock_ns and slower:
-                self._lags.append((clock_ns, pose_ns - grid[0].stamp_ns))
-        if pose_ns:
-            self._pose_stamps[stream] = pose_ns
-        for published in report.outputs:
+        for published in pace.reached:
             self._report(published)
-            self._held.append(published)
-        self._release(clock_ns)
+        for published in pace.publish:
+            self._publish(published)
 
-    def _flush(self) -> None:
-        """Publish every output held back (see _release), in order."""
-        while self._held:
-            self._publish(self._held.popleft())
-
-    def _release(self, clock_ns: int) -> None:
-        """
-        Publish the outputs held back whose time has come on the node clock.
-
-        Poses slower than the outputs let several through at once (20 Hz poses, 50 Hz
-        outputs: 41 % of the gaps under 5 ms). Each output is then due LAG after its stamp,
-        LAG the longest any output of the last LAG_WINDOW seconds let through with others
-        waited for its pose, in stamps (the pose's stamp less the output's: how the stream
-        is sampled, not how late it came): spread over the ticks. Outputs a stalled node
-        computes late are overdue and go out at once; with poses as fast as the outputs
-        (one output a pose) LAG is 0 and every output goes out as its pose arrives, as
-        without a clock.
-        """
-        held = self._held
-        if not held:
-            return
-        lags = self._lags
-        while lags and lags[0][0] < clock_ns - self.LAG_WINDOW * 1e9:
-            lags.popleft()
-        lag = max((lag for _, lag in lags), default=0)
-        early = self.EARLY * self._tick_period(self.driver.rate) * 1e9
-        while held and (not clock_ns or held[0].stamp_ns + lag - early <= clock_ns):
-            self._publish(held.popleft())
+    def _say_silent(self, stream: str) -> None:
+        """Warn that a stream was taken for silent, and what the ropes do meanwhile."""
+        topic = self.layout.stream_topic(stream)
+        if self.parameters.single:
+            what = 'the fairlead' if stream == SHIP else 'the bollard'
+            rest = 'the rope goes'
+        else:
+            what = 'the ship' if stream == SHIP else f"{stream}'s bollard"
+            rest = 'the lines go'
+        self._warn(f'{stream}: silent', f'{topic}: no new pose for {Pacer.LIVE_INPUT:g} s: '
+                   f'{what} coasts to a stop and {rest} on with the clock from '
+                   f't = {self.driver.time:.3f} s')
 
     def _ship_pose_source(self) -> str:
         """Name where the ship's pose comes from: its topic, or a free ship's start pose."""
@@ -855,7 +711,7 @@ class MooringNode(Node):
             return response
         # outputs computed ahead of the clock are of the lines before the reset, the last at
         # the state time, where the reset's fresh output now stands: not published
-        self._held.clear()
+        self.pacer.reset()
         self.driver.reset()
         self._event('reset', t=self.driver.time)
         self._restarted = ['reset'] * len(self.names)
