@@ -249,7 +249,7 @@ def test_publish_rate_changes_take_effect_with_the_next_output(sim_node):
             # node's ticks publish the rest, on the sim clock, which must run for them once
             # the last pose is taken; and outputs that one pose lets through together go out
             # each the same time after its stamp, up to 40 ms here. The clock then creeps on
-            # by 1 ms a look (to 140 ms at most; the stream counts as silent after 0.25 s):
+            # by 1 ms a look (to 140 ms at most; the stream counts as silent after 0.5 s):
             # a tick that ran before the last pose was taken leaves its outputs to the next.
             per_call = 2 * math.ceil(rate / 200.0)
             outputs = client.outputs()

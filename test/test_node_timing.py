@@ -99,42 +99,59 @@ class WallClient:
     def wait_for(self, condition, timeout: float, what: str, node=None) -> None:
         spin_until(self.executor, condition, timeout, what, node)
 
-    def pose(self, position) -> None:
+    def pose(self, position, send: bool = True) -> PoseStamped:
+        """Make a pose stamped now and publish it (or only return it: send False)."""
         msg = PoseStamped()
         msg.header.frame_id = 'world'
         msg.header.stamp = self.node.get_clock().now().to_msg()
         msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = (
             float(c) for c in position)
         msg.pose.orientation.w = 1.0
-        self.pub.publish(msg)
+        if send:
+            self.pub.publish(msg)
+        return msg
 
     @no_gc_pauses()
     def stream(self, seconds: float, rate: float, position, at=None) -> list:
         """
         Publish poses at `rate` for `seconds` of the wall clock; return when each went out.
 
-        at(t), if given, runs before each pose and returns False to send none then. The
-        times are time.monotonic() [s]: a machine that stalls this process shows in them.
+        at(t), if given, runs before each pose and returns False to send none then, or
+        'hold' to make it (stamped now) but send it only with the next pose sent: a delivery
+        delay. The times are time.monotonic() [s] at which each was made: a machine that
+        stalls this process shows in them.
         """
         wall = time.monotonic()
         sent = []
+        held = []
         for k in range(round(seconds * rate)):
             while time.monotonic() - wall < k / rate:
                 self.executor.spin_once(timeout_sec=0.002)
-            if at is not None and at(k / rate) is False:
+            wanted = True if at is None else at(k / rate)
+            if wanted is False:
                 continue
+            if wanted == 'hold':
+                sent.append(time.monotonic())
+                held.append(self.pose(position, send=False))
+                continue
+            for msg in held:
+                self.pub.publish(msg)
+            held.clear()
             sent.append(time.monotonic())
             self.pose(position)
         return sent
 
 
-def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
+def test_a_steady_stream_is_never_silent_beside_calls_stalls_and_late_deliveries(
         colcon_install, colcon_env, tmp_path):
-    # The berth's eight lines, 50 Hz ship poses on the wall clock for 20 s, recorded. Every
-    # 1.5 s a process does what `ros2 param list/get/describe` and `ros2 topic echo --once`
-    # do (issue: 4-12 false `silent` events a minute, on a 3 s grid); at 7 s the node is
-    # stopped for 0.4 s (SIGSTOP: its timer late, its poses queued); at 16 s the poses stop
-    # for 0.6 s: the one real silence.
+    # The berth's eight lines, 50 Hz ship poses on the wall clock for 20 s, recorded. From
+    # 4 s to 11 s, every 1.5 s a process does what `ros2 param list/get/describe` and `ros2
+    # topic echo --once` do (issue: 4-12 false `silent` events a minute, on a 3 s grid); at
+    # 7 s the node is stopped for 0.4 s (SIGSTOP: its timer late, its poses queued); at
+    # 13.5 s and 15 s the poses come 0.35 s late, all at once, as when DDS discovers a new
+    # participant (issue: 1-4 false `silent` events a minute with the ros2 daemon beside
+    # the node, 0.30-0.33 s without a pose taken); at 17 s the poses stop for 0.9 s: the one
+    # real silence.
     bag = tmp_path / 'bag'
     node = Executable(colcon_install, colcon_env, tmp_path / 'mooring.log', 'mooring',
                       '--ros-args', '--params-file', str(berth_file(tmp_path / 'berth.yaml')),
@@ -148,7 +165,7 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
         stopped = []
 
         def scenario(t):
-            if t >= 2.0 and len(pokes) < (t - 2.0) / 1.5 and t < 16.0:
+            if t >= 2.0 and len(pokes) < (t - 2.0) / 1.5 and t < 9.0:
                 pokes.append(subprocess.Popen([sys.executable, '-c', POKE], env=colcon_env,
                                               stdout=subprocess.DEVNULL,
                                               stderr=subprocess.DEVNULL))
@@ -158,7 +175,9 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
             if 5.4 <= t and len(stopped) == 1:
                 os.kill(node.process.pid, signal.SIGCONT)
                 stopped.append(t)
-            return not 14.0 <= t < 14.6  # the real gap
+            if 11.5 <= t < 11.85 or 13.0 <= t < 13.35:
+                return 'hold'  # a late delivery: the poses made, sent together later
+            return not 15.0 <= t < 15.9  # the real gap
 
         sent = np.array(client.stream(18.0, 50.0, [0.0, -17.6, 0.0], at=scenario)) - first
         for poke in pokes:
@@ -172,7 +191,7 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
         if node.process.poll() is None:
             os.kill(node.process.pid, signal.SIGCONT)
             node.interrupt()
-    # The gaps as sent, [start, end] in simulated time (0: the first pose). A busy machine
+    # The gaps as made, [start, end] in simulated time (0: the first pose). A busy machine
     # may stall this process too (0.33 s once, in a pytest run beside other work): such a
     # gap is as real as the planned one, and the node may take the stream for silent in it
     # (less 50 ms: delivery may stretch a gap that much).
@@ -182,15 +201,15 @@ def test_a_steady_stream_is_never_silent_beside_param_and_topic_calls(
     real.append((round(float(sent[-1]), 3), np.inf))  # the stream's end, before the Ctrl-C
     print(f'{len(pokes)} probes; gaps over {live} s as sent: {real}; the longest others: '
           f'{np.sort(gaps[gaps <= live])[-3:]}')
-    assert len(pokes) == 10
-    assert any(15.9 < start < 16.1 and 16.5 < end < 16.8 for start, end in real[:-1]), real
+    assert len(pokes) == 5
+    assert any(16.9 < start < 17.1 and 17.8 < end < 18.1 for start, end in real[:-1]), real
     silent = [e for e in bag_events(bag) if e['event'] == 'silent']
-    warnings = log_lines(node, 'no new pose for 0.25 s')
+    warnings = log_lines(node, f'no new pose for {Pacer.LIVE_INPUT:g} s')
     # Silent only in a real gap (t: how far the ropes had gone when the node took it for
     # silent, at most a pose period past the last pose), and in the planned one.
     assert all(any(start - 0.05 < e['t'] < end + 0.05 for start, end in real)
                for e in silent), (silent, real)
-    assert any(15.8 < e['t'] < 16.7 for e in silent), silent
+    assert any(16.8 < e['t'] < 17.9 for e in silent), silent
     assert 1 <= len(warnings) <= len(silent) <= len(real), (silent, warnings, node.text())
     assert 'skipped ahead' not in node.text() and '[ERROR]' not in node.text()
 

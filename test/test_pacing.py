@@ -125,6 +125,21 @@ def test_a_stream_that_stops_is_silent_after_live_input_and_live_again_at_its_ne
     assert session.driver.live(SHIP)  # the poses from 3 s on made it live again
 
 
+def test_poses_that_arrive_late_in_a_burst_are_not_a_silence():
+    # Delivery to a node with many endpoints stalls about 0.3 s while DDS discovers a new
+    # participant (ros2 param, ros2 topic beside it): the stream's samples all come, late.
+    # 20 Hz poses; those stamped in [1.0, 1.33] s arrive together at 1.33 s. (Taken for
+    # silent at 1.20 s when silence was 0.25 s without a pose.)
+    poses = [(stamp, max(arrival, EPOCH + 1_330 * MS) if stamp < EPOCH + 1_330 * MS
+              and stamp >= EPOCH + 10**9 else arrival)
+             for stamp, arrival in stream(20.0, 3.0, 1 * MS)]
+    session = Session().play(poses, EPOCH + 3_200 * MS)  # (the held outputs out by then)
+    assert session.kinds('silent') == [] and session.kinds('skip') == []
+    stamps = np.array([stamp for _, stamp in session.published])
+    assert np.array_equal(np.diff(stamps), np.full(len(stamps) - 1, 20 * MS))
+    assert stamps[-1] == EPOCH + 2_900 * MS  # one sample behind the last pose, 2.95 s
+
+
 def test_a_node_that_stalled_reads_the_poses_queued_meanwhile_before_judging_silence():
     # The node stops 0.6 s (no tick, no pose taken); the poses queue and are taken at its
     # first moment back, before its late ticks: a late tick starts the wait again.

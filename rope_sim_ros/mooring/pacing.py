@@ -97,12 +97,16 @@ class Pacer:
     """The clock rules of a live node over its Driver (see the module docstring)."""
 
     # A pose stream is live until the node has run this long [s] without a new sample of it:
-    # the ropes wait for its next sample instead of guessing.
-    LIVE_INPUT = 0.25
+    # the ropes wait for its next sample instead of guessing. Delivery to a node with many
+    # endpoints stalls while DDS discovers a new participant (`ros2 param`, `ros2 topic`
+    # beside it): the mooring node took no pose for 0.30-0.33 s, 1-4 times a minute, while
+    # the stamps stepped on and another process got every pose. A stream whose poses all
+    # come, late, is not silent: this waits out half again the longest such stall, and half
+    # of MAX_LAG, so that the ropes catch up after a real silence without a skip ahead.
+    LIVE_INPUT = 0.5
     # A tick more than this [s] after its due time starts the wait again: the node itself
     # was stalled (its timer late, its ticks run back to back after it) and first reads the
-    # poses queued meanwhile. Counting ticks took a burst of late ticks for 0.25 s of
-    # silence.
+    # poses queued meanwhile. Counting ticks took a burst of late ticks for a silence.
     LATE_TICK = 0.0625
     # Outputs held back to go out evenly (see release) are published this early [ticks].
     EARLY = 0.5
