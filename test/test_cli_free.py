@@ -100,3 +100,15 @@ def test_a_driven_ship_refuses_loads(files, tmp_path, capsys):
                      '--motion', str(loads), '--quiet'])
     err = capsys.readouterr().err
     assert code == 2 and '--loads and --duration are for a free ship' in err, err
+
+
+def test_a_load_no_tug_gives_is_refused_naming_its_row(files, capsys):
+    params, loads, out = files
+    loads.write_text(LOADS + '4,1e12,0,0,0,0,0\n')  # 11 km/s^2 on this ship
+    code = cli.main(['run', '--params', str(params), '--loads', str(loads), '--duration', '6',
+                     '--out', str(out), '--quiet'])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count('\n') == 1, err
+    assert 'row 3 (t = 4 s): an external force of 1e+12 N is more than any tug or thruster ' \
+        'gives this ship: at most 8.67e+07 N' in err, err
+    assert not out.exists()

@@ -171,3 +171,49 @@ def start_velocity(mooring: Mooring, twist: np.ndarray) -> None:
     system = mooring.groups[0].system
     place_points(system.body_table, system.points_table, system.point_x, system.point_v)
     assembly.set_ends(system.x, system.v, system.lines_table, system.point_x, system.point_v)
+
+
+def test_a_load_no_tug_or_thruster_gives_is_refused_and_nothing_changes():
+    mooring = Mooring(setup(SETTLE_DAMPING), output_interval=0.1)
+    mooring.start(0.0)
+    weight = 8.84e7 * 9.80665  # the default ship's
+    mooring.set_external_load([0.1 * weight, 0.0, 0.0], [0.0, 0.0, 0.1 * weight * 225.0],
+                              body_axes=True)  # at the limits: taken
+    with pytest.raises(ValueError, match=r'an external force of 1e\+12 N is more than any '
+                       r'tug or thruster gives this ship: at most 8\.67e\+07 N'):
+        mooring.set_external_load([1e12, 0.0, 0.0], [0.0] * 3, body_axes=False)
+    with pytest.raises(ValueError, match=r'an external moment of 2e\+10 N m .* at most '
+                       r'1\.95e\+10 N m'):
+        mooring.set_external_load([0.0] * 3, [0.0, 0.0, 2e10], body_axes=False)
+    assert mooring.body_load[0] == pytest.approx(0.1 * weight)  # the one taken holds
+    assert not mooring.external_load.any()
+
+
+@pytest.mark.parametrize('change, why', [
+    (lambda row: row.__setitem__(9, -3000.0), 'moving at 3000.0 m/s'),
+    (lambda row: row.__setitem__(2, row[2] - 2400.0), 'sunk 2400.0 m'),
+    (lambda row: row.__setitem__(slice(3, 7), [math.sin(0.75), 0.0, 0.0, math.cos(0.75)]),
+     'tilted 86 deg'),
+    (lambda row: row.__setitem__(0, row[0] + 6000.0), '6000 m off its start'),
+    (lambda row: row.__setitem__(12, 7.0), 'turning at 7.00 rad/s'),
+    (lambda row: row.__setitem__(1, math.nan), 'not finite'),
+])
+def test_a_ship_out_of_every_bound_restarts_at_its_start_pose_at_rest(change, why):
+    # (the issue: after a load of 1e12 N the ship went on sinking and rolling, 2.4 km deep
+    # at 3 km/s and 7 rad/s, until ~/reset)
+    mooring = Mooring(setup(SETTLE_DAMPING), output_interval=0.1)
+    mooring.start(0.0)
+    mooring.advance_to(0.5)
+    system = mooring.groups[0].system
+    change(system.body_table[0])
+    place_points(system.body_table, system.points_table, system.point_x, system.point_v)
+    advance = mooring.advance_to(0.6)
+    assert advance.ship_restarted == why
+    assert advance.restarted == {k: 'ship restarted' for k in range(len(LINES))}
+    out = mooring.output()
+    assert out.finite
+    position, orientation = mooring.ship_pose(mooring.time)
+    assert np.allclose(position, START, atol=1e-3) and np.allclose(orientation, [0, 0, 0, 1],
+                                                                   atol=1e-5)
+    assert np.abs(out.ship.velocity).max() < 1e-3 and np.abs(out.ship.omega).max() < 1e-4
+    assert mooring.advance_to(0.7).ship_restarted == ''  # and it stays

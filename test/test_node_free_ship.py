@@ -45,6 +45,7 @@ from rope_sim_ros.offline.resim import resim, stored_setup
 from rope_sim_ros.params.arrangement import flatten, read_arrangement_file
 from rope_sim_ros.params.ship import read_coefficients
 from rope_sim_ros.ros.mooring_display import Fenders, LineMarkers
+from rope_sim_ros.ros.node import MooringNode
 from std_msgs.msg import Float64MultiArray
 
 BERTH = Path(__file__).resolve().parents[1] / 'config' / 'berth.yaml'
@@ -77,7 +78,6 @@ def at(node, t: float) -> None:
 @pytest.fixture(scope='module')
 def run(tmp_path_factory):
     """Run the free berth for END s; return the node's findings and its bag."""
-    from rope_sim_ros.ros.node import MooringNode
     bag = tmp_path_factory.mktemp('free') / 'bag'
     context = rclpy.Context()
     rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
@@ -323,3 +323,40 @@ def test_ship_stiffness_is_worked_out_only_for_a_subscriber(monkeypatch):
         probe.destroy_node()
         node.destroy_node()
         rclpy.try_shutdown(context=context)
+
+
+def wrench(frame: str, force_x: float) -> WrenchStamped:
+    msg = WrenchStamped()
+    msg.header.frame_id = frame
+    msg.wrench.force.x = force_x
+    return msg
+
+
+def test_a_load_no_tug_gives_or_in_an_unknown_frame_is_refused_each_in_one_line(capfd):
+    # (issue: 1e12 N, 11 km/s^2 on this ship, was taken without a word; a load in `map` was
+    # taken as world axes; a second, different refusal on the topic within 5 s was not said)
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    node = MooringNode(context=context, namespace='/refusals',
+                       parameter_overrides=overrides(None))
+    try:
+        at(node, 0.0)
+        capfd.readouterr()
+        node._on_external_wrench(wrench('base_link', 1e12))
+        node._on_external_wrench(wrench('base_link', 2e12))  # the same refusal: throttled
+        node._on_external_wrench(wrench('map', 1e5))
+        node._on_external_wrench(wrench('map', 2e5))
+        assert not node.driver.mooring.body_load.any()
+        assert not node.driver.mooring.external_load.any()
+        node._on_external_wrench(wrench('world', 1e5))  # frame_id: taken, world axes
+        assert node.driver.mooring.external_load[0] == 1e5
+        at(node, 1.0 / RATE)
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)
+    lines = [line for line in capfd.readouterr().err.splitlines()
+             if 'ship/external_wrench: ignored' in line]
+    assert len(lines) == 2, lines
+    assert ('/refusals/ship/external_wrench: ignored: an external force of 1e+12 N is more '
+            'than any tug or thruster gives this ship: at most 8.67e+07 N') in lines[0]
+    assert "header.frame_id 'map' is neither 'world' nor 'base_link'" in lines[1]

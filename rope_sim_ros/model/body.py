@@ -36,6 +36,15 @@ from .layout import (BODY_ADDED, BODY_COLUMNS, BODY_HULL, BODY_INERTIA, BODY_LIN
                      FENDER_POSITION)
 
 
+# A free ship past any of these bounds has left every state a moored ship can be in (a load
+# past what the model holds, numbers running away): it restarts at its start pose at rest.
+MAX_TILT = math.radians(60.0)  # [rad] of its deck from level: capsized (GM is linear anyway)
+MIN_HEAVE_BOUND = 10.0  # [m] up or down from where it floats; its draft if that is more
+MAX_DRIFT = 5000.0  # [m] from where it floats, horizontally
+MAX_SPEED = 25.0  # [m/s] (49 kn) past any ship's
+MAX_TURN_RATE = 1.0  # [rad/s] a turn in 6 s
+
+
 def _numbers(name: str, value, size: int, low: float = -math.inf) -> Tuple[float, ...]:
     """Return value as `size` finite floats >= low, or raise ValueError naming it."""
     try:
@@ -218,3 +227,36 @@ class Fender:
             row[FENDER_CURVE_COMPRESSION + i] = compression
             row[FENDER_CURVE_REACTION + i] = push
         return row
+
+
+def out_of_bounds(row: np.ndarray, start: np.ndarray) -> str:
+    """
+    Say how a body has left the bounds of a moored ship ('' if it has not).
+
+    :param row: its BODY row now; start: its row where it floats at rest (layout.py).
+    :returns: e.g. 'sunk 2412.0 m', 'tilted 85 deg', 'moving at 3000.0 m/s'; 'not finite'.
+    """
+    state = row[:BODY_OMEGA + 3]
+    if not np.isfinite(state).all():
+        return 'not finite'
+    rotation = rotation_matrix(row[BODY_QUATERNION:BODY_QUATERNION + 4])
+    origin = row[BODY_POSITION:BODY_POSITION + 3] + rotation @ row[BODY_ORIGIN:BODY_ORIGIN + 3]
+    start_rotation = rotation_matrix(start[BODY_QUATERNION:BODY_QUATERNION + 4])
+    rest = start[BODY_POSITION:BODY_POSITION + 3] + start_rotation @ start[
+        BODY_ORIGIN:BODY_ORIGIN + 3]
+    heave = float(origin[2] - row[BODY_REST_Z])
+    tilt = math.acos(min(max(float(rotation[2, 2]), -1.0), 1.0))
+    drift = float(np.hypot(*(origin[:2] - rest[:2])))
+    speed = float(np.linalg.norm(row[BODY_VELOCITY:BODY_VELOCITY + 3]))
+    turn = float(np.linalg.norm(row[BODY_OMEGA:BODY_OMEGA + 3]))
+    if abs(heave) > max(row[BODY_HULL + 2], MIN_HEAVE_BOUND):
+        return f'{"sunk" if heave < 0.0 else "risen"} {abs(heave):.1f} m'
+    if tilt > MAX_TILT:
+        return f'tilted {math.degrees(tilt):.0f} deg'
+    if drift > MAX_DRIFT:
+        return f'{drift:.0f} m off its start'
+    if speed > MAX_SPEED:
+        return f'moving at {speed:.1f} m/s'
+    if turn > MAX_TURN_RATE:
+        return f'turning at {turn:.2f} rad/s'
+    return ''

@@ -68,9 +68,9 @@ MAX_LAG = 1.0
 # An output's state time this close to its due time [steps] is pinned to it.
 PIN_TOLERANCE = 1e-6
 # The decisions a node records (one JSON object each, encode_event), and what a model did
-# ('parted': replayed, the model does it again).
+# ('parted', 'ship_restart': replayed, the model does it again).
 EVENT_KINDS = ('silent', 'skip', 'reset', 'clock_back', 'drop', 'restamp', 'set', 'winch',
-               'start', 'load', 'parted')
+               'start', 'load', 'parted', 'ship_restart')
 
 
 def encode_event(kind: str, **fields: Any) -> str:
@@ -333,9 +333,20 @@ class Driver:
 
         :param force, moment: [N], [N m] about the ship's origin, in the ship's body axes
             (they turn with it) or in frame_id axes.
-        :raises ValueError: a number that is not finite.
+        :raises ValueError: a number that is not finite, or a load past what any tug or
+            thruster gives this ship.
         """
         self.mooring.set_external_load(force, moment, body_axes)
+
+    def set_load_schedule(self, times, loads) -> None:
+        """
+        Take the external loads on a free ship over time (offline: LOADS.csv).
+
+        :param times: [s of simulated time] (n,); loads: force [N], moment about the ship's
+            origin [N m], world axes (n, 6), linear between the times.
+        :raises ValueError: a load past what any tug or thruster gives, naming its row.
+        """
+        self.mooring.set_load_schedule(times, loads)
 
     def silence(self, stream: str) -> bool:
         """Take a stream for silent (no longer holding the ropes); return if it was live."""

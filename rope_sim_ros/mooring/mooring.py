@@ -73,13 +73,15 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .line import MooringLine, Parting
-from .ship import fenders, reports_ship_loads, ship_body, ship_loads, ship_wind
+from .ship import (check_external_load, external_load_limits, fenders, reports_ship_loads,
+                   ship_body, ship_loads, ship_wind)
 from .trajectory import EndBlend, EndTrajectory, TrajectoryError
+from ..model.body import out_of_bounds
 from ..model.forces.body import place_points
 from ..model.forces.fender import fender_force
 from ..model.frames import cross_rows, distances_beyond, rotation_matrix, unit_pose_points
 from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
-                            BODY_POSITION, BODY_QUATERNION, BODY_STATE, BODY_VELOCITY,
+                            BODY_POSITION, BODY_QUATERNION, BODY_VELOCITY,
                             FENDER_COLUMNS, WINCH_SPEED)
 from ..model.objects import Line, Point, System
 from ..model.ship.loads import world_load
@@ -219,6 +221,9 @@ class MooringAdvance:
     :ivar beyond_reach: {line index: the largest distance between its ends [m]} for every
         line whose fairlead was held at its reach.
     :ivar parted: {line index: its Parting} for every line that parted in these steps.
+    :ivar ship_restarted: how a free ship left the bounds of a moored ship (model.body
+        out_of_bounds), restarting it at its start pose at rest and every line with it
+        ('ship restarted' in restarted); '' if it did not.
     """
 
     steps: int
@@ -226,6 +231,7 @@ class MooringAdvance:
     restarted: Dict[int, str] = field(default_factory=dict)
     beyond_reach: Dict[int, float] = field(default_factory=dict)
     parted: Dict[int, Parting] = field(default_factory=dict)
+    ship_restarted: str = ''
 
 
 class GroupRules:
@@ -938,6 +944,7 @@ class Mooring:
     def _advance_group(self, group: _Group, times: np.ndarray, done: MooringAdvance) -> None:
         """Take the steps of one group to `times`: held at the reach, back within it."""
         if self.free:
+            self._check_ship(group, done)
             self._set_body_loads(group.system, group.time, float(times[-1]))
         drive_x, drive_v, distances, far = self._drive_group(group, times)
         if not (far or self.held.any()):  # the common case
@@ -983,7 +990,7 @@ class Mooring:
                 self._run_divided(group, divide_run(group.time, [t], parts), done)
                 self._set_group_time(group, float(t))
         self._set_group_time(group, float(times[-1]))
-        self._check(group, spreads[:, 1], done.restarted)  # the ends' speeds
+        self._check(group, spreads[:, 1], done)  # the ends' speeds
 
     def _divisions(self, group: _Group, spreads: np.ndarray) -> Tuple[int, bool]:
         """Return the parts every step of a group is divided in, and whether to look again."""
@@ -1066,14 +1073,30 @@ class Mooring:
 
         :param force, moment: [N], [N m] about the ship's origin; in its body axes (they
             turn with it) or in frame_id axes.
-        :raises ValueError: a number that is not finite.
+        :raises ValueError: a number that is not finite, or a load past what any tug or
+            thruster gives (ship.external_load_limits).
         """
         load = np.concatenate([np.asarray(force, dtype=float).reshape(3),
                                np.asarray(moment, dtype=float).reshape(3)])
-        if not np.isfinite(load).all():
-            raise ValueError(f'external load {load.tolist()} must be finite numbers')
+        check_external_load(load, external_load_limits(self.arrangement))
         self.external_load = np.zeros(6) if body_axes else load
         self.body_load = load if body_axes else np.zeros(6)
+
+    def set_load_schedule(self, times: np.ndarray, loads: np.ndarray) -> None:
+        """
+        Take a schedule of external loads on the free ship (offline: LOADS.csv).
+
+        :param times: [s] (n,), increasing; loads: force [N] and moment about the ship's
+            origin [N m] in world axes at each (n, 6), linear between them.
+        :raises ValueError: a load past what any tug or thruster gives, naming its row.
+        """
+        limits = external_load_limits(self.arrangement)
+        for row, load in enumerate(np.asarray(loads, dtype=float).reshape(-1, 6)):
+            try:
+                check_external_load(load, limits)
+            except ValueError as e:
+                raise ValueError(f'row {row + 1} (t = {times[row]:g} s): {e}') from None
+        self.load_schedule = (np.asarray(times, dtype=float), np.asarray(loads, dtype=float))
 
     def _set_body_loads(self, system: System, start: float, end: float) -> None:
         """
@@ -1107,18 +1130,19 @@ class Mooring:
         for group in self.groups:
             group.time = t
 
-    def _check(self, group: _Group, end_speeds: np.ndarray, restarted: Dict[int, str]) -> None:
+    def _check(self, group: _Group, end_speeds: np.ndarray, done: MooringAdvance) -> None:
         """
         Restart every line of a group whose state is not finite or past its load bound.
+
+        A free ship out of a moored ship's bounds (sunk, capsized, far off, its numbers not
+        finite) restarts at its start pose at rest, and every line with it.
 
         :param end_speeds: each line's largest end speed over the steps just taken [m/s].
         """
         system = group.system
-        if self.free and not np.isfinite(system.body_table[:, :BODY_STATE]).all():
-            self._reset_ship(system)  # numbers overflowed somewhere: start over
-            for k in group.members:
-                restarted[k] = 'non-finite state'
-                self.restart_line(k)
+        restarted = done.restarted
+        if self.free:
+            self._check_ship(group, done)
         finite, largest = system.largest_load()
         rules = group.rules
         if finite and largest <= lowest_bound(rules.bound_at_rest, rules.bound_per_speed,
@@ -1137,6 +1161,22 @@ class Mooring:
         for j in np.flatnonzero(~(largest <= bounds)):  # also NaN
             restarted[group.members[j]] = 'unphysical state'
             self.restart_line(group.members[j])
+
+    def _check_ship(self, group: _Group, done: MooringAdvance) -> None:
+        """
+        Restart a free ship out of a moored ship's bounds at its start pose, at rest.
+
+        Every line restarts with it (done.restarted: 'ship restarted'). Before a group's
+        steps too: the loads on the ship are worked out from its state.
+        """
+        system = group.system
+        why = out_of_bounds(system.body_table[0], self._start_row)
+        if why:
+            self._reset_ship(system)
+            done.ship_restarted = why
+            for k in group.members:
+                done.restarted[k] = 'ship restarted'
+                self.restart_line(k)
 
     def skip_to(self, t: float) -> None:
         """

@@ -20,7 +20,8 @@ model.body.Body, Fenders and ShipLoads, for the Mooring that steps them and for 
 (equilibrium, stiffness, the berth check) alike.
 """
 
-from typing import List
+import math
+from typing import List, Tuple
 
 import numpy as np
 
@@ -90,6 +91,40 @@ def ship_wind(ship: ShipParams) -> Wind:
     if ship.wind_spectrum != 'none' and ship.wind_speed > 0.0:
         gusts = GustyWind(ship.wind_spectrum, ship.wind_speed, ship.wind_seed)
     return Wind(ship.wind_speed, ship.wind_direction, gusts)
+
+
+# The largest external load a free ship takes (ship/external_wrench, LOADS.csv): a force of a
+# tenth of its weight, 8.7e7 N on the default 88,400 t ship, some ninety of the largest
+# harbour tugs (about 1 MN of bollard pull each), and that force at the ship's length for the
+# moment. A load past it is no tug's or thruster's (one of 1e12 N, 11 km/s^2 on that ship,
+# sent it 2.4 km deep) and is refused.
+EXTERNAL_FORCE_SHARE = 0.1
+STANDARD_GRAVITY = 9.80665  # [m/s^2] the weight of the limit, whatever the gravity setting
+
+
+def external_load_limits(setup: ArrangementParams) -> Tuple[float, float]:
+    """Return the largest external force [N] and moment [N m] the ship may take."""
+    force = EXTERNAL_FORCE_SHARE * setup.ship.mass * STANDARD_GRAVITY
+    return force, force * setup.ship.length
+
+
+def check_external_load(load, limits: Tuple[float, float]) -> None:
+    """
+    Refuse an external load (force [N], moment [N m]: 6 numbers) past the limits.
+
+    :raises ValueError: a number not finite, or a force or moment past its limit; the
+        message says which and what is allowed.
+    """
+    load = np.asarray(load, dtype=float).reshape(6)
+    if not np.isfinite(load).all():
+        raise ValueError(f'external load {load.tolist()} must be finite numbers')
+    for name, size, limit, unit in (('force', math.hypot(*load[:3]), limits[0], 'N'),
+                                    ('moment', math.hypot(*load[3:]), limits[1], 'N m')):
+        if size > limit:
+            raise ValueError(
+                f'an external {name} of {size:.3g} {unit} is more than any tug or thruster '
+                f'gives this ship: at most {limit:.3g} {unit} (a force of a tenth of its '
+                'weight, at its length for a moment)')
 
 
 def reports_ship_loads(setup: ArrangementParams) -> bool:

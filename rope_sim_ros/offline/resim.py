@@ -381,6 +381,6 @@ def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: D
         elif kind == 'winch':
             driver.command_winch(event.get('line', setup.names[0] if setup.single else None),
                                  float(event['speed']))
-        # 'parted' says what the model did: replayed, the model does it again
+        # 'parted' and 'ship_restart' say what the model did: replayed, it does it again
     except (ValueError, KeyError, TypeError, ParameterError) as e:
         raise BagError(f'{layout_of(setup).events}: cannot replay {text!r}: {e}') from None

@@ -178,6 +178,23 @@ def driver_for(setup: ArrangementParams, rate: float, materials: Any = None) -> 
     return Driver(setup, materials, rate=rate, history=math.inf)
 
 
+def free_driver(setup: ArrangementParams, loads: Optional[LoadSchedule], rate: float,
+                materials: Any = None) -> Driver:
+    """
+    Return the Driver of a free ship's offline run, its loads scheduled.
+
+    :raises ParameterError: a bad rate, a line that cannot be built, or a load past what
+        any tug or thruster gives (naming LOADS.csv and the row).
+    """
+    driver = driver_for(setup, rate, materials)
+    if loads is not None:
+        try:
+            driver.set_load_schedule(loads.times, loads.loads)
+        except ValueError as e:
+            raise ParameterError(f'--loads {loads.path}: {e}') from None
+    return driver
+
+
 def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_RATE,
              sinks: Sequence[Sink] = (),
              progress: Optional[Callable[[int, int, float], None]] = None,
@@ -251,9 +268,7 @@ def simulate_free(setup: ArrangementParams, duration: float, loads: Optional[Loa
     if not (math.isfinite(duration) and duration > 0.0):
         raise ParameterError(f'--duration {duration!r} is not allowed: must be a number of '
                              'seconds > 0')
-    driver = driver_for(setup, rate, materials)
-    if loads is not None:
-        driver.mooring.load_schedule = (loads.times, loads.loads)
+    driver = free_driver(setup, loads, rate, materials)
     summary = RunSummary(time_step=driver.mooring.time_step,
                          reach={line.name: line.reach for line in driver.mooring.lines})
     tally = Tally(summary, driver.mooring.names)
@@ -284,7 +299,7 @@ def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSche
     :raises ParameterError: as simulate_free, before any file exists.
     :raises OSError: OUT.csv cannot be written.
     """
-    driver_for(setup, rate, materials)  # refuses a bad rate or line first
+    free_driver(setup, loads, rate, materials)  # refuses a bad rate, line or load first
     writer = None
     sinks: List[Sink] = []
     if out_path is not None:

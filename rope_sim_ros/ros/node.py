@@ -51,6 +51,7 @@ import functools
 import gc
 import math
 import os
+import re
 import sys
 from typing import Any, Dict, List, Optional
 import warnings
@@ -111,6 +112,10 @@ MESSAGE_CLASSES = {topics.POSE_ARRAY: PoseArray, topics.WRENCH: Wrench,
 PARTED_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
+# A number in a warning's text: the same warning with other numbers is the same kind (_warn).
+NUMBER = re.compile(r'[-+]?\d+(?:\.\d*)?(?:e[-+]?\d+)?')
+
+
 def check_pose_qos(qos: QoSProfile) -> SetParametersResult:
     """Refuse pose subscription QoS overrides that would keep no pose or never get one."""
     if qos.history != HistoryPolicy.KEEP_ALL and qos.depth < 1:
@@ -140,7 +145,7 @@ class MooringNode(Node):
         """
         super().__init__(layout.node_name, **kwargs)
         self.layout = layout
-        self._last_log: Dict[str, float] = {}
+        self._last_log: Dict[tuple, float] = {}  # (key, kind of text): when last logged
         # per pose topic: messages taken, dropped (bad or far-off stamps) and lost before they
         # reached the node (DDS's message_lost count)
         self.received: Dict[str, int] = {}
@@ -434,11 +439,19 @@ class MooringNode(Node):
     def _on_external_wrench(self, msg: WrenchStamped) -> None:
         """Hold the external load on the free ship (ship/external_wrench) until the next."""
         f, m = msg.wrench.force, msg.wrench.torque
-        body = msg.header.frame_id == self.driver.arrangement.ship_frame_id
+        setup = self.driver.arrangement
+        frame = msg.header.frame_id
+        body = frame == setup.ship_frame_id
+        name = self._external_sub.topic_name
+        if not body and frame not in ('', setup.shared.frame_id):
+            self._warn(topics.EXTERNAL_WRENCH, f'{name}: ignored: header.frame_id {frame!r} '
+                       f'is neither {setup.shared.frame_id!r} nor {setup.ship_frame_id!r} '
+                       '(no tf lookup)')
+            return
         try:
             self.driver.set_external_load((f.x, f.y, f.z), (m.x, m.y, m.z), body)
         except ValueError as e:
-            self._warn(topics.EXTERNAL_WRENCH, f'{self._external_sub.topic_name}: ignored: {e}')
+            self._warn(topics.EXTERNAL_WRENCH, f'{name}: ignored: {e}')
             return
         self.record(topics.EXTERNAL_WRENCH, msg)
         self._event('load', force=[f.x, f.y, f.z], moment=[m.x, m.y, m.z],
@@ -697,8 +710,16 @@ class MooringNode(Node):
                        f'{distance:.1f} m apart, beyond its reach of '
                        f'{mooring.lines[k].reach:.1f} m (length x (1 + max_strain)): its '
                        'fairlead is held at the reach')
+        if advance.ship_restarted:
+            self._event('ship_restart', why=advance.ship_restarted, t=self.driver.time)
+            self.get_logger().error(
+                f'the free ship {advance.ship_restarted} at t = {self.driver.time:.3f} s, past '
+                'every bound of a moored ship: restarted at its start pose at rest, every '
+                'line with it')
         for k, why in advance.restarted.items():
             self._restarted[k] = why
+            if why == 'ship restarted':
+                continue  # said once, above
             log = (self.get_logger().warning if why == 'back within reach'
                    else self.get_logger().error)
             log(f'{self.names[k] or "the line"}: {why} at t = {self.driver.time:.3f} s: '
@@ -898,11 +919,17 @@ class MooringNode(Node):
     # -- logging --------------------------------------------------------------------------
 
     def _warn(self, key: str, text: str) -> None:
-        """Log a warning, at most once per THROTTLE seconds per key."""
+        """
+        Log a warning, at most once per THROTTLE seconds per key and kind of text.
+
+        The same warning with other numbers is throttled; another one under the same key
+        (a second, different refusal on one topic) is not.
+        """
         now = self.get_clock().now().nanoseconds * 1e-9
-        last = self._last_log.get(key)
+        kind = (key, NUMBER.sub('#', text))
+        last = self._last_log.get(kind)
         if last is None or not 0.0 <= now - last < self.THROTTLE:
-            self._last_log[key] = now
+            self._last_log[kind] = now
             self.get_logger().warning(text)
 
 
