@@ -79,7 +79,7 @@ from .mooring_display import Fenders, line_diagnostics, LineMarkers
 from .outputs import OutputPublishers
 from .parameters import NodeParameters, plain, StartupError
 from .recorder import Recorder
-from .spinning import set_timer_period, signals_ignored, spin_until_shutdown
+from .spinning import set_timer_period, spin_until_shutdown
 from ..bag import BagError
 from ..messages import topics
 from ..messages.encode import encoder_for, stiffness_message
@@ -1011,11 +1011,11 @@ def run(layout: Layout, args=None) -> int:
     # keep it out of the cyclic collector, whose full passes over it took ~45 ms mid-run.
     gc.freeze()
     try:
-        if rclpy.ok():  # else SIGTERM came between start-up and spinning
-            spin_until_shutdown(node)
+        # from here to the end, SIGINT and SIGTERM only stop the spin: the node's teardown
+        # and its bag's closing run whatever signals come (a terminal's and ros2 launch's)
+        spin_until_shutdown(node)
     finally:
-        with signals_ignored():  # a second Ctrl-C must not cut the bag short
-            node.destroy_node()
+        node.destroy_node()
         rclpy.try_shutdown()
     return 0
 

@@ -34,6 +34,7 @@ when the first message arrives (what `ros2 bag record` stores); an input that ne
 arrives is still listed, with rclpy's default publisher profile.
 """
 
+import atexit
 import logging
 import os
 from typing import Any, Callable, Dict, Optional
@@ -141,6 +142,9 @@ class Recorder:
         self._offered = 0
         self._last_log_ns = None  # log time of the last message (they strictly increase)
         self._failure: Optional[str] = None  # why recording stopped, once logged
+        # Closed at the interpreter's exit if the node never closes it: a Ctrl-C that cuts
+        # the node's start short after this point leaves no node to close it.
+        atexit.register(self._close_at_exit)
 
     @property
     def path(self) -> str:
@@ -239,6 +243,13 @@ class Recorder:
         self._failure = text
         self.logger.error(f'{text}; the simulation goes on without recording')
 
+    def _close_at_exit(self) -> None:
+        """Complete the bag the node never closed, quietly: the process is ending."""
+        try:
+            self.writer.close()
+        except BagError:
+            pass  # readable up to its last chunk; `rope_sim recover` completes it
+
     def close(self) -> bool:
         """
         Complete the bag (summary, metadata.yaml) and log what it holds and what was dropped.
@@ -248,6 +259,7 @@ class Recorder:
         :returns: True if the bag is complete, False if recording failed (the bag is then
             readable up to its last chunk; `rope_sim recover` completes it).
         """
+        atexit.unregister(self._close_at_exit)
         if self.writer.closed:
             return self._failure is None
         for topic in self._topics.values():

@@ -14,7 +14,6 @@
 
 """Spin a node until Ctrl-C or SIGTERM, both ending quietly: the nodes' main loop and signals."""
 
-import contextlib
 import signal
 import time
 from typing import List
@@ -23,8 +22,6 @@ import rclpy
 from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
-from rclpy.signals import (get_current_signal_handlers_options, install_signal_handlers,
-                           SignalHandlerOptions, uninstall_signal_handlers)
 from rclpy.timer import Timer
 
 # How long a failed spin waits for a signal's shutdown to land before it re-raises [s].
@@ -38,24 +35,29 @@ def spin_until_shutdown(node: Node) -> None:
     """
     Spin node until Ctrl-C or SIGTERM, or until its context shuts down.
 
-    The executor is executor_for(node).
+    The executor is executor_for(node). For an executable's main thread: from the first
+    statement to the end of the process, SIGINT and SIGTERM only ask the loop to stop
+    (within SPIN_TIMEOUT), however often they come. A terminal's Ctrl-C reaches a node
+    started by `ros2 launch` twice (the terminal's SIGINT to the process group, then
+    launch's own): with the raising handlers back after the first, the second raised
+    KeyboardInterrupt inside a C++ call of the executor being torn down, and the node died
+    with 'terminate called after throwing an instance of pybind11::error_already_set' (2 of
+    7 Ctrl-C of a launch), before its bag was closed. rclpy's own handlers would shut the
+    context down under a running callback.
 
-    While it spins, SIGINT and SIGTERM only ask the loop to stop (within SPIN_TIMEOUT). A
-    handler that raises, as Ctrl-C's KeyboardInterrupt does, raises inside whichever
-    callback is running, and the executor reports that as a fatal error with its traceback;
-    rclpy's own handlers would shut the context down under a running callback. An error out
-    of the spin after a signal is taken for the signal's doing: a Ctrl-C landing inside a
-    message conversion comes out of pybind11 as a RuntimeError ('Unable to convert call
-    argument'). Without a signal, a failure is re-raised unless the context is shut down
-    within SHUTDOWN_GRACE seconds (by another thread's signal handling).
+    A handler that raises, as Ctrl-C's KeyboardInterrupt does, raises inside whichever
+    callback is running, and the executor reports that as a fatal error with its traceback.
+    An error out of the spin after a signal is taken for the signal's doing: a Ctrl-C landing
+    inside a message conversion comes out of pybind11 as a RuntimeError ('Unable to convert
+    call argument'). Without a signal, a failure is re-raised unless the context is shut
+    down within SHUTDOWN_GRACE seconds (by another thread's signal handling).
     """
-    stop: List[int] = []
+    stop = take_stopping_signals()
     executor = executor_for(node)
     executor.add_node(node)
     try:
-        with _signals_stop(stop):
-            while not stop and node.context.ok():
-                executor.spin_once(timeout_sec=SPIN_TIMEOUT)
+        while not stop and node.context.ok():
+            executor.spin_once(timeout_sec=SPIN_TIMEOUT)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:
@@ -68,6 +70,35 @@ def spin_until_shutdown(node: Node) -> None:
             raise
     finally:
         executor.remove_node(node)
+
+
+def take_stopping_signals() -> List[int]:
+    """
+    From now on, SIGINT and SIGTERM only append their number to the returned list.
+
+    For the rest of the process (the main thread's handlers; elsewhere nothing changes and
+    the list stays empty): they stop the spin and never interrupt what comes after it, the
+    node's teardown and the closing of its bag.
+    """
+    try:
+        for number in STOPPING_SIGNALS:
+            signal.signal(number, _STOPS.record)
+    except ValueError:  # not the main thread
+        pass
+    return _STOPS.seen
+
+
+class _Stops:
+    """A signal handler that keeps the signals' numbers and does nothing else."""
+
+    def __init__(self):
+        self.seen: List[int] = []
+
+    def record(self, signum, frame) -> None:
+        self.seen.append(signum)
+
+
+_STOPS = _Stops()
 
 
 def executor_for(node: Node) -> Executor:
@@ -88,51 +119,6 @@ def executor_for(node: Node) -> Executor:
     if node.get_parameter('use_sim_time').value:
         return SingleThreadedExecutor(context=node.context)
     return EventsExecutor(context=node.context)
-
-
-@contextlib.contextmanager
-def _signals_stop(stop: List[int]):
-    """
-    Inside the block, SIGINT and SIGTERM append their number to `stop` and do nothing else.
-
-    Afterwards the handlers are as before, rclpy's included.
-    """
-    rclpy_options = get_current_signal_handlers_options()
-    taken = False
-    try:
-        with _stopping_signals(lambda signum, frame: stop.append(signum)) as taken:
-            yield
-    finally:
-        if taken and rclpy_options != SignalHandlerOptions.NO:
-            # rclpy's handlers go back on top, chaining to the ones just restored
-            uninstall_signal_handlers()
-            install_signal_handlers(rclpy_options)
-
-
-def signals_ignored():
-    """Ignore SIGINT and SIGTERM inside the block (main thread only); SIGKILL still works."""
-    return _stopping_signals(signal.SIG_IGN)
-
-
-@contextlib.contextmanager
-def _stopping_signals(handler):
-    """
-    Give SIGINT and SIGTERM to `handler` inside the block; yield whether they were taken.
-
-    Outside the main thread signals are left alone (False). Afterwards the Python handlers
-    are as before.
-    """
-    saved = {}
-    try:
-        for number in STOPPING_SIGNALS:
-            saved[number] = signal.signal(number, handler)
-    except ValueError:  # not the main thread
-        pass
-    try:
-        yield bool(saved)
-    finally:
-        for number, previous in saved.items():
-            signal.signal(number, previous if previous is not None else signal.SIG_DFL)
 
 
 def set_timer_period(timer: Timer, period: float) -> None:
