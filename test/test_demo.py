@@ -20,6 +20,7 @@ a free ship's bag recorded offline as the node records it, then the live demo en
 """
 
 import math
+import os
 import re
 import subprocess
 import sys
@@ -31,7 +32,7 @@ import pytest
 import rclpy
 from rope_sim_ros.messages import topics
 from rope_sim_ros.messages.encode import OutputEncoder
-from rope_sim_ros.offline import demo
+from rope_sim_ros.offline import cli, demo
 from rope_sim_ros.offline.plot import (_passing_outline, abeam_time, line_kinds, plot_event,
                                        read_record, ship_offsets, stagger)
 from rope_sim_ros.offline.run import simulate_free
@@ -341,3 +342,12 @@ def test_make_demo_runs_the_event_and_leaves_its_table_bag_and_plots(
     assert abs(-100.0 + 5.0 * record.passing_times[i]) < 10.0
     for name in ('event.png', 'plan.png'):
         assert (run / name).stat().st_size > 20_000, name
+
+
+def test_rope_sim_plot_of_a_passing_ships_bag_draws_its_load_too(free_bag, tmp_path, capsys):
+    # (issue: the tensions and the plan only: not the cause of what they show)
+    assert cli.main(['plot', str(free_bag[1]), '-o', str(tmp_path / 'passing.png')]) == 0
+    printed = capsys.readouterr().out.split()
+    assert [os.path.basename(p) for p in printed] == ['passing.png', 'passing_plan.png',
+                                                      'passing_event.png']
+    assert all(os.path.getsize(p) > 20_000 for p in printed)

@@ -340,7 +340,7 @@ def _cmd_plot(args) -> int:
     folder, name = os.path.split(os.path.abspath(args.output))
     stem = os.path.splitext(name)[0]
     for path in plot_record(args.bag, folder, tensions=name, plan=f'{stem}_plan.png',
-                            setup=setup):
+                            setup=setup, event=f'{stem}_event.png'):
         print(path)
     return 0
 

@@ -27,8 +27,9 @@ of the lines on the ship (ship/mooring_wrench, body frame); plan.png, the berth 
 at the moment of the highest utilisation: the quay, the ship (outlined from its fairleads),
 every line coloured by its band (mooring/status.py: green below the WLL, amber past it, red
 past 90 % of the MBL) and labelled with its utilisation then and its peak, at rest in grey,
-and a passing ship (passing_ship.*) where it is then. event.png (plot_event, the berth
-demo's) is a passing ship's event on one time axis: its force on the moored ship
+and a passing ship (passing_ship.*) where it is then. event.png (draw_event: the berth
+demo's, and `rope_sim plot`'s of a bag holding a passing ship's load) is a passing ship's
+event on one time axis: its force on the moored ship
 (ship/passing_ship_wrench), the ship's motion from its first pose (surge, sway, yaw) and
 every line's tension in % of its MBL against the WLL, with the passing ship's stagger on top.
 Times are the outputs' stamps (publish times), from the first output; the arrangement is
@@ -361,17 +362,26 @@ def _placed(outline: np.ndarray, position, yaw: float) -> np.ndarray:
 
 
 def plot_record(path, out_dir, story: str = '', tensions: str = 'tensions.png',
-                plan: str = 'plan.png', setup: Optional[ArrangementParams] = None) -> List[str]:
+                plan: str = 'plan.png', setup: Optional[ArrangementParams] = None,
+                event: str = 'event.png') -> List[str]:
     """
-    Draw tensions.png and plan.png of an arrangement's bag into out_dir.
+    Draw tensions.png and plan.png of an arrangement's bag into out_dir, and event.png.
+
+    event.png (draw_event) only of a bag holding a passing ship's load on the ship: the
+    cause of what the tensions show.
 
     :param story: what the run was, a sentence for the top of tensions.png ('' = none).
-    :param tensions, plan: the images' file names.
+    :param tensions, plan, event: the images' file names.
     :param setup: the arrangement (default: the one the bag stores).
-    :returns: the two image paths.
+    :returns: the image paths.
     :raises BagError: see read_record. OSError: an image cannot be written.
     """
-    return _plot_with_plan(path, out_dir, draw_tensions, tensions, story, plan, setup)
+    record = read_record(path, setup)
+    paths = _plot_with_plan(path, record, out_dir, draw_tensions, tensions, story, plan)
+    if len(record.passing_times):
+        paths.append(os.path.join(os.fspath(out_dir), event))
+        draw_event(record, paths[-1], story)
+    return paths
 
 
 def plot_event(path, out_dir, story: str = '', event: str = 'event.png',
@@ -381,13 +391,13 @@ def plot_event(path, out_dir, story: str = '', event: str = 'event.png',
 
     Arguments and errors as plot_record's.
     """
-    return _plot_with_plan(path, out_dir, draw_event, event, story, plan, setup)
+    return _plot_with_plan(path, read_record(path, setup), out_dir, draw_event, event, story,
+                           plan)
 
 
-def _plot_with_plan(path, out_dir, draw, name: str, story: str, plan: str,
-                    setup: Optional[ArrangementParams]) -> List[str]:
+def _plot_with_plan(path, record: ArrangementRecord, out_dir, draw, name: str, story: str,
+                    plan: str) -> List[str]:
     """Draw draw(record, out_dir/name, story) and the plan view; return both paths."""
-    record = read_record(path, setup)
     os.makedirs(os.fspath(out_dir), exist_ok=True)
     first = os.path.join(os.fspath(out_dir), name)
     plan = os.path.join(os.fspath(out_dir), plan)
