@@ -25,6 +25,7 @@ WLL (50 %), past it, and past 90 %.
 
 import json
 import math
+import re
 import subprocess
 import time
 
@@ -612,3 +613,27 @@ def test_a_non_unit_quaternion_is_normalised_with_one_warning(capfd):
     warnings = [line for line in capfd.readouterr().err.splitlines()
                 if 'normalised a non-unit quaternion (|q| = 2)' in line]
     assert len(warnings) == 1, warnings  # throttled: one a stream
+
+
+@pytest.mark.parametrize('name, value, refused', [
+    ('wind_sped', 12.0, "unknown parameter 'wind_sped'; did you mean 'wind_speed'?"),
+    ('ship.mas', 9.0e7, 'ship.mas'),
+    ('easi.length', 40.0, "unknown parameter 'easi.length'; did you mean 'easy.length'?"),
+    ('publish_frequency', 30.0, None),  # another node's, from a `/**:` section: left alone
+])
+def test_an_unknown_parameter_is_refused_if_it_is_a_typo_of_the_nodes(
+        name, value, refused, capfd):
+    # (issue: a top-level typo was a warning, and the ship ran without its wind, while
+    # ship.mas stopped the node)
+    from rope_sim_ros.ros.parameters import StartupError
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    try:
+        if refused is None:
+            in_process_mooring(context, '/unknown', **{name: value}).destroy_node()
+            assert "ignoring unknown parameter 'publish_frequency'" in capfd.readouterr().err
+        else:
+            with pytest.raises(StartupError, match=re.escape(refused)):
+                in_process_mooring(context, '/unknown', **{name: value})
+    finally:
+        rclpy.try_shutdown(context=context)

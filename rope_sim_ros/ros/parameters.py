@@ -20,9 +20,10 @@ its own name; the mooring node declares `lines`, the settings its lines share at
 level, its own (ship_frame_id, marker_rate) and each line's settings under the line's name
 (`head_1.length`), with the same descriptors: description, unit, range, read-only.
 
-One rule for a name the node does not know: a name under one of its lines (`head_1.lenght`)
-can only be meant for it, and is refused with the nearest name; any other is warned about
-(with the nearest name) and left alone, because a parameter file's `/**:` section gives
+One rule for a name the node does not know: a name meant for it is refused with the nearest
+name, as the offline commands refuse it: one under one of its lines or its ship
+(`head_1.lenght`, `ship.mas`), or one as near one of its names as a typo is (`wind_sped`).
+Any other is warned about and left alone, because a parameter file's `/**:` section gives
 every node every parameter in it, its neighbours' too.
 """
 
@@ -93,6 +94,24 @@ def plain(value: Any) -> Any:
     return value
 
 
+# A name at least this near one of the node's (difflib's ratio) is a typo of it: 'wind_sped'
+# is 0.95 from 'wind_speed', 'lenght' 0.83 from 'length'; 'publish_frequency', another node's
+# parameter, 0.69 from 'publish_rate'.
+TYPO = 0.8
+
+
+def refuse_or_warn(name: str, known, warn, hint: str = '') -> None:
+    """
+    Refuse a name that is a typo of one of `known`; warn of any other unknown name.
+
+    :raises ParameterError: the name is a typo, naming the one meant.
+    """
+    meant = difflib.get_close_matches(name, list(known), n=1, cutoff=TYPO)
+    if meant:
+        raise ParameterError(f'unknown parameter {name!r}; did you mean {meant[0]!r}?')
+    warn(f'ignoring unknown parameter {name!r}{nearest(name, known)}{hint}')
+
+
 def nearest(name: str, known) -> str:
     """Say which known name a mistyped one is nearest to ('' when none is near)."""
     found = difflib.get_close_matches(name, list(known), n=1, cutoff=0.6)
@@ -147,7 +166,7 @@ class NodeParameters:
             if name in SPECS:  # rclpy refuses `length: 40` for a double; the files take it
                 values[name] = check(name, self._as_declared(name, value))
             else:
-                warn(f'ignoring unknown parameter {name!r}{nearest(name, SPECS)}')
+                refuse_or_warn(name, SPECS, warn)
         params = LineParams().with_values(values)
         for name, spec in SPECS.items():
             node.declare_parameter(name, getattr(params, name), describe(name, spec),
@@ -170,9 +189,10 @@ class NodeParameters:
                 ours[name] = value
             else:
                 known = [LINES, FENDERS, *SHARED, *ARRANGEMENT_SPECS, *LINE_SPECS, *SHIP_SPECS,
-                         *PASSING_SPECS]
-                warn(f'ignoring unknown parameter {name!r}{nearest(name, known)} (a line '
-                     f'takes its settings under its name: {names[0]}.length)')
+                         *PASSING_SPECS, *(f'{line}.{setting}' for line in names
+                                           for setting in LINE_SPECS)]
+                refuse_or_warn(name, known, warn, f' (a line takes its settings under its '
+                               f'name: {names[0]}.length)')
         setup = arrangement.from_values(ours)
         self.line_names = setup.names
         lines = ParameterDescriptor(name=LINES, type=ParameterType.PARAMETER_STRING_ARRAY,
