@@ -360,3 +360,25 @@ def test_a_load_no_tug_gives_or_in_an_unknown_frame_is_refused_each_in_one_line(
     assert ('/refusals/ship/external_wrench: ignored: an external force of 1e+12 N is more '
             'than any tug or thruster gives this ship: at most 8.67e+07 N') in lines[0]
     assert "header.frame_id 'map' is neither 'world' nor 'base_link'" in lines[1]
+
+
+def test_a_free_ship_waiting_for_its_first_clock_says_so(capfd):
+    # (issue: under use_sim_time with no /clock it said nothing for as long as none came)
+    context = rclpy.Context()
+    rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
+    node = MooringNode(context=context, namespace='/no_clock',
+                       parameter_overrides=overrides(None))
+    try:
+        capfd.readouterr()
+        node._on_tick()  # (its timer, had the clock run) at clock 0: nothing starts
+        node._check_clock()  # (its steady timer's callback)
+        assert not node.driver.started
+        assert ('use_sim_time is true but no /clock message has come: the free ship starts '
+                'at rest at its start pose at the first one') in capfd.readouterr().err
+        at(node, 0.0)
+        assert node.driver.started
+        node._check_clock()
+        assert 'no /clock' not in capfd.readouterr().err
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown(context=context)

@@ -53,6 +53,7 @@ import math
 import os
 import re
 import sys
+import time
 from typing import Any, Dict, List, Optional
 import warnings
 
@@ -134,6 +135,7 @@ class MooringNode(Node):
     """A mooring of one or many lines; see the module docstring and docs/ros.md."""
 
     THROTTLE = 5.0  # seconds between repeated warnings of one kind
+    NO_CLOCK_NOTICE = 2.0  # [s] of the steady clock a free ship waits for /clock unnoticed
     DIAGNOSTICS_PERIOD = 1.0  # [s] of the node's clock
 
     def __init__(self, layout: Layout = MOORING_NODE, **kwargs):
@@ -231,6 +233,12 @@ class MooringNode(Node):
             self._stiffness_pub = self._publisher(Float64MultiArray, topics.STIFFNESS, 10)
             self._set_stiffness_rate(setup.ship.stiffness_rate)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
+        if mooring.free and self.get_parameter('use_sim_time').value:
+            # a free ship starts at the first tick of a running clock: say what it waits for
+            # (on the steady clock: without /clock no timer of the node clock runs)
+            self._clock_timer = self.create_timer(
+                self.NO_CLOCK_NOTICE, self._check_clock,
+                clock=Clock(clock_type=ClockType.STEADY_TIME))
         rate = setup.shared.publish_rate
         self._timer = self.create_timer(self.pacer.tick_period(rate), self._on_tick)
         if layout.ship_outputs:
@@ -347,6 +355,14 @@ class MooringNode(Node):
                    f'way ({info.total_count} so far): the queue of their publisher overflowed '
                    'before they were sent, or the network dropped them (a deeper publisher '
                    'queue or a lower rate keeps them)')
+
+    def _check_clock(self) -> None:
+        """Warn while a free ship under use_sim_time waits for its first /clock message."""
+        if self.driver.started:
+            self.destroy_timer(self._clock_timer)
+        elif not self.get_clock().now().nanoseconds:
+            self._warn('no clock', 'use_sim_time is true but no /clock message has come: the '
+                       'free ship starts at rest at its start pose at the first one')
 
     def _check_pose_publishers(self) -> None:
         """
@@ -925,7 +941,7 @@ class MooringNode(Node):
         The same warning with other numbers is throttled; another one under the same key
         (a second, different refusal on one topic) is not.
         """
-        now = self.get_clock().now().nanoseconds * 1e-9
+        now = time.monotonic()  # (under use_sim_time the node clock may stand still)
         kind = (key, NUMBER.sub('#', text))
         last = self._last_log.get(kind)
         if last is None or not 0.0 <= now - last < self.THROTTLE:
