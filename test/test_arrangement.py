@@ -327,6 +327,10 @@ def test_length_for_tension_follows_the_lines_curve():
     ({'head_1': {'fairlead_offset': [1.0, 2.0, 3.0], 'bollard_position': [0.0, 0.0, 0.0]}},
      "line 'head_1' is missing settings: set head_1.length (m) or head_1.pretension (N)"),
     ({'lenght': 40.0}, "unknown parameter 'lenght'"),
+    # (issue: it passed silently through the moored ship, its load zero)
+    ({'passing_ship': {'speed': 4.0, 'separation': -10.0}},
+     "parameter 'passing_ship.separation' = -10 is not allowed: the hulls would overlap; at "
+     'least 32.1 m (half the sum of the beams, 32.2 m and 32 m) off either side'),
 ])
 def test_bad_arrangement_is_refused_in_one_line(change, message):
     values = berth_values()

@@ -41,9 +41,9 @@ from typing import Any, Dict, List, Mapping, Optional, Tuple
 import yaml
 
 from .files import read_params_file
-from .ship import (check_fender_names, fender_setup, FENDER_SPECS, FENDERS, FenderSetup,
-                   field_name, PASSING_SHIP, passing_ship, PASSING_SPECS, PassingShipParams, SHIP,
-                   SHIP_SPECS, ShipParams)
+from .ship import (check_fender_names, check_passing_clear, fender_setup, FENDER_SPECS, FENDERS,
+                   FenderSetup, field_name, PASSING_SHIP, passing_ship, PASSING_SPECS,
+                   PassingShipParams, SHIP, SHIP_SPECS, ShipParams)
 from .table import allowed, check, LineParams, ParameterError, Spec, SPECS
 from .table import NODE_NAME as LINE_NODE_NAME
 
@@ -323,12 +323,13 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
     setups = tuple(_line_setup(name, {k: v for k, v in top.items() if k in LINE_SPECS},
                                own[name], shared_values) for name in names)
     ship = ShipParams(**{field_name(k): v for k, v in top.items() if k in SHIP_SPECS})
+    passing = passing_ship({k: v for k, v in top.items() if k in PASSING_SPECS})
+    check_passing_clear(ship, passing)
     return ArrangementParams(
         setups, shared,
         top.get('ship_frame_id', ARRANGEMENT_SPECS['ship_frame_id'].default),
         top.get('marker_rate', ARRANGEMENT_SPECS['marker_rate'].default), ship,
-        tuple(fender_setup(name, fenders[name]) for name in fender_names),
-        passing_ship({k: v for k, v in top.items() if k in PASSING_SPECS}))
+        tuple(fender_setup(name, fenders[name]) for name in fender_names), passing)
 
 
 def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],

@@ -274,6 +274,23 @@ def passing_ship(values: Mapping[str, Any]) -> PassingShipParams:
     return PassingShipParams(**own)
 
 
+def check_passing_clear(ship: ShipParams, passing: PassingShipParams) -> None:
+    """
+    Refuse a passing ship whose hull would overlap the moored one's as it passes.
+
+    Its loads hold for hulls apart only: one whose track overlaps (separation 10 m with
+    beams of 32 m) passed silently, its load zero.
+
+    :raises ParameterError: |separation| below half the sum of the beams.
+    """
+    clear = 0.5 * (ship.beam + passing.beam)
+    if passing.present and abs(passing.separation) < clear:
+        raise ParameterError(
+            f"parameter '{PASSING_SHIP}.separation' = {passing.separation:g} is not allowed: "
+            f'the hulls would overlap; at least {clear:g} m (half the sum of the beams, '
+            f'{ship.beam:g} m and {passing.beam:g} m) off either side')
+
+
 @dataclass(frozen=True)
 class FenderSetup:
     """
