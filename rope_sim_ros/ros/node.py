@@ -969,10 +969,13 @@ HELP = {
         'winch/command', 'rope/particles, fairlead/tension, bollard/tension, ...',
         'config/mooring_line.yaml'),
     MOORING_NODE.node_name: (
-        "a ship's whole mooring arrangement", 'ship/pose (every fairlead moves with it), '
-        '<line>/bollard/pose, <line>/winch/command',
-        "each line's topics under its name, ship/mooring_wrench, mooring/markers, "
-        '/diagnostics', 'config/berth.yaml'),
+        "a ship's whole mooring arrangement", 'ship/pose (ship_mode driven: every fairlead '
+        'moves with it), <line>/bollard/pose,\n       <line>/winch/command, environment/wind, '
+        'environment/current,\n       ship/external_wrench (ship_mode free: tugs, thrusters)',
+        "each line's topics under its name, ship/mooring_wrench, ship/stiffness,\n       "
+        'mooring/markers, /diagnostics; ship/pose and ship/odometry (ship_mode free),\n'
+        '       ship/passing_ship_wrench (a passing ship), <fender>/reaction (fenders)',
+        'config/berth.yaml'),
 }
 
 
@@ -990,7 +993,7 @@ def usage(layout: Layout) -> str:
     what, inputs, outputs, config = HELP[name]
     return (f'usage: ros2 run rope_sim_ros {name} [--ros-args --params-file FILE '
             f'-p NAME:=VALUE ...]\n\n'
-            f'The {name} node: {what}, simulated live from pose messages.\n'
+            f'The {name} node: {what}, simulated live.\n'
             f'  in:  {inputs}\n  out: {outputs}, events, ~/reset\n'
             f'  parameters: a ROS parameter file (the installed {config} lists them '
             'all), or -p; use_sim_time:=true follows /clock\n'

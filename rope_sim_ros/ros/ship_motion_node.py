@@ -126,8 +126,11 @@ USAGE = (
     'around mean_position\nin surge, sway, heave and roll. Parameters (all read-only):\n'
     + ''.join(f'  {name}: {description} [{unit or "-"}], default {default}\n'
               for name, (default, unit, description, _, _) in PARAMETERS.items())
-    + 'For the mooring node: -r fairlead/pose:=ship/pose -p mean_position:=[0.0,-17.6,0.0] '
-    '(config/berth.yaml),\nor ros2 launch rope_sim_ros mooring.launch.py ship_motion:=true\n')
+    + 'For the mooring node of config/berth.yaml, with the motions its lines hold (its own '
+    'defaults part the\nspring lines within 30 s):\n'
+    '  ros2 run rope_sim_ros ship_motion --ros-args -r fairlead/pose:=ship/pose --params-file '
+    'config/berth_motion.yaml\n'
+    'or ros2 launch rope_sim_ros mooring.launch.py ship_motion:=true\n')
 
 
 def main(args=None) -> int:
