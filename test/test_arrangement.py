@@ -30,7 +30,7 @@ from rope_sim_ros.model import frames
 from rope_sim_ros.model.statics.catenary import solve_catenary
 from rope_sim_ros.model.statics.pretension import length_for_tension, PretensionError
 from rope_sim_ros.mooring.driver import Driver, SHIP
-from rope_sim_ros.mooring.mooring import mooring_wrench
+from rope_sim_ros.mooring.records import mooring_wrench
 from rope_sim_ros.params import arrangement
 from rope_sim_ros.params.table import ParameterError
 

@@ -235,8 +235,8 @@ def encoded(ns, frame_id, points, force, lever) -> dict:
     """Return {topic: CDR bytes} the offline run's encoder builds for one line's output."""
     from rope_sim_ros.messages import topics
     from rope_sim_ros.messages.encode import OutputEncoder
-    from rope_sim_ros.mooring.driver import Published
-    from rope_sim_ros.mooring.mooring import MooringOutput
+    from rope_sim_ros.mooring.records import Published
+    from rope_sim_ros.mooring.records import MooringOutput
     zeros = np.zeros((1, 3))
     output = MooringOutput(
         t=0.0, positions=(points,), fairlead_forces=np.array([force]), bollard_forces=zeros,

@@ -185,8 +185,8 @@ def test_a_load_no_tug_or_thruster_gives_is_refused_and_nothing_changes():
     with pytest.raises(ValueError, match=r'an external moment of 2e\+10 N m .* at most '
                        r'1\.95e\+10 N m'):
         mooring.set_external_load([0.0] * 3, [0.0, 0.0, 2e10], body_axes=False)
-    assert mooring.body_load[0] == pytest.approx(0.1 * weight)  # the one taken holds
-    assert not mooring.external_load.any()
+    assert mooring.ship.body_load[0] == pytest.approx(0.1 * weight)  # the one taken holds
+    assert not mooring.ship.external_load.any()
 
 
 @pytest.mark.parametrize('change, why', [

@@ -27,7 +27,8 @@ import numpy as np
 from one_line import OneLine
 import pytest
 from rope_sim_ros.model.frames import rotation_matrix, unit_quaternion
-from rope_sim_ros.mooring.driver import decode_event, Driver, encode_event, MAX_LAG, SHIP
+from rope_sim_ros.mooring.driver import Driver, MAX_LAG, SHIP
+from rope_sim_ros.mooring.events import decode_event, encode_event
 from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.params.table import from_values, ParameterError
 

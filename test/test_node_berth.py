@@ -213,7 +213,7 @@ def test_a_minute_of_berth_motion_keeps_every_line_below_its_wll():
     # ramp, through the mooring node's driver (the node's rules, without DDS). ship_motion's
     # own defaults took both springs to their break load (parted at 11.3 and 27.0 s).
     from rope_sim_ros.mooring.driver import Driver
-    from rope_sim_ros.offline.run import ratings
+    from rope_sim_ros.mooring.status import ratings
     from rope_sim_ros.params.arrangement import read_arrangement_file
     from rope_sim_ros.params.files import read_params_file
     from rope_sim_ros.ros import ship_motion_node

@@ -291,10 +291,11 @@ def test_the_fenders_are_drawn_at_their_contact_points():
 
 def test_ship_stiffness_is_worked_out_only_for_a_subscriber(monkeypatch):
     # unrecorded, unsubscribed: no statics at all (it cost 10 % of a 16-line node's CPU)
+    from rope_sim_ros.mooring import driver as driver_module
     from rope_sim_ros.ros import node as node_module
     worked = []
-    real = node_module.stiffness_now
-    monkeypatch.setattr(node_module, 'stiffness_now',
+    real = driver_module.stiffness_now
+    monkeypatch.setattr(driver_module, 'stiffness_now',
                         lambda *args: worked.append(1) or real(*args))
     context = rclpy.Context()
     rclpy.init(context=context, signal_handler_options=SignalHandlerOptions.NO)
@@ -346,10 +347,10 @@ def test_a_load_no_tug_gives_or_in_an_unknown_frame_is_refused_each_in_one_line(
         node._on_external_wrench(wrench('base_link', 2e12))  # the same refusal: throttled
         node._on_external_wrench(wrench('map', 1e5))
         node._on_external_wrench(wrench('map', 2e5))
-        assert not node.driver.mooring.body_load.any()
-        assert not node.driver.mooring.external_load.any()
+        assert not node.driver.mooring.ship.body_load.any()
+        assert not node.driver.mooring.ship.external_load.any()
         node._on_external_wrench(wrench('world', 1e5))  # frame_id: taken, world axes
-        assert node.driver.mooring.external_load[0] == 1e5
+        assert node.driver.mooring.ship.external_load[0] == 1e5
         at(node, 1.0 / RATE)
     finally:
         node.destroy_node()

@@ -38,9 +38,8 @@ import time
 import pyarrow.parquet as pq
 import pytest
 from rope_sim_ros.mooring import scenario
-from rope_sim_ros.mooring.status import Rating
+from rope_sim_ros.mooring.status import Rating, ratings
 from rope_sim_ros.offline import cli
-from rope_sim_ros.offline.run import ratings
 from rope_sim_ros.offline.study import run_study
 from rope_sim_ros.offline.study_file import prepare, read_study
 from rope_sim_ros.offline.study_results import OK, summarise

@@ -44,8 +44,7 @@ from . import topics
 from .topics import Layout
 from ..bag import cdr
 from ..model.frames import cross_rows, lines_tangent_quaternions, split_ns
-from ..mooring.driver import Published
-from ..mooring.mooring import Mooring
+from ..mooring.records import Published
 from ..params.arrangement import ArrangementParams
 
 
@@ -186,10 +185,10 @@ class OutputEncoder:
         return changes
 
 
-def encoder_for(setup: ArrangementParams, mooring: Mooring) -> OutputEncoder:
+def encoder_for(setup: ArrangementParams) -> OutputEncoder:
     """Return the encoder of every output the node of this setup's kind publishes."""
     layout = topics.LINE_NODE if setup.single else topics.MOORING_NODE
-    return OutputEncoder(layout, mooring.names, [line.payload for line in mooring.lines],
+    return OutputEncoder(layout, setup.names, [line.params.has_payload for line in setup.lines],
                          setup.shared.frame_id, setup.ship_frame_id, setup.ship.free,
                          [fender.name for fender in setup.fenders], setup.passing.present)
 

@@ -43,20 +43,23 @@ that the same samples give the same outputs at the same times:
 
 The clock-driven decisions are the caller's (a silent stream, a skip ahead, a reset, a
 clock jump back, a sample dropped for its stamp): the nodes record them as events
-(encode_event) and ``rope_sim resim`` replays them through the same methods.
+(events.py) and ``rope_sim resim`` replays them through the same methods. The Driver is the
+one door to the Mooring from outside mooring/: what the nodes and the offline commands need
+to know of the lines (their names, ratings, reach, partings) it answers too.
 No ROS, no files here.
 """
 
 from collections import deque
-from dataclasses import dataclass, field
-import json
 import math
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .mooring import Mooring, mooring_wrench, MooringAdvance, MooringOutput
-from ..model.frames import rotation_matrix
+from .line import Parting
+from .mooring import Mooring
+from .records import MooringAdvance, Published, Report
+from .statics import stiffness_now
+from .status import Rating, ratings
 from ..params.arrangement import ArrangementParams
 from ..params.ship import WIND_SETTINGS
 from ..params.table import ParameterError
@@ -67,113 +70,6 @@ SHIP = 'ship'  # the ship's pose stream; a bollard's stream is named by its line
 MAX_LAG = 1.0
 # An output's state time this close to its due time [steps] is pinned to it.
 PIN_TOLERANCE = 1e-6
-# The decisions a node records (one JSON object each, encode_event), and what a model did
-# ('parted', 'ship_restart': replayed, the model does it again).
-EVENT_KINDS = ('silent', 'skip', 'reset', 'clock_back', 'drop', 'restamp', 'set', 'winch',
-               'start', 'load', 'parted', 'ship_restart')
-
-
-def encode_event(kind: str, **fields: Any) -> str:
-    """Return one event as JSON text: {'event': kind, ...fields}."""
-    return json.dumps({'event': kind, **fields}, sort_keys=True)
-
-
-def decode_event(text: str) -> Dict[str, Any]:
-    """
-    Return an event of encode_event's as a dict with at least 'event'.
-
-    :raises ValueError: not a JSON object naming one of EVENT_KINDS.
-    """
-    event = json.loads(text)
-    if not isinstance(event, dict) or event.get('event') not in EVENT_KINDS:
-        raise ValueError(f'not an event: {text!r}')
-    return event
-
-
-class Published:
-    """
-    One output of the mooring; its levers and wrench are worked out when first asked for.
-
-    :ivar stamp_ns: its stamp [ns] (epoch + simulated time).
-    :ivar output: the lines' state (output.t is the simulated time [s]).
-    :ivar ship_position: the ship pose's origin at the output [m] (see the module docstring).
-    :ivar ship_orientation: its unit quaternion (x, y, z, w).
-    :ivar bollard_levers: each bollard minus its pose's origin (L, 3) [m] (zeros: a fixed
-        bollard).
-    :ivar advance: the Mooring advance that reached it; None for a fresh output.
-    """
-
-    __slots__ = ('stamp_ns', 'output', 'ship_position', 'ship_orientation', 'bollard_levers',
-                 'advance', '_offsets', '_rotation', '_wrench')
-
-    def __init__(self, stamp_ns: int, output: MooringOutput, ship_position: np.ndarray,
-                 ship_orientation: np.ndarray, offsets: np.ndarray, bollard_levers: np.ndarray,
-                 advance: Optional[MooringAdvance]):
-        """Keep an output and what its levers and wrench are made from."""
-        self.stamp_ns = stamp_ns
-        self.output = output
-        self.ship_position = ship_position
-        self.ship_orientation = ship_orientation
-        self.bollard_levers = bollard_levers
-        self.advance = advance
-        self._offsets = offsets
-        self._rotation = None
-        self._wrench = None
-
-    @property
-    def rotation(self) -> np.ndarray:
-        """Return the ship's orientation as a rotation matrix R (body to frame_id axes)."""
-        if self._rotation is None:
-            self._rotation = rotation_matrix(self.ship_orientation)
-        return self._rotation
-
-    @property
-    def fairlead_levers(self) -> np.ndarray:
-        """Return each fairlead minus the ship's origin in frame_id axes (L, 3) [m]."""
-        return self._offsets @ self.rotation.T
-
-    def _body_wrench(self) -> Tuple[np.ndarray, np.ndarray]:
-        if self._wrench is None:
-            self._wrench = mooring_wrench(self.output.fairlead_forces, self._offsets,
-                                          self.rotation)
-        return self._wrench
-
-    @property
-    def force(self) -> np.ndarray:
-        """Return the total force of the lines on the ship, body frame (3,) [N]."""
-        return self._body_wrench()[0]
-
-    @property
-    def moment(self) -> np.ndarray:
-        """Return their total moment about the ship's origin, body frame (3,) [N m]."""
-        return self._body_wrench()[1]
-
-    def world_wrench(self) -> tuple:
-        """Return the force and the moment about the ship's origin in frame_id axes."""
-        rotation = self.rotation
-        force, moment = self._body_wrench()
-        return rotation @ force, rotation @ moment
-
-
-@dataclass
-class Report:
-    """
-    What one call that moves the ropes on did.
-
-    :ivar outputs: the outputs reached, in order.
-    :ivar skipped: how far [s] the ropes skipped ahead (0: no skip).
-    :ivar skip_to: the simulated time they skipped to.
-    :ivar clock_back: how far [s] the clock was behind the ropes (0: it was not; else the
-        mooring was cleared and waits for the next ship pose).
-    :ivar faults: simulated times of states not output because a number was not finite
-        (the ropes were restarted at rest).
-    """
-
-    outputs: List[Published] = field(default_factory=list)
-    skipped: float = 0.0
-    skip_to: float = math.nan
-    clock_back: float = 0.0
-    faults: List[float] = field(default_factory=list)
 
 
 class Driver:
@@ -224,6 +120,56 @@ class Driver:
     def arrangement(self) -> ArrangementParams:
         """Return the parameters in force (pretensioned lines with their lengths once started)."""
         return self.mooring.arrangement
+
+    @property
+    def names(self) -> List[str]:
+        """Return the line names, in order ('' for the single line of a line node)."""
+        return self.mooring.names
+
+    @property
+    def free(self) -> bool:
+        """Tell whether the ship is free, its pose an output (ship_mode free)."""
+        return self.mooring.free
+
+    @property
+    def time_step(self) -> float:
+        """Return the smallest of the lines' steps [s]."""
+        return self.mooring.time_step
+
+    @property
+    def ratings(self) -> List[Rating]:
+        """Return each line's MBL and WLL (its material at its diameter)."""
+        return ratings(self.arrangement, self._materials)
+
+    @property
+    def reaches(self) -> List[float]:
+        """Return how far each line's ends can be apart now [m] (inf once parted)."""
+        return [line.reach for line in self.mooring.lines]
+
+    @property
+    def partings(self) -> List[Optional[Parting]]:
+        """Return how each line parted (None: whole)."""
+        return [line.parting for line in self.mooring.lines]
+
+    @property
+    def last_jumps(self) -> np.ndarray:
+        """Return how far each line's newest end sample jumped [m] (L,)."""
+        return self.mooring.last_jumps.copy()
+
+    def fairlead(self, k: int) -> np.ndarray:
+        """Return where line k's fairlead is now, at the state time [m] (3,)."""
+        return self.mooring.free_ends(k, [self.mooring.time])[0][0, 1]
+
+    def stiffness(self, position, orientation) -> np.ndarray:
+        """
+        Return the 6x6 stiffness of the lines and fenders with the ship at this pose.
+
+        About the ship's origin in frame_id axes (mooring/statics.py stiffness_now), the
+        lines as they are now.
+
+        :raises ParameterError: a payload line; StaticsError: a catenary not found there.
+        """
+        return stiffness_now(self.mooring, position, orientation)
 
     @property
     def started(self) -> bool:

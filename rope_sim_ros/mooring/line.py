@@ -290,6 +290,35 @@ class MooringLine:
             alone = self.build(shape)
         return alone
 
+    def parted_if_overloaded(self, t: float, alone: System) -> System:
+        """
+        Return its rest state at a (re)start at t, parted if that state passes its break load.
+
+        A line (re)started where its ends are too far apart for it to hold its break load
+        (a teleport past its reach, a skip or a reset there) has no whole rest state: it
+        parts at once, at its most stretched segment, its two pieces laid unstretched along
+        the line from their ends. Held whole at its reach it would pull EA x max_strain (up
+        to 20 MN on the berth's springs) at the restart and in the step it parted in.
+
+        :param alone: the line alone at rest (at_rest).
+        """
+        if self.parting is not None or self.payload or not self.params.parting:
+            return alone
+        finite, largest = alone.largest_load()
+        if finite and largest <= self.break_load:
+            return alone
+        rope = alone.lines[0]
+        x = rope.x
+        lengths = np.sqrt(((x[1:] - x[:-1]) ** 2).sum(axis=1))
+        segment = int(np.argmax(lengths / rope.rest))
+        chord = x[-1] - x[0]
+        u = chord / max(float(np.linalg.norm(chord)), 1e-12)
+        along = np.concatenate([[0.0], np.cumsum(rope.rest)])
+        shape = x[0] + along[:, None] * u  # the bollard's piece from the bollard, the
+        shape[segment + 1:] = x[-1] - (along[-1] - along[segment + 1:])[:, None] * u  # other
+        self.parting = Parting(t, segment, self.break_load)
+        return self.build(shape)
+
     def _physical(self, system: System) -> bool:
         """Tell whether a System of this line alone is finite and within its load bound."""
         finite, largest = system.largest_load()

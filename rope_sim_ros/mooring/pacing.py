@@ -43,7 +43,8 @@ from dataclasses import dataclass, field
 import math
 from typing import Any, Deque, Dict, List, Optional, Tuple
 
-from .driver import Driver, MAX_LAG, Published, SHIP
+from .driver import Driver, MAX_LAG, SHIP
+from .records import Published
 from ..params.table import ParameterError
 
 

@@ -132,7 +132,8 @@ def exercise(values: dict) -> None:
 
 def exercise_mooring() -> None:
     """Run a two-line arrangement: the kernels that drive a group of lines at once, its wrench."""
-    from .mooring import Mooring, mooring_wrench
+    from .mooring import Mooring
+    from .records import mooring_wrench
     from ..params.arrangement import from_values
 
     line = {'length': 30.0, 'segments': 4, 'bollard_position': [0.0, 0.0, 0.0]}

@@ -13,20 +13,33 @@
 # limitations under the License.
 
 """
-The ship of an arrangement as model objects: its body, its fenders and the loads on it.
+The one ship of a mooring: a body with a mode, its fenders and the loads on it.
 
 One place turns the ship.*, fender, wind and passing_ship.* parameters into a
 model.body.Body, Fenders and ShipLoads, for the Mooring that steps them and for the statics
-(equilibrium, stiffness, the berth check) alike.
+(equilibrium, stiffness, the berth check) alike; and the Ship the Mooring holds. Its body is
+driven or free, as MoorDyn's bodies are coupled or free: a driven ship's body is where its
+host's newest pose puts it, at rest (its fairleads follow the pose's samples); a free ship's
+body is integrated with its lines in their System (its fairleads are points it carries).
+Its fenders, its loads, its published state and its stiffness read the same body either way.
 """
 
+from collections import deque
 import math
-from typing import List, Tuple
+from typing import Deque, List, Optional, Tuple
 
 import numpy as np
 
-from ..model.body import Body, Fender
-from ..model.ship.loads import PassingShip, ShipLoads, Wind
+from .records import ShipState
+from .trajectory import TrajectoryError
+from ..model.body import Body, Fender, out_of_bounds
+from ..model.forces.body import place_points
+from ..model.forces.fender import fender_force
+from ..model.frames import rotation_matrix
+from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
+                            BODY_QUATERNION, BODY_VELOCITY, FENDER_COLUMNS)
+from ..model.objects import System
+from ..model.ship.loads import PassingShip, ShipLoads, Wind, world_load
 from ..model.ship.passing import Hull
 from ..model.ship.wind import GustyWind
 from ..params.arrangement import ArrangementParams
@@ -132,3 +145,243 @@ def reports_ship_loads(setup: ArrangementParams) -> bool:
     ship = setup.ship
     return (not setup.single and (ship.free or ship.wind_speed > 0.0 or setup.passing.present
                                   or any(setup.shared.current)))
+
+
+class Ship:
+    """
+    The mooring's ship (module docstring): driven (its pose an input) or free (integrated).
+
+    :ivar free: whether it is free (ship_mode free).
+    :ivar body: its Body: a free ship's state is its System's; a driven ship's follows its
+        newest pose at or before the state time (follow), at rest.
+    :ivar fenders: the fenders on the quay it rests against.
+    :ivar loads: the wind's, the current's and a passing ship's load on it.
+    :ivar external_load: force [N], moment about its origin [N m] held in frame_id axes;
+        body_load: the same in its body axes (they turn with it); held until set again.
+    :ivar load_schedule: offline, (times (n,), loads (n, 6)) as external_load, linear
+        between the times; None: none.
+    """
+
+    def __init__(self, setup: ArrangementParams):
+        """Build the ship of an arrangement, at rest at its start pose."""
+        self.free = setup.ship.free
+        self.center_of_gravity = np.array(setup.ship.center_of_gravity, dtype=float)
+        self.body = ship_body(setup)
+        self.start_row = self.body.row()
+        self.fenders = fenders(setup)
+        self.fender_rows = np.array([fender.row() for fender in self.fenders]).reshape(
+            len(self.fenders), FENDER_COLUMNS)
+        self.loads = ship_loads(setup)
+        self.limits = external_load_limits(setup)
+        self.external_load = np.zeros(6)
+        self.body_load = np.zeros(6)
+        self.load_schedule: Optional[Tuple[np.ndarray, np.ndarray]] = None
+        # a driven ship's poses (t, position, unit quaternion): the newest at or before an
+        # output gives its orientation (the fairleads' levers, the wrench's rotation)
+        self._poses: Deque[tuple] = deque()
+        self._origin = start_pose(setup)  # a driven ship's origin pose followed (follow)
+        self._placed = True  # its body is there
+
+    # -- its pose -------------------------------------------------------------------------
+
+    def check_pose(self, t: float) -> None:
+        """
+        Refuse a pose at t of a free ship, or not after the newest pose.
+
+        :raises TrajectoryError: the ship is free, or t is not after the newest pose.
+        """
+        if self.free:
+            raise TrajectoryError('the ship is free (ship_mode free): its pose is an output '
+                                  'of the mooring, not an input')
+        if self._poses and t <= self._poses[-1][0]:
+            raise TrajectoryError(f'ship pose at t={t:.6f} s is not after the newest one '
+                                  f'({self._poses[-1][0]:.6f} s)')
+
+    def take_pose(self, t: float, position, quaternion: np.ndarray) -> None:
+        """Keep a driven ship's pose at t (check_pose'd; [m], unit quaternion x, y, z, w)."""
+        self._poses.append((t, np.array(position, dtype=float), quaternion))
+
+    @property
+    def has_pose(self) -> bool:
+        """Tell whether the ship has a pose to start its lines at: free, or one taken."""
+        return self.free or bool(self._poses)
+
+    def pose(self, t: float) -> Tuple[np.ndarray, np.ndarray]:
+        """
+        Return (position, unit quaternion) of its origin at t.
+
+        A driven ship's newest pose at or before t; a free ship's now (t is the state time
+        at an output).
+        """
+        if self.free:
+            return self.body.origin_pose()
+        chosen = self._poses[0]
+        for sample in self._poses:
+            if sample[0] > t:
+                break
+            chosen = sample
+        return chosen[1], chosen[2]
+
+    def forget(self, now: float) -> None:
+        """Drop a driven ship's poses no output can use: outputs come at or after now."""
+        while len(self._poses) > 1 and self._poses[1][0] <= now:
+            self._poses.popleft()
+
+    def clear(self) -> None:
+        """Forget a driven ship's poses (its lines start over at the next one)."""
+        self._poses.clear()
+
+    def follow(self, t: float) -> None:
+        """Put a driven ship where its newest pose at or before t puts it, at rest."""
+        if not self.free:
+            self._origin = self.pose(t)
+            self._placed = False
+
+    def placed_body(self) -> Body:
+        """Return its body where the ship is: a driven ship's placed at the pose it follows."""
+        if not (self.free or self._placed):
+            position, quaternion = self._origin
+            self.body.quaternion = np.array(quaternion, dtype=float)
+            self.body.position = position - rotation_matrix(quaternion) @ np.asarray(
+                self.start_row[BODY_ORIGIN:BODY_ORIGIN + 3])
+            self.body.velocity = np.zeros(3)
+            self.body.omega = np.zeros(3)
+            self._placed = True
+        return self.body
+
+    def carried(self, offset_from_gravity: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+        """Return a point the body carries (body axes, from its CG): position, velocity."""
+        body = self.body
+        lever = rotation_matrix(body.quaternion) @ offset_from_gravity
+        return body.position + lever, body.velocity + np.cross(body.omega, lever)
+
+    def state(self) -> ShipState:
+        """Return its motion now (its body origin's): a driven ship's pose followed, at rest."""
+        if not self.free:
+            return ShipState(self._origin[0], self._origin[1], np.zeros(3), np.zeros(3))
+        body = self.body
+        position, orientation = body.origin_pose()
+        velocity = body.velocity + np.cross(body.omega, position - body.position)
+        return ShipState(position, orientation, velocity, body.omega.copy())
+
+    # -- a free ship in its System --------------------------------------------------------
+
+    def reset(self, system: System) -> None:
+        """Put a free ship back at its start pose, at rest (no acceleration kept)."""
+        system.body_table[0, :BODY_CLOCK] = self.start_row[:BODY_CLOCK]
+        place_points(system.body_table, system.points_table, system.point_x, system.point_v)
+
+    def out_of_bounds(self, system: System) -> str:
+        """Say how a free ship left the bounds of a moored ship ('' if it has not)."""
+        return out_of_bounds(system.body_table[0], self.start_row)
+
+    # -- the loads on it ------------------------------------------------------------------
+
+    def set_external_load(self, force, moment, body_axes: bool) -> None:
+        """
+        Hold an external load on the free ship from now on (it replaces the one before).
+
+        :param force, moment: [N], [N m] about the ship's origin; in its body axes (they
+            turn with it) or in frame_id axes.
+        :raises ValueError: a number that is not finite, or a load past what any tug or
+            thruster gives (external_load_limits).
+        """
+        load = np.concatenate([np.asarray(force, dtype=float).reshape(3),
+                               np.asarray(moment, dtype=float).reshape(3)])
+        check_external_load(load, self.limits)
+        self.external_load = np.zeros(6) if body_axes else load
+        self.body_load = load if body_axes else np.zeros(6)
+
+    def set_load_schedule(self, times: np.ndarray, loads: np.ndarray) -> None:
+        """
+        Take a schedule of external loads on the free ship (offline: LOADS.csv).
+
+        :param times: [s] (n,), increasing; loads: force [N] and moment about the ship's
+            origin [N m] in world axes at each (n, 6), linear between them.
+        :raises ValueError: a load past what any tug or thruster gives, naming its row.
+        """
+        for row, load in enumerate(np.asarray(loads, dtype=float).reshape(-1, 6)):
+            try:
+                check_external_load(load, self.limits)
+            except ValueError as e:
+                raise ValueError(f'row {row + 1} (t = {times[row]:g} s): {e}') from None
+        self.load_schedule = (np.asarray(times, dtype=float), np.asarray(loads, dtype=float))
+
+    def load_at(self, t: float) -> np.ndarray:
+        """
+        Return the load on the free ship at t besides its lines and fenders (6,).
+
+        The external wrench (external_load, body_load turned with the ship) plus the
+        schedule's (load_schedule) at t: force [N] and moment about the ship's origin [N m],
+        world axes.
+        """
+        load = self.external_load.copy()
+        if self.body_load.any():
+            rotation = rotation_matrix(self.body.quaternion)
+            load[:3] += rotation @ self.body_load[:3]
+            load[3:] += rotation @ self.body_load[3:]
+        if self.load_schedule is not None:
+            times, loads = self.load_schedule
+            load += [np.interp(t, times, loads[:, c]) for c in range(6)]
+        return load
+
+    def set_body_loads(self, system: System, start: float, end: float) -> None:
+        """
+        Give the free body its loads from start to end [s]: their value at start, their rate.
+
+        Taken about the centre of gravity where the ship is at start, with its velocity there
+        (the wind and current on it): over one output interval it turns and speeds up far
+        too little for that to matter.
+        """
+        origin, orientation = self.body.origin_pose()
+        lever = self.body.position - origin  # from the origin to the CG
+        rotation = rotation_matrix(orientation)
+        velocity = self.body.velocity - np.cross(self.body.omega, lever)
+        row = system.body_table[0]
+        values = []
+        for t in (start, end):
+            load = self.load_at(t)
+            load += world_load(self.loads.at(t, origin, rotation, velocity), rotation)
+            load[3:] -= np.cross(lever, load[:3])  # the moment about the CG
+            values.append(load)
+        row[BODY_LOAD:BODY_LOAD + 6] = values[0]
+        row[BODY_LOAD_RATE:BODY_LOAD_RATE + 6] = (
+            (values[1] - values[0]) / (end - start) if end > start else 0.0)
+        row[BODY_CLOCK] = 0.0
+
+    def set_wind(self, ship: ShipParams) -> None:
+        """Blow the wind of these ship parameters from now on."""
+        self.loads.wind = ship_wind(ship)
+
+    def loads_at(self, t: float, state: ShipState, setup: ArrangementParams) -> np.ndarray:
+        """
+        Return the wind's, current's and passing ship's loads on it at t (3, 3), body axes.
+
+        Worked out where they are outputs (a free ship, which they move, or a run that
+        reports them: reports_ship_loads), else zeros: a single line's current acts on the
+        line alone.
+
+        :param setup: the arrangement in force (its wind and current now).
+        """
+        if not (self.free or (self.loads.acts and reports_ship_loads(setup))):
+            return np.zeros((3, 3))
+        return self.loads.at(t, state.position, rotation_matrix(state.orientation),
+                             state.velocity)
+
+    # -- its fenders ----------------------------------------------------------------------
+
+    def fender_states(self) -> tuple:
+        """Return each fender's compression (F,), force on the ship (F, 3), point (F, 3)."""
+        count = len(self.fenders)
+        compressions, forces = np.zeros(count), np.zeros((count, 3))
+        points = self.fender_rows[:, :3].copy() if count else np.zeros((0, 3))
+        if not count:
+            return compressions, forces, points
+        row = self.placed_body().row()
+        rotation = rotation_matrix(row[BODY_QUATERNION:BODY_QUATERNION + 4])
+        velocity = row[BODY_VELOCITY:BODY_VELOCITY + 3]
+        omega = row[BODY_OMEGA:BODY_OMEGA + 3]
+        for f in range(count):
+            compressions[f] = fender_force(self.fender_rows[f], row, rotation, velocity,
+                                           omega, forces[f], points[f])[0]
+        return compressions, forces, points

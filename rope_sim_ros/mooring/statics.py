@@ -63,8 +63,8 @@ def mooring_statics(mooring: Mooring, load: Optional[Sequence[float]] = None,
             bollard = mooring.free_ends(k, [mooring.time])[0][0, 0]
         lines.append(StaticLine(line.line_props, bollard,
                                 np.array(line.params.fairlead_offset, dtype=float), line.name))
-    return ShipStatics(lines, mooring.body, [fender.row() for fender in mooring.fenders], load,
-                       load_function)
+    fenders = [fender.row() for fender in mooring.ship.fenders]
+    return ShipStatics(lines, mooring.body, fenders, load, load_function)
 
 
 def stiffness_now(mooring: Mooring, position, orientation) -> np.ndarray:

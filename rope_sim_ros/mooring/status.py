@@ -30,6 +30,10 @@ No ROS here: the mooring node and the offline plots take the same bands.
 
 from dataclasses import dataclass
 import math
+from typing import Any, List
+
+from ..params.arrangement import ArrangementParams
+from ..params.materials import load_materials
 
 OK = 'ok'
 ABOVE_WLL = 'above_wll'
@@ -81,3 +85,14 @@ class Rating:
         if tension >= self.wll:
             return ABOVE_WLL
         return OK
+
+
+def ratings(setup: ArrangementParams, materials: Any = None) -> List[Rating]:
+    """
+    Return each line's MBL and WLL, from its material at its diameter.
+
+    :param materials: the material presets (default: config/materials.yaml).
+    """
+    library = materials or load_materials()
+    return [Rating.of(library.properties(line.params.material, line.params.diameter))
+            for line in setup.lines]

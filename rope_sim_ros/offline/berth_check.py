@@ -39,11 +39,11 @@ from typing import Any, Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .run import ratings
 from ..model.ship.loads import Wind, world_load
 from ..model.statics.ship import StaticsError
 from ..mooring.ship import ship_loads
 from ..mooring.statics import ship_statics
+from ..mooring.status import ratings
 from ..params.arrangement import ArrangementParams
 from ..params.table import ParameterError
 

@@ -45,13 +45,12 @@ from typing import Dict, List, Optional, Tuple
 import numpy as np
 
 from .resim import stored_setup
-from .run import ratings
 from ..bag import bag_info, BagError, BagInfo, read_messages
 from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_wrench,
                        decode_wrench_stamped)
 from ..messages.topics import (BOLLARD_TENSION, FAIRLEAD_TENSION, MOORING_WRENCH, PARTICLES,
                                PASSING_WRENCH, SHIP_POSE)
-from ..mooring.status import COLOURS, NEAR_BREAK_FRACTION, Rating
+from ..mooring.status import COLOURS, NEAR_BREAK_FRACTION, Rating, ratings
 from ..params.arrangement import ArrangementParams, single_line
 from ..params.ship import PassingShipParams
 from ..params.table import LineParams

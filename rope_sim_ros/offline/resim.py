@@ -49,7 +49,8 @@ from ..messages import topics
 from ..messages.encode import encoder_for
 from ..messages.topics import Layout, LINE_NODE, MOORING_NODE, stream_of_event
 from ..model.frames import pose_point, PoseError, stamp_ns
-from ..mooring.driver import decode_event, Driver, SHIP
+from ..mooring.driver import Driver, SHIP
+from ..mooring.events import decode_event
 from ..mooring.trajectory import TrajectoryError
 from ..params.arrangement import ArrangementParams, from_stored, stored
 from ..params.table import ParameterError
@@ -242,9 +243,8 @@ def resim(path, out_path, setup: ArrangementParams, rate: Optional[float] = None
     streams, inputs, types = read_streams(path, setup, namespace, skipped)
     if rate is None:
         rate = recorded_rate(path, setup, namespace) or DEFAULT_RATE
-    driver = driver_for(setup, rate)  # a refused line leaves no bag behind
-    sink = BagSink(out_path, encoder_for(setup, driver.mooring), namespace, inputs, types,
-                   stored(setup))
+    driver_for(setup, rate)  # a refused line leaves no bag behind
+    sink = BagSink(out_path, encoder_for(setup), namespace, inputs, types, stored(setup))
     try:
         summary = simulate(setup, streams, rate, [sink], progress)
     except BaseException:
@@ -280,12 +280,12 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
     particles = layout.line_topic(setup.names[0], topics.PARTICLES)
     total = recorded[f'{namespace}/{particles}'].message_count \
         if f'{namespace}/{particles}' in recorded else 0
-    sink = BagSink(out_path, encoder_for(setup, driver.mooring), namespace, [],
+    sink = BagSink(out_path, encoder_for(setup), namespace, [],
                    {topic: topics.POSE_STAMPED for topic in streams}, stored(setup),
                    {layout.events: topics.STRING})
-    summary = RunSummary(time_step=driver.mooring.time_step,
-                         reach={line.name: line.reach for line in driver.mooring.lines})
-    tally = Tally(summary, driver.mooring.names)
+    summary = RunSummary(time_step=driver.time_step,
+                         reach=dict(zip(driver.names, driver.reaches)))
+    tally = Tally(summary, driver.names)
     skipped: List[str] = []
     dropped: Dict[str, deque] = {stream: deque() for stream in driver.streams}
     restamped: Dict[str, deque] = {stream: deque() for stream in driver.streams}

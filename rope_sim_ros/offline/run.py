@@ -37,11 +37,11 @@ from .sinks import BagSink, CsvSink
 from ..messages import topics
 from ..messages.encode import encoder_for, pose_stamped
 from ..messages.topics import LAYOUTS
-from ..mooring.driver import Driver, Published, SHIP
+from ..mooring.driver import Driver, SHIP
+from ..mooring.records import Published
 from ..mooring.ship import reports_ship_loads
-from ..mooring.status import Rating
+from ..mooring.status import ratings
 from ..params.arrangement import ArrangementParams, stored
-from ..params.materials import load_materials
 from ..params.table import ParameterError
 
 DEFAULT_RATE = 100.0
@@ -210,7 +210,7 @@ def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_R
     """
     wall = time.monotonic()
     driver = driver_for(setup, rate, materials)
-    names = driver.mooring.names
+    names = driver.names
     first_ns = min([int(streams.t_ns[0])] + [int(s[0][0]) for s in streams.bollards.values()])
     for name, speeds in streams.winch.items():
         driver.winch_schedules[names.index(name)] = (
@@ -221,8 +221,8 @@ def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_R
     counts = {SHIP: len(streams), **{name: len(s[0]) for name, s in streams.bollards.items()}}
     last_ns = int(streams.t_ns[-1])
     total = int(math.floor((last_ns - int(streams.t_ns[0])) / 1e9 * rate + 1e-9)) + 1
-    summary = RunSummary(time_step=driver.mooring.time_step,
-                         reach={line.name: line.reach for line in driver.mooring.lines})
+    summary = RunSummary(time_step=driver.time_step,
+                         reach=dict(zip(driver.names, driver.reaches)))
     tally = Tally(summary, names, streams.origin)
 
     def take(report) -> None:
@@ -269,9 +269,9 @@ def simulate_free(setup: ArrangementParams, duration: float, loads: Optional[Loa
         raise ParameterError(f'--duration {duration!r} is not allowed: must be a number of '
                              'seconds > 0')
     driver = free_driver(setup, loads, rate, materials)
-    summary = RunSummary(time_step=driver.mooring.time_step,
-                         reach={line.name: line.reach for line in driver.mooring.lines})
-    tally = Tally(summary, driver.mooring.names)
+    summary = RunSummary(time_step=driver.time_step,
+                         reach=dict(zip(driver.names, driver.reaches)))
+    tally = Tally(summary, driver.names)
     total = int(math.floor(duration * rate + 1e-9)) + 1
     driver.start_free(0)
     chunk = max(1.0, 10.0 / rate)  # outputs in chunks, so that progress shows
@@ -315,13 +315,6 @@ def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSche
     return summary
 
 
-def ratings(setup: ArrangementParams) -> List[Rating]:
-    """Return each line's MBL and WLL, from its material at its diameter."""
-    library = load_materials()
-    return [Rating.of(library.properties(line.params.material, line.params.diameter))
-            for line in setup.lines]
-
-
 def input_messages(setup: ArrangementParams, streams: Streams) -> Tuple[list, dict]:
     """
     Return the poses of the streams as the node would receive them: (stamp, topic, CDR) rows.
@@ -363,14 +356,14 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                 f'{streams.path}: data row 1, column {"t"!r}: {streams.origin!r} is negative; '
                 'a bag stamps messages with the simulated time, which must be >= 0')
         inputs, types = input_messages(setup, streams)
-        bag = BagSink(bag_path, encoder_for(setup, driver.mooring), '', inputs, types,
+        bag = BagSink(bag_path, encoder_for(setup), '', inputs, types,
                       stored(setup))
         sinks.append(bag)
     try:
         if out_path is not None:
-            lines = driver.mooring.lines
-            writer = CsvSink(out_path, driver.mooring.names, ratings(setup),
-                             payload=setup.single and lines[0].payload, origin=streams.origin,
+            writer = CsvSink(out_path, driver.names, driver.ratings,
+                             payload=setup.single and setup.lines[0].params.has_payload,
+                             origin=streams.origin,
                              fenders=[(fender.name, fender.normal)
                                       for fender in setup.fenders],
                              loads=reports_ship_loads(setup))

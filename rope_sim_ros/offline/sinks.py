@@ -43,7 +43,7 @@ import numpy as np
 
 from ..bag import BagError, BagWriter, cdr
 from ..messages.encode import OutputEncoder
-from ..mooring.driver import Published
+from ..mooring.records import Published
 from ..mooring.status import Rating
 
 LINE_COLUMNS = (

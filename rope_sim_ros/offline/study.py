@@ -39,11 +39,11 @@ import threading
 import time
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from .run import ratings
 from .study_file import prepare, PreparedCase, read_study, Study, StudyError
 from .study_plots import load_matplotlib, plot_study
 from .study_results import (case_name, CASES_DIR, OK, read_record, result_rows, write_atomic,
                             write_record, write_results)
+from ..mooring.status import ratings
 
 Say = Callable[[str], None]
 

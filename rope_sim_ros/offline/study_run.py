@@ -55,12 +55,13 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
 from distributed.diagnostics.plugin import WorkerPlugin
 
 from .motion import MotionError, read_loads, Streams
-from .run import ratings, run_free, run_motion
+from .run import run_free, run_motion
 from .study_file import PreparedCase, Study, StudyError
 from .study_results import OK, summarise
 from ..bag import BagError
 from ..model.materials import MaterialError
 from ..model.statics.pretension import PretensionError
+from ..mooring.status import ratings
 from ..mooring.trajectory import TrajectoryError
 from ..params.arrangement import ArrangementParams
 from ..params.ship import SHIP_SPECS

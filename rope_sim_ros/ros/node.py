@@ -86,10 +86,10 @@ from ..messages import topics
 from ..messages.encode import encoder_for, stiffness_message
 from ..messages.topics import Layout, LINE_NODE, MOORING_NODE
 from ..model.statics.ship import StaticsError
-from ..mooring.driver import Driver, encode_event, Published, SHIP
+from ..mooring.driver import Driver, SHIP
+from ..mooring.events import encode_event
 from ..mooring.pacing import Pace, Pacer
-from ..mooring.statics import stiffness_now
-from ..mooring.status import Rating
+from ..mooring.records import Published
 from ..mooring.trajectory import TrajectoryError
 from ..params import arrangement
 from ..params.arrangement import stored
@@ -168,10 +168,10 @@ class MooringNode(Node):
             warm_up(setup, self.get_logger().info)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise StartupError(str(e)) from None
-        mooring = self.driver.mooring
-        self.names = list(mooring.names)
-        self.ratings = [Rating.of(line.material) for line in mooring.lines]
-        self.encoder = encoder_for(setup, mooring)
+        driver = self.driver
+        self.names = list(driver.names)
+        self.ratings = driver.ratings
+        self.encoder = encoder_for(setup)
         self.pacer = Pacer(self.driver)  # the clock rules: silence, stamps, what goes out when
         self._unlogged: List[tuple] = []  # recorded before the node knew any time (record)
         self._last_log_ns = 0
@@ -196,7 +196,7 @@ class MooringNode(Node):
             self._diagnostics_pub = self._publisher(DiagnosticArray, topics.DIAGNOSTICS, 10)
         self._pose_subs = {}
         for stream in self.driver.streams:
-            if stream == SHIP and mooring.free:
+            if stream == SHIP and driver.free:
                 continue  # a free ship's pose is an output
             topic = layout.stream_topic(stream)
             self._pose_subs[stream] = self._pose_subscription(
@@ -224,7 +224,7 @@ class MooringNode(Node):
         self._environment_subs = {}
         self._stiffness_timer = None
         if layout.ship_outputs:
-            if mooring.free:
+            if driver.free:
                 self._external_sub = self.create_subscription(
                     WrenchStamped, topics.EXTERNAL_WRENCH, self._on_external_wrench, 10)
             self._environment_subs = {topic: self.create_subscription(
@@ -233,7 +233,7 @@ class MooringNode(Node):
             self._stiffness_pub = self._publisher(Float64MultiArray, topics.STIFFNESS, 10)
             self._set_stiffness_rate(setup.ship.stiffness_rate)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
-        if mooring.free and self.get_parameter('use_sim_time').value:
+        if driver.free and self.get_parameter('use_sim_time').value:
             # a free ship starts at the first tick of a running clock: say what it waits for
             # (on the steady clock: without /clock no timer of the node clock runs)
             self._clock_timer = self.create_timer(
@@ -250,23 +250,22 @@ class MooringNode(Node):
 
     def _waiting_for(self) -> str:
         """Say what starts the lines: the first ship pose, or a free ship's first tick."""
-        if self.driver.mooring.free:
+        if self.driver.free:
             return 'the free ship starts at its start pose at the first tick of the clock'
         return f'waiting for the first pose on {self._pose_subs[SHIP].topic_name}'
 
     def _started_text(self) -> str:
         """Say what was built and what the node waits for."""
-        mooring = self.driver.mooring
+        driver = self.driver
         waiting = self._waiting_for()
         if self.parameters.single:
-            line = mooring.lines[0]
-            p, props = line.params, line.props
-            return (f'{p.material} line, {p.diameter * 1e3:g} mm, {props.length:g} m, '
-                    f'{props.segments} segments, MBL {line.material.mbl / 1e3:.0f} kN, '
-                    f'{p.integrator} step {line.time_step * 1e3:.4g} ms; {waiting}')
-        shared = self.driver.arrangement.shared
+            p = driver.arrangement.lines[0].params
+            return (f'{p.material} line, {p.diameter * 1e3:g} mm, {p.length:g} m, '
+                    f'{p.segments} segments, MBL {self.ratings[0].mbl / 1e3:.0f} kN, '
+                    f'{p.integrator} step {driver.time_step * 1e3:.4g} ms; {waiting}')
+        shared = driver.arrangement.shared
         return (f'{len(self.names)} lines ({", ".join(self.names)}), {shared.integrator} '
-                f'step {mooring.time_step * 1e3:.4g} ms, {self.driver.rate:g} Hz; {waiting}')
+                f'step {driver.time_step * 1e3:.4g} ms, {driver.rate:g} Hz; {waiting}')
 
     def _publisher(self, cls, topic: str, qos):
         """
@@ -415,19 +414,18 @@ class MooringNode(Node):
             return
         self._check_norm(topic, norm)
         self.pacer.arrived(SHIP, now_ns)
-        mooring = self.driver.mooring
+        driver = self.driver
         if 'start' in event:
             self._started(event['start'], 'first ship pose')
         elif event.get('teleport'):
             # Not throttled: each jump is a restart, a step in the published tension. The
             # ropes restarted at the state time, the last output's: the next output shows it.
             if self.parameters.single:
-                line = mooring.lines[0]
-                point = mooring.free_ends(0, [mooring.time])[0][0, 1]
+                distance = driver.arrangement.lines[0].params.teleport_distance
                 self.get_logger().warning(
-                    f'fairlead jumped {mooring.last_jumps[0]:.2f} m, more than '
-                    f'teleport_distance ({line.params.teleport_distance:g} m), to '
-                    f'{_fmt(point)}: rope restarted on the catenary there')
+                    f'fairlead jumped {driver.last_jumps[0]:.2f} m, more than '
+                    f'teleport_distance ({distance:g} m), to {_fmt(driver.fairlead(0))}: '
+                    'rope restarted on the catenary there')
             else:
                 self.get_logger().warning(
                     'the ship jumped more than teleport_distance: restarted at rest '
@@ -441,11 +439,9 @@ class MooringNode(Node):
         for k, length in lengths.items():  # the lengths in use (a dump holds them)
             self._show_parameter(f'{self.names[k]}.length', float(length))
         self._parted_at_restart(range(len(self.names)))
-        mooring = self.driver.mooring
         if self.parameters.single:
-            point = mooring.free_ends(0, [mooring.time])[0][0, 1]
-            self.get_logger().info(
-                f'first fairlead pose: rope started on the catenary to {_fmt(point)}')
+            self.get_logger().info('first fairlead pose: rope started on the catenary to '
+                                   f'{_fmt(self.driver.fairlead(0))}')
         else:
             chosen = ', '.join(f'{self.names[k]} {length:.3f} m'
                                for k, length in lengths.items())
@@ -522,8 +518,8 @@ class MooringNode(Node):
         if published is None or not self._taken.taken(topics.STIFFNESS, self.recorder):
             return
         try:
-            matrix = stiffness_now(self.driver.mooring, published.ship_position,
-                                   published.ship_orientation)
+            matrix = self.driver.stiffness(published.ship_position,
+                                           published.ship_orientation)
         except (ParameterError, StaticsError) as e:
             self._warn(topics.STIFFNESS, f'{topics.STIFFNESS}: not published: {e}')
             return
@@ -536,7 +532,8 @@ class MooringNode(Node):
     def _on_bollard(self, topic: str, name: str, stamp_ns: int, msg: PoseStamped,
                     now_ns: int) -> None:
         k = self.names.index(name)
-        offset = self.driver.mooring.lines[k].params.bollard_offset
+        params = self.driver.arrangement.lines[k].params
+        offset = params.bollard_offset
         try:
             point = conversions.pose_point(msg.pose, offset)
             event = self.driver.push_bollard(name, stamp_ns, point.point, point.lever)
@@ -546,20 +543,18 @@ class MooringNode(Node):
         if event == 'ignored':
             if not self._told_payload:  # once: every bollard pose is ignored alike
                 self._told_payload = True
-                line = self.driver.mooring.lines[k]
                 self.get_logger().warning(
                     f'{topic}: ignored: the bollard end{" of " + name if name else ""} is a '
-                    f'free payload (payload_mass {line.params.payload_mass:g} kg > 0), see '
+                    f'free payload (payload_mass {params.payload_mass:g} kg > 0), see '
                     f'{self.layout.line_topic(name, topics.PAYLOAD_POSE)}')
             return
         self._check_norm(topic, point.quaternion_norm)
         self.pacer.arrived(name, now_ns)
         if event == 'teleport':
-            line = self.driver.mooring.lines[k]
             self.get_logger().warning(
                 f'{name + ": " if name else ""}bollard jumped '
-                f'{self.driver.mooring.last_jumps[k]:.2f} m, more than teleport_distance '
-                f'({line.params.teleport_distance:g} m), to {_fmt(point.point)}: '
+                f'{self.driver.last_jumps[k]:.2f} m, more than teleport_distance '
+                f'({params.teleport_distance:g} m), to {_fmt(point.point)}: '
                 f'{"line" if name else "rope"} restarted on the catenary there')
             self._parted_at_restart([k])
         if self.driver.started:
@@ -597,7 +592,7 @@ class MooringNode(Node):
             return
         self._event('winch', line=name, t=self.driver.time if self.driver.started else 0.0,
                     speed=msg.data)
-        mode = self.driver.mooring.lines[self.names.index(name)].params.winch_mode
+        mode = self.driver.arrangement.lines[self.names.index(name)].params.winch_mode
         if mode != 'speed':
             setting = f'{name}.winch_mode' if name else 'winch_mode'
             self._warn(f'{topic}: mode', f'{topic} {msg.data:g} m/s kept: it acts while '
@@ -657,7 +652,7 @@ class MooringNode(Node):
 
     def _ship_pose_source(self) -> str:
         """Name where the ship's pose comes from: its topic, or a free ship's start pose."""
-        if self.driver.mooring.free:
+        if self.driver.free:
             return 'ship.start_position'
         return self._pose_subs[SHIP].topic_name
 
@@ -676,10 +671,10 @@ class MooringNode(Node):
 
     def _parted_at_restart(self, lines) -> None:
         """Log (and record) each (re)started line that parted at once (past its break load)."""
-        mooring = self.driver.mooring
+        partings = self.driver.partings
         for k in lines:
-            parting = mooring.lines[k].parting
-            if parting is None or parting.t != mooring.time:
+            parting = partings[k]
+            if parting is None or parting.t != self.driver.time:
                 continue
             name = self.names[k]
             self._event('parted', line=name, t=parting.t, segment=parting.segment,
@@ -709,23 +704,23 @@ class MooringNode(Node):
                 self._starting = False
                 self._warn_past_wll(published)
             return
-        mooring = self.driver.mooring
+        driver = self.driver
         for k, parting in advance.parted.items():
             name = self.names[k]
+            segments = driver.arrangement.lines[k].params.segments
             self._event('parted', line=name, t=parting.t, segment=parting.segment,
                         break_load=parting.break_load)
             self.get_logger().error(
                 f'{name or "the line"} parted at t = {parting.t:.3f} s, segment '
-                f'{parting.segment} of {mooring.lines[k].props.segments} (0 at the bollard): '
-                f'its tension passed the break load of {parting.break_load / 1e3:.0f} kN. '
-                'Both pieces go on; ~/reset restores every line')
+                f'{parting.segment} of {segments} (0 at the bollard): its tension passed the '
+                f'break load of {parting.break_load / 1e3:.0f} kN. Both pieces go on; '
+                '~/reset restores every line')
         for k, distance in advance.beyond_reach.items():
-            if mooring.lines[k].parting is not None:
+            if driver.partings[k] is not None:
                 continue  # it parted in these steps: its error says what became of it
             self._warn(f'reach {k}', f'{self.names[k] or "the line"}: its ends are '
-                       f'{distance:.1f} m apart, beyond its reach of '
-                       f'{mooring.lines[k].reach:.1f} m (length x (1 + max_strain)): its '
-                       'fairlead is held at the reach')
+                       f'{distance:.1f} m apart, beyond its reach of {driver.reaches[k]:.1f} m '
+                       '(length x (1 + max_strain)): its fairlead is held at the reach')
         if advance.ship_restarted:
             self._event('ship_restart', why=advance.ship_restarted, t=self.driver.time)
             self.get_logger().error(
