@@ -364,3 +364,26 @@ def test_offline_commands_run_without_ros(tmp_path):
         assert name in modules
     assert loaded_problems(modules, OFFLINE) == [
         'rope_sim_ros.ros', 'rope_sim_ros.ros.executables']  # the launcher, stdlib only
+
+
+# rclpy's private attributes a node could reach for, each with its public way
+PRIVATE_RCLPY = {
+    '_parameter_overrides': 'automatically_declare_parameters_from_overrides and '
+                            'get_parameters_by_prefix',
+    '_parameters': 'set_parameters, declare_parameter',
+    '_descriptors': 'describe_parameter',
+}
+
+
+def test_the_nodes_use_rclpys_public_api_only():
+    # (issue: the node read _parameter_overrides twice and wrote _parameters once)
+    found = []
+    for path in sorted((PACKAGE_DIR / 'ros').glob('*.py')):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Attribute) and node.attr in PRIVATE_RCLPY:
+                found.append(f'{path.name}:{node.lineno}: {node.attr} (public: '
+                             f'{PRIVATE_RCLPY[node.attr]})')
+            if isinstance(node, ast.Call) and getattr(node.func, 'id', '') == 'getattr' and \
+                    len(node.args) > 1 and getattr(node.args[1], 'value', '') in PRIVATE_RCLPY:
+                found.append(f'{path.name}:{node.lineno}: getattr {node.args[1].value}')
+    assert found == []

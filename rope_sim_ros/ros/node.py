@@ -78,7 +78,7 @@ from visualization_msgs.msg import MarkerArray
 from . import conversions
 from .mooring_display import Fenders, line_diagnostics, LineMarkers
 from .outputs import OutputPublishers
-from .parameters import NodeParameters, plain, StartupError
+from .parameters import NodeParameters, plain, ROS_PARAMETERS, StartupError
 from .recorder import Recorder
 from .spinning import set_timer_period, spin_until_shutdown
 from ..bag import BagError
@@ -145,7 +145,10 @@ class MooringNode(Node):
         :param layout: the node kind's topics (LINE_NODE: mooring_line, MOORING_NODE).
         :raises StartupError: a parameter value is not allowed or a line cannot be built.
         """
-        super().__init__(layout.node_name, **kwargs)
+        # the values of --params-file and -p, declared so that they can be read (then
+        # undeclared, to be declared again with their descriptors: _given_parameters)
+        super().__init__(layout.node_name, automatically_declare_parameters_from_overrides=True,
+                         **kwargs)
         self.layout = layout
         self._last_log: Dict[tuple, float] = {}  # (key, kind of text): when last logged
         # per pose topic: messages taken, dropped (bad or far-off stamps) and lost before they
@@ -156,13 +159,13 @@ class MooringNode(Node):
         self.skips = 0  # times the ropes skipped ahead (MAX_LAG)
         self.recorder: Optional[Recorder] = None
         self.driver: Optional[Driver] = None
+        self._quiet = False  # parameters set from a topic: not logged (_on_environment)
         self.parameters = NodeParameters(layout)
         self.add_pre_set_parameters_callback(self.parameters.coerce)
         self.add_on_set_parameters_callback(self._validate_parameters)
         self.add_post_set_parameters_callback(self._apply_parameters)
-        overrides = {name: plain(p.value)
-                     for name, p in getattr(self, '_parameter_overrides', {}).items()}
-        setup = self.parameters.declare(self, overrides, self.get_logger().warning)
+        given = self._given_parameters()
+        setup = self.parameters.declare(self, given, self.get_logger().warning)
         try:
             self.driver = Driver(setup)
             warm_up(setup, self.get_logger().info)
@@ -201,7 +204,7 @@ class MooringNode(Node):
             topic = layout.stream_topic(stream)
             self._pose_subs[stream] = self._pose_subscription(
                 topic, functools.partial(self._on_pose, stream))
-        for name in getattr(self, '_parameter_overrides', {}):
+        for name in given:
             if name.startswith('qos_overrides.') and not self.has_parameter(name):
                 self.get_logger().warning(
                     f'ignoring unknown parameter {name!r}: the pose subscriptions take '
@@ -247,6 +250,20 @@ class MooringNode(Node):
                                                         self._on_diagnostics)
         self._start_recording()
         self.get_logger().info(self._started_text())
+
+    def _given_parameters(self) -> Dict[str, Any]:
+        """
+        Return the values --params-file and -p gave, and undeclare them.
+
+        rclpy declared them from its overrides without descriptors; the node declares its
+        own again with theirs (NodeParameters.declare), the pose subscriptions their
+        qos_overrides, and rclpy keeps its own (use_sim_time).
+        """
+        given = {name: plain(p.value) for name, p in self.get_parameters_by_prefix('').items()
+                 if name not in ROS_PARAMETERS}
+        for name in given:
+            self.undeclare_parameter(name)
+        return given
 
     def _waiting_for(self) -> str:
         """Say what starts the lines: the first ship pose, or a free ship's first tick."""
@@ -309,8 +326,9 @@ class MooringNode(Node):
             if 'publish_rate' in values:
                 # the driver re-anchored the outputs; the ticks follow the rate
                 set_timer_period(self._timer, self.pacer.tick_period())
-            self.get_logger().info(f'set {line + "." if line else ""}' + ', '.join(
-                f'{k} = {v}' for k, v in values.items()))
+            if not self._quiet:
+                self.get_logger().info(f'set {line + "." if line else ""}' + ', '.join(
+                    f'{k} = {v}' for k, v in values.items()))
 
     # -- inputs ---------------------------------------------------------------------------
 
@@ -437,7 +455,7 @@ class MooringNode(Node):
         """Say that the lines started, with the lengths chosen for their pretensions."""
         self._starting = True  # the first output says which lines start past their WLL
         for k, length in lengths.items():  # the lengths in use (a dump holds them)
-            self._show_parameter(f'{self.names[k]}.length', float(length))
+            self.parameters.declare_length(self, self.names[k], float(length))
         self._parted_at_restart(range(len(self.names)))
         if self.parameters.single:
             self.get_logger().info('first fairlead pose: rope started on the catenary to '
@@ -506,10 +524,18 @@ class MooringNode(Node):
             self._warn(topic, f'{name}: ignored: {e}')
             return
         self.record(topic, msg)
-        self.driver.update(None, values)
-        for key, value in values.items():
-            self._show_parameter(key, value)
-        self._event('set', line=None, values=values)
+        # as if set as its parameters (the post-set callback applies them, with a 'set'
+        # event), so that the parameters show the values in use; unlogged: a topic may
+        # stream them
+        self._quiet = True
+        try:
+            result = self.set_parameters([Parameter(key, value=value)
+                                          for key, value in values.items()])
+        finally:
+            self._quiet = False
+        for outcome in result:
+            if not outcome.successful:
+                self._warn(topic, f'{name}: ignored: {outcome.reason}')
 
     def _on_stiffness(self) -> None:
         """Publish ship/stiffness: the lines' and fenders' 6x6 stiffness where the ship is."""
@@ -663,11 +689,6 @@ class MooringNode(Node):
             self._stiffness_timer = None
         if rate > 0.0:
             self._stiffness_timer = self.create_timer(1.0 / rate, self._on_stiffness)
-
-    def _show_parameter(self, name: str, value: Any) -> None:
-        """Make a read-only parameter read `value`: what the node uses (no set event)."""
-        if self.has_parameter(name):
-            self._parameters[name] = Parameter(name, value=value)
 
     def _parted_at_restart(self, lines) -> None:
         """Log (and record) each (re)started line that parted at once (past its break load)."""

@@ -226,11 +226,31 @@ class NodeParameters:
         for line in setup.lines:
             values = {**line.params.as_dict(), 'pretension': line.pretension}
             for name, spec in LINE_SPECS.items():
-                descriptor = describe(f'{line.name}.{name}', spec)
-                descriptor.description = arrangement_text(descriptor.description, line.name)
-                declared.append((f'{line.name}.{name}', values[name], descriptor))
+                if name == 'length' and line.pretension > 0.0:
+                    continue  # chosen at the start (declare_length)
+                declared.append((f'{line.name}.{name}', values[name],
+                                 self._line_descriptor(line.name, name)))
         node.declare_parameters('', declared, ignore_override=True)
         return setup
+
+    @staticmethod
+    def _line_descriptor(line: str, name: str) -> ParameterDescriptor:
+        """Return the descriptor of a line's setting `<line>.<name>`."""
+        descriptor = describe(f'{line}.{name}', LINE_SPECS[name])
+        descriptor.description = arrangement_text(descriptor.description, line)
+        return descriptor
+
+    def declare_length(self, node, line: str, length: float) -> None:
+        """
+        Declare `<line>.length` of a pretensioned line: the length chosen for it at the start.
+
+        Read-only, it shows the length in use, so that a dump of the parameters starts the
+        same line again. Declared once: a line started again keeps the first start's.
+        """
+        name = f'{line}.length'
+        if not node.has_parameter(name):
+            node.declare_parameter(name, length, self._line_descriptor(line, 'length'),
+                                   ignore_override=True)
 
     def _as_declared(self, name: str, value: Any) -> Any:
         """Return integers given for a double (array) parameter as doubles; else the value."""
