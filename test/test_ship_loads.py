@@ -26,6 +26,7 @@ from rope_sim_ros.model.ship.coefficients import parse_coefficient_csv
 from rope_sim_ros.model.ship.loads import PassingShip, ShipLoads, Wind, world_load
 from rope_sim_ros.model.ship.passing import Hull, passing_loads
 from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.mooring.ship import ship_loads
 from rope_sim_ros.offline import berth_check, cli
 from rope_sim_ros.params import arrangement
 from rope_sim_ros.params.table import from_values
@@ -108,7 +109,7 @@ FT, KIP = 0.3048, 4448.2216152605  # m, N
 def test_the_passing_ship_moves_at_its_speed_through_the_water_plus_the_current(
         reference_dir):
     """
-    DYNMOOR's passage in a current: 6 kn over the ground, its loads at 5.5 kn through the water.
+    A passage of DYNMOOR's in a current: 6 kn over the ground, loads at 5.5 kn through water.
 
     The ship passes along -x with the current (0.5 kn, also along -x): its speed through the
     water is 5.5 kn, over the ground 6 kn, which sets where it is at each second of the
@@ -157,6 +158,62 @@ def test_a_current_changed_on_the_way_changes_the_ground_speed_from_then_on():
     # the cross-track component does not move it: it holds its track 60 m off
     assert model.passing.midship(50.0)[1] == pytest.approx(-60.0)
     assert model.passing.speed == 4.0  # its speed through the water, for the loads
+
+
+# ------------------------------------------------------------------ the depth and the tables
+
+@pytest.mark.parametrize('value, canonical', [
+    ('my.csv', 'my.csv'),
+    ('', ''),
+    ([[1.1, 'a.csv'], [1.5, 'b.csv']], ['1.1', 'a.csv', '1.5', 'b.csv']),
+    (['1.1', 'a.csv', '1.5', 'b.csv'], ['1.1', 'a.csv', '1.5', 'b.csv']),  # a ROS file's
+    ([1, 'a.csv', 4.4, 'b.csv'], ['1.0', 'a.csv', '4.4', 'b.csv']),
+])
+def test_current_tables_are_a_path_or_ratio_path_pairs(value, canonical):
+    assert arrangement.check_top_value('ship.current_coefficients', value) == canonical
+
+
+@pytest.mark.parametrize('value', [
+    [[1.5, 'a.csv'], [1.1, 'b.csv']], [[0.9, 'a.csv']], [['deep', 'a.csv']], [1.1],
+    [[1.1, '']], [[True, 'a.csv']], [], 5.0, [[1.1, 'a.csv', 2.0]], [['nan', 'a.csv']]])
+def test_bad_current_tables_are_refused_in_one_line(value):
+    with pytest.raises(arrangement.ParameterError,
+                       match="'ship.current_coefficients'.*ratio, path"):
+        arrangement.check_top_value('ship.current_coefficients', value)
+
+
+def test_the_current_table_is_the_one_for_the_berths_depth(repo_root, tmp_path):
+    """Two tables by depth, one beside the parameter file: 1.65 T is a quarter of the way."""
+    shallow = tmp_path / 'shallow.csv'
+    shallow.write_text('angle_deg,cx,cy,cmz\n0,-0.1,0,0\n90,0,-3.0,0\n180,0.1,0,0\n'
+                       '270,0,3.0,0\n')
+    setup = arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'water_level': 2.0, 'seabed_level': -21.1,  # 23.1 m: 1.65 times the 14 m draft
+        # the deep table named relative to the parameter file's folder (config/)
+        'ship.current_coefficients': [[1.2, str(shallow)],
+                                      [3.0, 'ship/current_coefficients_tanker_loaded.csv']]})
+    assert setup.ship.current_coefficients[3] == str(
+        repo_root / 'config' / 'ship' / 'current_coefficients_tanker_loaded.csv')
+    model = ship_loads(setup)
+    assert model.depth == pytest.approx(23.1)
+    assert model.current_table.at(90.0)[1] == pytest.approx(0.75 * -3.0 + 0.25 * -0.6)
+    # no sea bed: deep water, the deepest table
+    deep = ship_loads(arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'seabed_level': float('-inf'), 'ship.current_coefficients': str(shallow)}))
+    assert deep.depth == math.inf and deep.current_table.at(90.0)[1] == -3.0
+
+
+def test_a_passing_ship_in_water_shallower_than_a_draft_is_refused(repo_root):
+    setup = arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'water_level': 0.0, 'seabed_level': -13.5, 'passing_ship.speed': 3.0,
+        'passing_ship.image_pairs': 10})
+    with pytest.raises(arrangement.ParameterError, match='13.5 m deep.*ship.draft 14 m'):
+        ship_loads(setup)
+    deeper = arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'water_level': 0.0, 'seabed_level': -16.0, 'passing_ship.speed': 3.0,
+        'passing_ship.image_pairs': 10})
+    model = ship_loads(deeper)
+    assert (model.depth, model.image_pairs) == (16.0, 10)
 
 
 def test_world_load_turns_body_loads_with_the_ship():
