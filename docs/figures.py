@@ -15,7 +15,8 @@
 """
 The figures of docs/free_ship.md and docs/ship_loads.md, made again from the package.
 
-    python docs/figures.py [ship_angles] [passing_depth] [free_ship] [berth_check]   (all by default)
+    python docs/figures.py [FIGURE ...]   (ship_angles, passing_depth, free_ship,
+                                           berth_check; all four by default)
 
 From the repository root, in the venv (matplotlib's Agg backend: no display). Each figure is
 the package's own output, through the rope_sim command line where there is one:
