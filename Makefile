@@ -39,7 +39,7 @@ test: venv
 lint: venv
 	$(BIN)/python -m pytest -q test/test_flake8.py test/test_pep257.py test/test_copyright.py
 
-# A study of 20 cases of the berth on a local cluster (docs/study.md): results and plots in
+# A study of 54 cases of the berth on a local cluster (docs/study.md): results and plots in
 # out/study_demo. The kernels are prepared first, once, for every worker to load.
 study-demo: venv
 	$(BIN)/python -m rope_sim_ros.mooring.precompile

@@ -15,13 +15,18 @@
 """
 The figures of docs/free_ship.md and docs/ship_loads.md, made again from the package.
 
-    python docs/figures.py [ship_angles] [free_ship] [berth_check]   (all three by default)
+    python docs/figures.py [FIGURE ...]   (ship_angles, passing_depth, free_ship,
+                                           berth_check; all four by default)
 
 From the repository root, in the venv (matplotlib's Agg backend: no display). Each figure is
 the package's own output, through the rope_sim command line where there is one:
 
 - docs/ship_angles.png: the angle convention of the wind and current coefficient tables (a
-  sketch), and the shipped tables of config/ship/ read with the package's reader.
+  sketch), and the shipped tables of config/ship/ read with the package's reader (the
+  current's in deep water and at config/berth.yaml's depth).
+- docs/passing_ship_depth.png: the passing ship's loads on config/berth.yaml's ship against
+  the stagger, at the berth's depth, two deeper ones and in deep water
+  (model/ship/passing.py).
 - docs/free_ship_step.png: config/berth.yaml's ship, free (--set ship_mode=free), under a
   step load off the quay from LOADS.csv: `rope_sim run --loads --duration`; its dashed lines
   are the quasi-static equilibria of mooring/statics.py under the same loads.
@@ -50,9 +55,13 @@ matplotlib.use('Agg')
 from matplotlib import pyplot  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
 import numpy as np  # noqa: E402
+from rope_sim_ros.model.ship.coefficients import table_at_ratio  # noqa: E402
+from rope_sim_ros.model.ship.passing import Hull, passing_loads  # noqa: E402
+from rope_sim_ros.mooring.ship import water_depth  # noqa: E402
 from rope_sim_ros.mooring.statics import ship_equilibrium  # noqa: E402
 from rope_sim_ros.params.arrangement import read_setup  # noqa: E402
-from rope_sim_ros.params.ship import DEFAULT_TABLES, read_coefficients, ShipParams  # noqa: E402
+from rope_sim_ros.params.ship import (DEFAULT_TABLES, read_coefficients,  # noqa: E402
+                                      read_current_tables, ShipParams)
 
 BERTH = REPO / 'config' / 'berth.yaml'
 # The free ship's step load: force ahead and off the quay and a yawing moment about the ship's
@@ -82,7 +91,7 @@ def read_out(path: Path) -> dict:
 
 def ship_angles(path: Path) -> None:
     """Draw the body axes, the angle theta a flow comes FROM, and the shipped tables."""
-    figure, (sketch, curves) = pyplot.subplots(1, 2, figsize=(12.5, 5.2),
+    figure, (sketch, curves) = pyplot.subplots(1, 2, figsize=(12.5, 5.9),
                                                gridspec_kw={'width_ratios': [1.0, 1.25]})
     # the ship from above, bow to the right (+x), port up (+y): length 10, beam 1.6
     hull = [(-5.0, -0.8), (3.2, -0.8), (5.0, 0.0), (3.2, 0.8), (-5.0, 0.8)]
@@ -126,11 +135,15 @@ def ship_angles(path: Path) -> None:
     sketch.axis('off')
     sketch.set_title('the body frame from above (z up, out of the page)', fontsize=10)
     ship = ShipParams()
-    for name, style in (('wind_coefficients', '-'), ('current_coefficients', '--')):
-        table = read_coefficients(ship, name)
+    setup = read_setup(BERTH)
+    ratio = water_depth(setup.shared) / setup.ship.draft
+    tables = (('wind', '-', read_coefficients(ship, 'wind_coefficients')),
+              ('current, deep', '--', read_coefficients(ship, 'current_coefficients')),
+              (f'current, {ratio:.2f} T deep', ':',
+               table_at_ratio(read_current_tables(ship), ratio)))
+    for what, style, table in tables:
         angles = np.linspace(0.0, 360.0, 361)
         cx, cy, cmz = table.at(angles)
-        what = name.split('_')[0]
         curves.plot(angles, cx, style, color='tab:blue', label=f'{what} C_x')
         curves.plot(angles, cy, style, color='tab:orange', label=f'{what} C_y')
         curves.plot(angles, cmz, style, color='tab:green', label=f'{what} C_mz')
@@ -140,11 +153,59 @@ def ship_angles(path: Path) -> None:
     curves.set_xlabel('θ: where the flow comes from, from the bow toward port [deg]')
     curves.set_ylabel('coefficient [-]')
     names = ', '.join(sorted(DEFAULT_TABLES.values()))
-    curves.set_title(f'the shipped tables (config/ship/): {names}', fontsize=7)
-    curves.legend(fontsize=7, ncol=2, loc='upper left')
+    curves.set_title(f'the shipped tables (config/ship/): {names};\nthe current also at '
+                     f"config/berth.yaml's depth, {ratio:.2f} times the draft", fontsize=7)
+    curves.legend(fontsize=7, ncol=3, loc='upper center', bbox_to_anchor=(0.5, -0.13))
     curves.grid(alpha=0.3)
     figure.tight_layout()
     figure.savefig(path, dpi=110)
+    pyplot.close(figure)
+
+
+# ---------------------------------------------------------------------- the passing ship
+
+
+def passing_depth(path: Path) -> None:
+    """Draw the passing ship's loads on the berth's ship against the stagger, four depths."""
+    setup = read_setup(BERTH)
+    ship, passing = setup.ship, setup.passing
+    moored = Hull(ship.length, ship.beam, ship.draft, ship.block_coefficient)
+    passer = Hull(passing.length, passing.beam, passing.draft, passing.block_coefficient)
+    speed, separation = 3.0, 70.0
+    berth = water_depth(setup.shared)
+    stagger = np.linspace(-600.0, 600.0, 1201)
+    figure, axes = pyplot.subplots(3, 1, figsize=(9.0, 9.0), sharex=True)
+    deep = np.array(passing_loads(moored, passer, speed, separation, stagger))
+    cases = [(berth, '-', 'tab:red', f'{berth:g} m (the berth: {berth / ship.draft:.2f} T)'),
+             (1.5 * ship.draft, '-', 'tab:orange', f'{1.5 * ship.draft:g} m (1.5 T)'),
+             (3.0 * ship.draft, '-', 'tab:green', f'{3.0 * ship.draft:g} m (3 T)'),
+             (math.inf, '--', 'tab:blue', 'deep water')]
+    for depth, style, colour, label in cases:
+        loads = deep if depth == math.inf else np.array(
+            passing_loads(moored, passer, speed, separation, stagger, depth))
+        peaks = np.abs(loads).max(axis=1) / np.abs(deep).max(axis=1)
+        factors = '' if depth == math.inf else (
+            f': peaks {peaks[0]:.1f}, {peaks[1]:.1f}, {peaks[2]:.1f} x deep')
+        for axis, values, scale in zip(axes, loads, (1e3, 1e3, 1e6)):
+            axis.plot(stagger, values / scale, style, color=colour, lw=1.4,
+                      label=label + factors)
+    legacy = np.array(passing_loads(moored, passer, speed, separation, stagger, berth,
+                                    image_pairs=10))
+    axes[1].plot(stagger, legacy[1] / 1e3, ':', color='black', lw=1.0,
+                 label=f'{berth:g} m, images -10..10 only (the legacy programs)')
+    for axis, name in zip(axes, ('surge force F_x [kN]', 'sway force F_y [kN]',
+                                 'yaw moment M_z [MN m]')):
+        axis.axhline(0.0, color='0.5', lw=0.6)
+        axis.set_ylabel(name)
+        axis.grid(alpha=0.3)
+    axes[0].legend(fontsize=7, loc='upper left')
+    axes[1].legend(fontsize=7, loc='lower left')
+    axes[2].set_xlabel('stagger: the passing midship ahead (+) of the moored one [m]')
+    axes[0].set_title(f'config/berth.yaml: a {passing.length:g} m ship passing at {speed:g} m/s, '
+                      f'{separation:g} m off to starboard; body axes (x forward, y to port)',
+                      fontsize=9)
+    figure.tight_layout()
+    figure.savefig(path, dpi=100)
     pyplot.close(figure)
 
 
@@ -235,9 +296,10 @@ def berth_check(path: Path) -> None:
         shutil.copyfile(Path(folder) / 'berth_check.png', path)
 
 
-FIGURES = {'ship_angles': ship_angles, 'free_ship': free_ship, 'berth_check': berth_check}
-FILES = {'ship_angles': 'ship_angles.png', 'free_ship': 'free_ship_step.png',
-         'berth_check': 'berth_check.png'}
+FIGURES = {'ship_angles': ship_angles, 'passing_depth': passing_depth, 'free_ship': free_ship,
+           'berth_check': berth_check}
+FILES = {'ship_angles': 'ship_angles.png', 'passing_depth': 'passing_ship_depth.png',
+         'free_ship': 'free_ship_step.png', 'berth_check': 'berth_check.png'}
 
 
 def main() -> None:

@@ -72,23 +72,29 @@ def test_the_table_reads_both_files_the_later_on_top(config):
     assert setup.names == BERTH_LINES and len(setup.fenders) == 4
     assert setup.ship.free and setup.ship.start_position == [0.0, -17.6, 0.0]
     assert (setup.passing.speed, setup.passing.separation, setup.passing.start_x) == (
-        4.5, 70.0, -450.0)
+        2.5, 100.0, -350.0)
 
 
 def test_the_passing_ship_is_where_its_parameters_put_it(config):
     setup = table.read_setup([str(config / 'berth.yaml'), str(config / 'berth_demo.yaml')])
     passer = table.passing_ship(setup)
     rest = setup.ship.start_position
-    assert table.where_passing(passer, 0.0, rest, 0.0) == pytest.approx((-450.0, 70.0))
-    assert table.where_passing(passer, 100.0, rest, 0.0) == pytest.approx((0.0, 70.0))
+    assert table.where_passing(passer, 0.0, rest, 0.0) == pytest.approx((-350.0, 100.0))
+    assert table.where_passing(passer, 140.0, rest, 0.0) == pytest.approx((0.0, 100.0))
     # drawn 0.5 m off the quay towards it, then turned 0.01 rad bow to port
-    assert table.where_passing(passer, 100.0, [0.0, -18.1, 0.0], 0.0) == pytest.approx(
-        (0.0, 69.5))
-    dx, dy = -450.0, -70.0
+    assert table.where_passing(passer, 140.0, [0.0, -18.1, 0.0], 0.0) == pytest.approx(
+        (0.0, 99.5))
+    dx, dy = -350.0, -100.0
     c, s = math.cos(0.01), math.sin(0.01)
     assert table.where_passing(passer, 0.0, rest, 0.01) == pytest.approx(
         (c * dx + s * dy, s * dx - c * dy))
     assert table.passing_ship(table.read_setup([str(config / 'berth.yaml')])) is None
+    # in a current along its track it moves over the ground faster, as the node moves it
+    drifting = table.read_setup([str(config / 'berth.yaml'), str(config / 'berth_demo.yaml')])
+    drifting = table.arrangement.from_values({**table.arrangement.flatten(drifting.values()),
+                                              'current': [0.5, -0.2, 0.0]})
+    passer = table.passing_ship(drifting)
+    assert table.where_passing(passer, 100.0, rest, 0.0) == pytest.approx((-50.0, 100.0))
 
 
 def test_offsets_are_in_the_start_pose_axes():
@@ -174,10 +180,10 @@ def test_a_row_a_second_of_each_output_whole_whatever_the_order(config):
 
 def test_the_demo_setup_puts_the_passing_ship_abeam_in_the_middle(config, close_scenario):
     setup = demo.demo_setup(config / 'berth.yaml', config / 'berth_demo.yaml')
-    assert demo.default_duration(setup) == pytest.approx(200.0)
+    assert demo.default_duration(setup) == pytest.approx(280.0)
     assert demo.story(setup) == (
-        'A 200 m ship passes 70 m off the starboard side at 4.5 m/s (8.7 kn), abeam at '
-        't = 100 s: it moves the free ship, the lines hold it')
+        'A 200 m ship passes 100 m off the starboard side at 2.5 m/s (4.9 kn) in 16 m of '
+        'water, abeam at t = 140 s: it moves the free ship, the lines hold it')
     close = demo.demo_setup(config / 'berth.yaml', close_scenario)
     assert demo.default_duration(close) == pytest.approx(40.0)
     with pytest.raises(ParameterError, match="ship_mode is 'driven'"):

@@ -13,12 +13,14 @@
 # limitations under the License.
 
 """
-Passing-ship loads (Wang 1975, deep water) against independent computations and physics.
+Passing-ship loads (Wang 1975, deep and finite depth) against independent programs, physics.
 
 test/data/passing_ship/README.md says where the stored numbers come from: no published
-example could be read, so they are saved outputs of an independent implementation of the
-same equations. The other checks need no data: a brute-force double sum, the far-field
-dipole limit, the symmetries, the signs.
+example could be read, so they are saved outputs of three independent legacy programs of
+the same method (a workbook, a worksheet and the US Navy's DYNMOOR 6.10), in deep water and
+at a finite depth with the images n = -10..10. The other checks need no data: a brute-force
+double sum, the far-field dipole limit, a long direct sum of the images, the symmetries,
+the signs.
 """
 
 import csv
@@ -50,6 +52,23 @@ def area_hull(length_ft, area_ft2, beam):
     """Return a Hull with length and midship area as given (C_b = 2/3, so S_m = B T)."""
     return Hull(length=length_ft * FT, beam=beam, draft=area_ft2 * FT ** 2 / beam,
                 block_coefficient=2.0 / 3.0)
+
+
+def read_text_rows(path):
+    """Return the rows of a CSV with '#' comment lines as dicts of the values' text."""
+    with open(path, newline='') as stream:
+        lines = [line for line in stream if not line.startswith('#')]
+    return list(csv.DictReader(lines))
+
+
+def half_unit(text):
+    """Return half a unit of the last non-zero digit of a number as written ('1683.0': 0.5)."""
+    mantissa = text.lstrip('-')
+    whole, _, decimals = mantissa.partition('.')
+    decimals = decimals.rstrip('0')
+    if decimals:
+        return 0.5 * 10.0 ** -len(decimals)
+    return 0.5 * 10.0 ** (len(whole) - len(whole.rstrip('0')))
 
 
 # ---------------------------------------------------------------------- the hull
@@ -115,6 +134,168 @@ def test_matches_the_legacy_worksheet_sway(reference_dir):
     scale = 1025.0 * SPEED ** 2 * moored.midship_area * passing.midship_area / moored.length ** 2
     # the worksheet's own integrator: 1e-6 (the module agrees to 1.0e-7)
     assert sway / scale == pytest.approx(row['sway_nondimensional'], rel=1e-6)
+
+
+# ---------------------------------------------------------------------- at a finite depth
+
+# the worksheet's case (test/data/passing_ship/legacy_worksheet_depth_47ft.csv); the beams
+# are free (only L and S_m = B T count): wide enough for drafts under the depth
+WORKSHEET_MOORED = area_hull(658.0, 3936.299, beam=30.0)
+WORKSHEET_PASSING = area_hull(902.2, 7099.888, beam=60.0)
+WORKSHEET = dict(moored=WORKSHEET_MOORED, passing=WORKSHEET_PASSING, speed=5.0 * FT,
+                 separation=-221.8 * FT, depth=47.0 * FT, water_density=1.9905 * SLUG_PER_FT3)
+# the workbook's: two equal hulls, 55 ft of water
+WORKBOOK_HULL = area_hull(941.10892388451441, 8103.8790549803316, beam=60.0)
+WORKBOOK = dict(moored=WORKBOOK_HULL, passing=WORKBOOK_HULL, speed=6.0 * FT,
+                separation=364.04199475065616 * FT, depth=55.0 * FT,
+                water_density=1.9905 * SLUG_PER_FT3)
+# DYNMOOR's: a 600 ft barge, a 650 ft ship passing at 5.5 kn through the water, 50 ft of water
+DYNMOOR_SPEED = 6.0 * 1.6888 - 0.5 * 1.6889  # [ft/s] 6 kn over the ground, 0.5 kn of current
+DYNMOOR = dict(moored=area_hull(600.0, 3000.0, beam=100.0 * FT),
+               passing=area_hull(650.0, 3200.0, beam=100.0 * FT), speed=DYNMOOR_SPEED * FT,
+               separation=-300.0 * FT, depth=50.0 * FT, water_density=1.9905 * SLUG_PER_FT3)
+DYNMOOR_PI = 3.1415279  # PARSHIP divides by this value of pi (sic)
+
+
+def wang_frame(loads, separation):
+    """Return body-axes loads in Wang's frame: sway and yaw toward the passing ship."""
+    surge, sway, yaw = (np.asarray(load) for load in loads)
+    toward = -math.copysign(1.0, separation)  # body y of the passing ship's side
+    return surge, toward * sway, toward * yaw
+
+
+def test_matches_the_legacy_worksheet_depth_sweep(reference_dir):
+    rows = read_rows(reference_dir / 'passing_ship' / 'legacy_worksheet_depth_47ft.csv')
+    stagger = np.array([row['stagger_ft'] for row in rows]) * FT
+    surge, sway, yaw = wang_frame(passing_loads(stagger=stagger, image_pairs=10, **WORKSHEET),
+                                  WORKSHEET['separation'])
+    computed = {'surge_lbf': surge / LBF, 'sway_lbf': sway / LBF,
+                'yaw_ft_lbf': yaw / (LBF * FT)}
+    for column, values in computed.items():
+        stored = np.array([row[column] for row in rows])
+        peak = np.abs(stored).max()
+        # the worksheet's own integrator; measured 8e-12 (sway) to 9e-11 (surge) of the peak
+        assert np.abs(values - stored).max() < 1e-6 * peak, column
+    assert computed['sway_lbf'][10] == pytest.approx(48031.032627547444, rel=1e-9)
+
+
+def test_matches_the_legacy_workbook_depth_columns(reference_dir):
+    rows = read_text_rows(reference_dir / 'passing_ship' / 'legacy_workbook_depth_55ft.csv')
+    stagger = np.array([float(row['stagger_ft']) for row in rows]) * FT
+    surge, sway, yaw = wang_frame(passing_loads(stagger=stagger, image_pairs=10, **WORKBOOK),
+                                  WORKBOOK['separation'])
+    computed = {'surge_lbf': surge / LBF, 'sway_lbf': sway / LBF,
+                'yaw_ft_lbf': yaw / (LBF * FT)}
+    for column, values in computed.items():
+        stored = [row[column] for row in rows]
+        peak = max(abs(float(text)) for text in stored)
+        for value, text in zip(values, stored):
+            if float(text) == 0.0:  # zero by symmetry, stored as such
+                assert abs(value) < 1e-9 * peak, (column, text, value)
+            else:  # within half a unit of the last digit stored
+                assert abs(value - float(text)) <= half_unit(text), (column, text, value)
+
+
+def test_matches_dynmoor_passing_a_barge_in_50_ft_of_water(reference_dir):
+    rows = read_rows(reference_dir / 'passing_ship' / 'legacy_dynmoor_parallel_50ft.csv')
+    length, ground = 600.0, 6.0 * 1.6888  # [ft], [ft/s]
+    # x = DIR ((i - 10) SOG - 2 L), DIR = -1: the printed x / L, to its 3 decimals
+    stagger = np.array([2.0 * length - (row['step'] - 10.0) * ground for row in rows])
+    np.testing.assert_allclose(stagger / length, [row['x_over_l'] for row in rows],
+                               atol=5e-4)
+    loads = wang_frame(passing_loads(stagger=stagger * FT, image_pairs=10, **DYNMOOR),
+                       DYNMOOR['separation'])
+    typo = math.pi / DYNMOOR_PI
+    units = (1e3 * LBF, 1e3 * LBF, 1e3 * LBF * FT)  # kips, kip ft
+    for column, values, unit in zip(('surge_kips', 'sway_kips', 'yaw_kip_ft'), loads, units):
+        stored = np.array([row[column] for row in rows])
+        # printed with one decimal from single precision: half its unit, and 1e-5 of the
+        # value for its REAL*4 sums (measured: 0.0499, 0.04995 and 0.0447 at most)
+        error = np.abs(typo * values / unit - stored)
+        assert (error <= 0.05 + 1e-5 * np.abs(stored)).all(), (column, error)
+
+
+def direct_sum(case, stagger, pairs):
+    """Return the loads of a case summed over the images -pairs..pairs, as (3, n)."""
+    return np.array(passing_loads(stagger=stagger, image_pairs=pairs, **case))
+
+
+@pytest.mark.parametrize('case, legacy_low', [(WORKSHEET, 0.0064), (WORKBOOK, 0.0122),
+                                              (DYNMOOR, 0.0067)])
+def test_the_converged_sum_and_the_legacy_truncation(case, legacy_low):
+    """The direct sum converges as N^-4 to the default; n = -10..10 is 0.6-1.2 % low abeam."""
+    abeam = np.array([0.0])
+    converged = np.array(passing_loads(stagger=abeam, **case))[1, 0]
+    errors = [abs(direct_sum(case, abeam, pairs)[1, 0] / converged - 1.0)
+              for pairs in (10, 20, 40, 80, 160, 20000)]
+    # the legacy truncation: the abeam sway 0.64 %, 1.22 % and 0.67 % low
+    assert errors[0] == pytest.approx(legacy_low, abs=0.0005)
+    # each doubling divides the error by 11 to 19: the n^-5 terms' tail, N^-4
+    ratios = np.array(errors[:4]) / np.array(errors[1:5])
+    assert (ratios > 10.0).all() and (ratios[1:] > 13.0).all(), ratios
+    # 20 000 pairs (images 570 to 670 km off): measured 3e-8 to 5e-8 from the default
+    assert errors[4] < 5e-7 and errors[5] < 1e-7
+
+
+# the berth's: config/berth.yaml's ship, the default passing ship, 16 m of water
+BERTH_SHIP = Hull(225.0, 32.2, 14.0, 0.85)
+BERTH_PASSER = Hull(200.0, 32.0, 12.0, 0.8)
+
+
+@pytest.mark.parametrize('separation', [40.0, 70.0, -150.0])
+def test_the_converged_sum_agrees_with_a_long_direct_sum(separation):
+    """From abeam to 13 ship lengths off, within 1e-5 of each load (its peak where zero)."""
+    stagger = np.array([0.0, 37.0, 112.5, 300.0, 600.0, -1000.0, 3000.0])
+    case = dict(moored=BERTH_SHIP, passing=BERTH_PASSER, speed=3.0, separation=separation,
+                depth=16.0)
+    converged = np.array(passing_loads(stagger=stagger, **case))
+    reference = direct_sum(case, stagger, 20000)  # images 640 km off
+    peak = np.abs(reference).max(axis=1, keepdims=True)
+    error = np.abs(converged - reference) / np.maximum(np.abs(reference), 1e-3 * peak)
+    # measured 1.7e-6 at most (surge 300 m ahead, 150 m off, near its sign change)
+    assert error.max() < 1e-5, error
+
+
+def test_deep_water_is_recovered_as_the_depth_grows():
+    stagger = np.array([-400.0, -90.0, 0.0, 60.0, 333.0])
+    deep = loads(stagger)
+    peak = np.abs(deep).max(axis=1, keepdims=True)
+    departures = [np.abs(loads(stagger, depth=depth) - deep).max() / peak.min()
+                  for depth in (60.0, 120.0, 240.0, 480.0, 1e5)]
+    assert all(b < a for a, b in zip(departures, departures[1:])), departures
+    assert departures[0] > 0.05 and departures[-1] < 1e-9
+
+
+def test_the_loads_grow_as_the_keel_nears_the_bed():
+    """Abeam sway and the peaks over a passage, for the berth's ships, rise as depth falls."""
+    stagger = np.linspace(-600.0, 600.0, 241)
+    case = dict(moored=BERTH_SHIP, passing=BERTH_PASSER, speed=3.0, separation=70.0,
+                stagger=stagger)
+    deep = np.abs(passing_loads(**case)).max(axis=1)
+    factors = [np.abs(passing_loads(depth=depth, **case)).max(axis=1) / deep
+               for depth in (42.0, 21.0, 16.0)]
+    for shallower, deeper in zip(factors[1:], factors):
+        assert (shallower > deeper).all()
+    # at 16 m (depth / draft 1.14): surge 5.6, sway 4.1, yaw 3.7 times the deep peaks
+    np.testing.assert_allclose(factors[-1], [5.56, 4.06, 3.71], rtol=0.01)
+
+
+def test_at_a_finite_depth_the_symmetries_and_speed_squared_hold():
+    stagger = np.linspace(25.0, 1200.0, 24)
+    ahead, astern = loads(stagger, depth=20.0), loads(-stagger, depth=20.0)
+    peak = np.abs(ahead).max(axis=1)
+    np.testing.assert_allclose(astern[0], -ahead[0], rtol=0.0, atol=1e-12 * peak[0])
+    np.testing.assert_allclose(astern[1], ahead[1], rtol=0.0, atol=1e-12 * peak[1])
+    np.testing.assert_allclose(astern[2], -ahead[2], rtol=0.0, atol=1e-12 * peak[2])
+    surge, sway, yaw = loads(0.0, depth=20.0)
+    assert abs(surge) < 1e-12 * peak[0] and abs(yaw) < 1e-12 * peak[2] and sway < -1e6
+    np.testing.assert_allclose(loads(stagger, depth=20.0, speed=2.5 * SPEED), 6.25 * ahead,
+                               rtol=1e-13, atol=1e-13 * peak.max())
+    np.testing.assert_allclose(loads(stagger, depth=20.0, water_density=1000.0),
+                               ahead * 1000.0 / 1025.0, rtol=1e-13, atol=1e-13 * peak.max())
+    port = loads(stagger, depth=20.0, separation=-SEPARATION)
+    np.testing.assert_array_equal(port, ahead * np.array([[1.0], [-1.0], [-1.0]]))
+    np.testing.assert_array_equal(loads(stagger, depth=20.0, direction=-1), ahead)
 
 
 # ---------------------------------------------------------------------- numerics
@@ -339,7 +520,8 @@ def test_array_of_staggers_matches_single_calls():
     ('speed', 0.0), ('speed', -3.0), ('speed', math.nan),
     ('separation', 40.0), ('separation', -43.9), ('separation', math.inf),
     ('separation', math.nan), ('stagger', math.nan), ('stagger', np.array([0.0, math.inf])),
-    ('depth', 30.0), ('depth', math.nan), ('depth', -math.inf),
+    ('depth', 16.0), ('depth', 10.0), ('depth', 0.0), ('depth', math.nan),
+    ('depth', -math.inf), ('image_pairs', -1), ('image_pairs', 2.5), ('image_pairs', True),
     ('water_density', 0.0), ('direction', 0), ('direction', 2), ('nodes', 1),
     ('nodes', 8.0), ('moored', 'tanker'), ('separation', None), ('depth', 'deep'),
     ('stagger', 'abeam')])

@@ -20,7 +20,10 @@ The hand checks use tables written here with chosen values; the shipped wind tab
 for being exactly the output of the script that computes it from Blendermann (1994)
 (test/data/ship_coefficients/blendermann_tanker_loaded.py); the shipped current table
 (config/ship/current_coefficients_tanker_loaded.csv) likewise against DNV-ST-0111 (December
-2021) [3.6] (test/data/ship_coefficients/dnv_current_tanker_loaded.py).
+2021) [3.6] (test/data/ship_coefficients/dnv_current_tanker_loaded.py), and the shipped
+tables at several water depths against UFC 4-159-03's depth factor
+(test/data/ship_coefficients/ufc_depth_current_tanker_loaded.py). Tables by depth are
+interpolated in the water depth / draft ratio, checked by hand between two tables.
 """
 
 import importlib.util
@@ -33,7 +36,8 @@ import pytest
 
 from rope_sim_ros.model.ship.coefficients import (
     CoefficientFileError, CoefficientTable, flow_angle_deg, ocimf_loads,
-    parse_coefficient_csv)
+    parse_coefficient_csv, table_at_ratio)
+from rope_sim_ros.params.ship import DEFAULT_CURRENT_TABLES, read_current_tables, ShipParams
 
 REPO = Path(__file__).resolve().parent.parent
 WIND_TABLE = REPO / 'config' / 'ship' / 'wind_coefficients_tanker_loaded.csv'
@@ -41,6 +45,7 @@ WIND_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'blendermann_tanker
 CURRENT_TABLE = REPO / 'config' / 'ship' / 'current_coefficients_tanker_loaded.csv'
 CURRENT_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'dnv_current_tanker_loaded.py'
 UFC_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'ufc_current_tanker_loaded.py'
+DEPTH_SCRIPT = REPO / 'test' / 'data' / 'ship_coefficients' / 'ufc_depth_current_tanker_loaded.py'
 
 RHO_AIR = 1.225  # kg/m^3
 RHO_WATER = 1026.0  # kg/m^3, the value DNV-ST-0111 uses
@@ -214,6 +219,98 @@ def test_bad_velocities_are_refused():
         ocimf_loads(SQUARE, RHO_AIR, (math.nan, 0.0), 1.0, 1.0, 1.0)
     with pytest.raises(ValueError, match='relative_velocity_body_xy'):
         ocimf_loads(SQUARE, RHO_AIR, (1.0, 0.0, 0.0), 1.0, 1.0, 1.0)
+
+
+# ---------------------------------------------------------------------- tables by depth
+
+# a shallow table with other angles than SQUARE's (45 degrees apart)
+SHALLOW = CoefficientTable(angles_deg=[0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0],
+                           cx=[-1.2, -0.8, 0.0, 0.4, 0.6, 0.4, 0.0, -0.8],
+                           cy=[0.0, -2.0, -3.0, -2.0, 0.0, 2.0, 3.0, 2.0],
+                           cmz=[0.0, -0.4, 0.0, 0.3, 0.0, -0.3, 0.0, 0.4])
+
+
+def test_coefficients_between_two_tables_by_hand():
+    """Depth / draft 1.2 (SHALLOW) and 3.0 (SQUARE): at 1.65, a quarter of the way."""
+    table = table_at_ratio([(1.2, SHALLOW), (3.0, SQUARE)], 1.65)
+    # the union of the angles: SHALLOW's eight
+    np.testing.assert_array_equal(table.angles_deg, SHALLOW.angles_deg)
+    # at 90 degrees both tables have a row: 0.75 * -3.0 + 0.25 * -0.8
+    assert table.at(90.0) == pytest.approx((0.0, -2.45, 0.0), abs=1e-15)
+    # at 45: SHALLOW's row and SQUARE between its rows (-0.5, -0.4, 0.05)
+    assert table.at(45.0) == pytest.approx(
+        (0.75 * -0.8 + 0.25 * -0.5, 0.75 * -2.0 + 0.25 * -0.4, 0.75 * -0.4 + 0.25 * 0.05),
+        abs=1e-15)
+    # at 100: between the union's rows 90 and 135, linear in the angle as any table
+    expected = [a + (b - a) * 10.0 / 45.0 for a, b in zip(table.at(90.0), table.at(135.0))]
+    assert table.at(100.0) == pytest.approx(expected, abs=1e-15)
+    # the loads of a beam current go with the lateral coefficient: 2.45 / 0.8 of deep water's
+    deep = ocimf_loads(SQUARE, RHO_WATER, flow_from(90.0, 1.0), 100.0, 400.0, 50.0)[1]
+    here = ocimf_loads(table, RHO_WATER, flow_from(90.0, 1.0), 100.0, 400.0, 50.0)[1]
+    assert here / deep == pytest.approx(2.45 / 0.8, rel=1e-14)
+
+
+def test_tables_by_depth_hold_their_ends_and_their_rows():
+    tables = [(1.2, SHALLOW), (3.0, SQUARE)]
+    assert table_at_ratio(tables, 1.0) is SHALLOW  # keel nearer the bed than the first table
+    assert table_at_ratio(tables, 1.2) is SHALLOW
+    assert table_at_ratio(tables, 3.0) is SQUARE
+    assert table_at_ratio(tables, math.inf) is SQUARE  # deep water: the deepest table
+    assert table_at_ratio([(1.0, SQUARE)], 1.1) is SQUARE  # one table: every depth
+    assert table_at_ratio(tables, 1.2 + 1e-12).at(90.0)[1] == pytest.approx(-3.0, abs=1e-11)
+
+
+@pytest.mark.parametrize('tables, ratio, match', [
+    ([], 2.0, 'at least one'),
+    ([(1.5, SQUARE), (1.2, SHALLOW)], 2.0, 'rise strictly'),
+    ([(0.9, SQUARE)], 2.0, '>= 1'),
+    ([(math.inf, SQUARE)], 2.0, '>= 1'),
+    ([(1.5, 'table.csv')], 2.0, 'CoefficientTable'),
+    ([(1.5, SQUARE)], 0.0, 'ratio 0.0'),
+    ([(1.5, SQUARE)], math.nan, 'ratio nan'),
+])
+def test_bad_tables_by_depth_are_refused(tables, ratio, match):
+    with pytest.raises(ValueError, match=match):
+        table_at_ratio(tables, ratio)
+
+
+def test_shipped_depth_tables_are_the_output_of_their_script():
+    script = load_script(DEPTH_SCRIPT)
+    assert [ratio for ratio, _ in DEFAULT_CURRENT_TABLES] == [*script.RATIOS, script.DEEP_RATIO]
+    for ratio, name in DEFAULT_CURRENT_TABLES[:-1]:
+        assert name == script.file_name(ratio)
+        assert (REPO / 'config' / 'ship' / name).read_text() == script.csv_text(ratio)
+    assert DEFAULT_CURRENT_TABLES[-1][1] == CURRENT_TABLE.name  # the deep table
+
+
+def test_shipped_depth_tables_are_ufcs_factor_on_the_deep_table():
+    deep = shipped_current_table()
+    tables = dict(read_current_tables(ShipParams()))
+    for ratio in (1.1, 1.5, 5.0):
+        factor = 1.0 + (3.2 / 0.6 - 1.0) / ratio ** 2  # UFC 4-159-03 eq. 11, C0 = 0.6
+        table = tables[ratio]
+        np.testing.assert_array_equal(table.angles_deg, deep.angles_deg)
+        np.testing.assert_allclose(table.cx, deep.cx, atol=1e-15)
+        # both tables' values rounded to 6 decimals, the deep one's then scaled
+        rounding = 5e-7 * (1.0 + factor)
+        np.testing.assert_allclose(table.cy, factor * deep.cy, atol=rounding)
+        np.testing.assert_allclose(table.cmz, factor * deep.cmz, atol=rounding)
+    # a beam current on the berth's loaded Panamax (14 m draft) in 15.4 m of water: 4.58
+    # times the deep-water load, as the UFC's FFG-7 of its Table 4-6 at T/d = 0.96 (3.5x)
+    assert tables[1.1].at(90.0)[1] / deep.at(90.0)[1] == pytest.approx(4.581, abs=1e-3)
+
+
+def test_the_shipped_set_follows_ufcs_factor_at_every_depth():
+    """Linear in the ratio between the tables: within the script's MAX_SET_ERROR of UFC's."""
+    script = load_script(DEPTH_SCRIPT)
+    tables = read_current_tables(ShipParams())
+    ratios = np.linspace(1.1, 30.0, 3000)
+    lateral = np.array([-table_at_ratio(tables, ratio).at(90.0)[1] for ratio in ratios])
+    ufc = 0.6 + (3.2 - 0.6) / ratios ** 2
+    error = lateral / ufc - 1.0
+    assert np.abs(error).max() <= script.MAX_SET_ERROR
+    assert error.max() > 0.05 and error.min() < -0.04  # the bound is the measured one
+    assert -table_at_ratio(tables, math.inf).at(90.0)[1] == pytest.approx(0.6, abs=1e-12)
 
 
 # ---------------------------------------------------------------------- the CSV reader

@@ -26,6 +26,7 @@ from rope_sim_ros.model.ship.coefficients import parse_coefficient_csv
 from rope_sim_ros.model.ship.loads import PassingShip, ShipLoads, Wind, world_load
 from rope_sim_ros.model.ship.passing import Hull, passing_loads
 from rope_sim_ros.mooring.mooring import Mooring
+from rope_sim_ros.mooring.ship import ship_loads
 from rope_sim_ros.offline import berth_check, cli
 from rope_sim_ros.params import arrangement
 from rope_sim_ros.params.table import from_values
@@ -100,6 +101,119 @@ def test_the_passing_ship_is_where_its_track_puts_it():
     assert got == pytest.approx(expected)
     assert -apart[1] == pytest.approx(60.0 - 0.5 * math.sin(yaw) + 0.2 * math.cos(yaw))
     assert abs(got[1]) > 1e4  # abeam-ish, 60 m off: tens of kN
+
+
+FT, KIP = 0.3048, 4448.2216152605  # m, N
+
+
+def test_the_passing_ship_moves_at_its_speed_through_the_water_plus_the_current(
+        reference_dir):
+    """
+    A passage of DYNMOOR's in a current: 6 kn over the ground, loads at 5.5 kn through water.
+
+    The ship passes along -x with the current (0.5 kn, also along -x): its speed through the
+    water is 5.5 kn, over the ground 6 kn, which sets where it is at each second of the
+    printed history (test/data/passing_ship/legacy_dynmoor_parallel_50ft.csv).
+    """
+    with open(reference_dir / 'passing_ship' / 'legacy_dynmoor_parallel_50ft.csv') as stream:
+        rows = list(csv.DictReader(line for line in stream if not line.startswith('#')))
+    beam = 100.0 * FT
+    moored = Hull(600.0 * FT, beam, 3000.0 * FT ** 2 / beam, 2.0 / 3.0)
+    passer = Hull(650.0 * FT, beam, 3200.0 * FT ** 2 / beam, 2.0 / 3.0)
+    through_water = (6.0 * 1.6888 - 0.5 * 1.6889) * FT  # [m/s] as PARSHIP takes it
+    current = (-0.5 * 1.6889 * FT, 0.0, 0.0)  # along -x, with the passing ship
+    # at t = 0 (DYNMOOR's step 10) two lengths ahead, 300 ft to port
+    track = PassingShip.beside(passer, through_water, -1, -300.0 * FT, 1200.0 * FT,
+                               np.zeros(3), 0.0)
+    slug_per_ft3 = KIP / 1000.0 / FT ** 4  # [kg/m^3]: a slug is 1 lbf s^2 / ft
+    model = ShipLoads(moored, TABLE, TABLE, (1.0, 1.0), (1.0, 1.0), AIR, 1.9905 * slug_per_ft3,
+                      current=current, passing=track, depth=50.0 * FT, image_pairs=10)
+    typo = math.pi / 3.1415279  # PARSHIP's pi
+    for row in rows:
+        t = float(row['step']) - 10.0  # [s]
+        surge, sway, yaw = model.at(t, np.zeros(3), heading(0.0), np.zeros(3))[2]
+        # over the ground at 6 kn: x = 2 L - t 6 x 1.6888 ft, printed as x / L
+        stagger = (model.passing.midship(t)[0]) / FT
+        assert stagger == pytest.approx(1200.0 - t * 6.0 * 1.6888, abs=1e-9)
+        assert stagger / 600.0 == pytest.approx(float(row['x_over_l']), abs=5e-4)
+        # port side: body sway and yaw are Wang's (toward the passing ship)
+        for value, unit, column in ((surge, KIP, 'surge_kips'), (sway, KIP, 'sway_kips'),
+                                    (yaw, KIP * FT, 'yaw_kip_ft')):
+            printed = float(row[column])
+            assert typo * value / unit == pytest.approx(printed, abs=0.05 + 1e-5 * abs(printed))
+    # the loads went with the speed through the water: at 6 kn they would be 19 % larger
+    assert (6.0 * 1.6888 * FT / through_water) ** 2 == pytest.approx(1.19, abs=0.005)
+
+
+def test_a_current_changed_on_the_way_changes_the_ground_speed_from_then_on():
+    passer = Hull(200.0, 32.0, 12.0, 0.8)
+    track = PassingShip.beside(passer, 4.0, 1, 60.0, -400.0, np.zeros(3), 0.0)
+    model = loads(passing=track, current=(1.0, 0.5, 0.0))  # 1 m/s along the track
+    model.at(10.0, np.zeros(3), heading(0.0), np.zeros(3))
+    assert model.passing.midship(10.0)[0] == pytest.approx(-400.0 + 5.0 * 10.0)
+    model.current = (-1.0, 0.0, 0.0)  # against it from t = 30 s (asked for then)
+    model.at(30.0, np.zeros(3), heading(0.0), np.zeros(3))
+    assert model.passing.midship(30.0)[0] == pytest.approx(-400.0 + 5.0 * 30.0)
+    assert model.passing.midship(50.0)[0] == pytest.approx(-400.0 + 150.0 + 3.0 * 20.0)
+    # the cross-track component does not move it: it holds its track 60 m off
+    assert model.passing.midship(50.0)[1] == pytest.approx(-60.0)
+    assert model.passing.speed == 4.0  # its speed through the water, for the loads
+
+
+# ------------------------------------------------------------------ the depth and the tables
+
+@pytest.mark.parametrize('value, canonical', [
+    ('my.csv', 'my.csv'),
+    ('', ''),
+    ([[1.1, 'a.csv'], [1.5, 'b.csv']], ['1.1', 'a.csv', '1.5', 'b.csv']),
+    (['1.1', 'a.csv', '1.5', 'b.csv'], ['1.1', 'a.csv', '1.5', 'b.csv']),  # a ROS file's
+    ([1, 'a.csv', 4.4, 'b.csv'], ['1.0', 'a.csv', '4.4', 'b.csv']),
+])
+def test_current_tables_are_a_path_or_ratio_path_pairs(value, canonical):
+    assert arrangement.check_top_value('ship.current_coefficients', value) == canonical
+
+
+@pytest.mark.parametrize('value', [
+    [[1.5, 'a.csv'], [1.1, 'b.csv']], [[0.9, 'a.csv']], [['deep', 'a.csv']], [1.1],
+    [[1.1, '']], [[True, 'a.csv']], [], 5.0, [[1.1, 'a.csv', 2.0]], [['nan', 'a.csv']]])
+def test_bad_current_tables_are_refused_in_one_line(value):
+    with pytest.raises(arrangement.ParameterError,
+                       match="'ship.current_coefficients'.*ratio, path"):
+        arrangement.check_top_value('ship.current_coefficients', value)
+
+
+def test_the_current_table_is_the_one_for_the_berths_depth(repo_root, tmp_path):
+    """Two tables by depth, one beside the parameter file: 1.65 T is a quarter of the way."""
+    shallow = tmp_path / 'shallow.csv'
+    shallow.write_text('angle_deg,cx,cy,cmz\n0,-0.1,0,0\n90,0,-3.0,0\n180,0.1,0,0\n'
+                       '270,0,3.0,0\n')
+    setup = arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'water_level': 2.0, 'seabed_level': -21.1,  # 23.1 m: 1.65 times the 14 m draft
+        # the deep table named relative to the parameter file's folder (config/)
+        'ship.current_coefficients': [[1.2, str(shallow)],
+                                      [3.0, 'ship/current_coefficients_tanker_loaded.csv']]})
+    assert setup.ship.current_coefficients[3] == str(
+        repo_root / 'config' / 'ship' / 'current_coefficients_tanker_loaded.csv')
+    model = ship_loads(setup)
+    assert model.depth == pytest.approx(23.1)
+    assert model.current_table.at(90.0)[1] == pytest.approx(0.75 * -3.0 + 0.25 * -0.6)
+    # no sea bed: deep water, the deepest table
+    deep = ship_loads(arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'seabed_level': float('-inf'), 'ship.current_coefficients': str(shallow)}))
+    assert deep.depth == math.inf and deep.current_table.at(90.0)[1] == -3.0
+
+
+def test_a_passing_ship_in_water_shallower_than_a_draft_is_refused(repo_root):
+    setup = arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'water_level': 0.0, 'seabed_level': -13.5, 'passing_ship.speed': 3.0,
+        'passing_ship.image_pairs': 10})
+    with pytest.raises(arrangement.ParameterError, match='13.5 m deep.*ship.draft 14 m'):
+        ship_loads(setup)
+    deeper = arrangement.read_setup(repo_root / 'config' / 'berth.yaml', {
+        'water_level': 0.0, 'seabed_level': -16.0, 'passing_ship.speed': 3.0,
+        'passing_ship.image_pairs': 10})
+    model = ship_loads(deeper)
+    assert (model.depth, model.image_pairs) == (16.0, 10)
 
 
 def test_world_load_turns_body_loads_with_the_ship():

@@ -40,8 +40,9 @@ from rope_sim_ros.model.statics.ship import Pose, ShipStatics, StaticLine, Stati
 from rope_sim_ros.mooring.mooring import Mooring
 from rope_sim_ros.mooring.statics import (ship_equilibrium, ship_statics, ship_stiffness,
                                           stiffness_now)
-from rope_sim_ros.offline import cli
+from rope_sim_ros.offline import berth_check, cli
 from rope_sim_ros.params.arrangement import read_setup
+from rope_sim_ros.params.ship import DEFAULT_CURRENT_TABLES
 
 WATER = 1025.0
 G = 9.81
@@ -315,6 +316,62 @@ def test_the_berth_under_an_off_quay_load_against_moorpy(repo_root):
     assert ours.offset == pytest.approx(offset, rel=1e-2, abs=1e-9)
     assert ours.loads.fairlead_tensions == pytest.approx([line.TB for line in system.lineList],
                                                          rel=1e-2)
+
+
+def beam_coefficient(repo_root, ratio: float) -> float:
+    """Return the shipped set's C_y at 90 degrees at a depth / draft ratio, read by hand."""
+    rows = []
+    for ratio_of, name in DEFAULT_CURRENT_TABLES:
+        with open(repo_root / 'config' / 'ship' / name) as stream:
+            for line in stream:
+                if line.startswith('90,'):
+                    rows.append((ratio_of, float(line.split(',')[2])))
+    for (low, low_cy), (high, high_cy) in zip(rows, rows[1:]):
+        if low <= ratio <= high:
+            return low_cy + (high_cy - low_cy) * (ratio - low) / (high - low)
+    raise AssertionError(f'ratio {ratio} outside the set')
+
+
+@pytest.mark.parametrize('depth', [16.0, 28.0])
+def test_the_berth_in_a_beam_current_at_its_depth_against_moorpy(repo_root, depth):
+    # OCIMF MEG4's beam current, 0.75 kn from port, pushes the ship off the quay onto its
+    # lines at 16 m and 28 m of water (depth / draft 1.14 and 2): the berth check's
+    # equilibrium against MoorPy's under the load worked out here from the shipped tables
+    speed = 0.75 * 1852.0 / 3600.0
+    setup = read_setup(repo_root / 'config' / 'berth.yaml',
+                       {**BERTH, 'water_level': 0.0, 'seabed_level': -depth})
+    case, = berth_check.check(setup, 0.0, [(0.0, -speed, 0.0)], directions=1)
+    assert case.status == 'ok' and not case.fenders.any()
+    ship = setup.ship
+    # from port (90 degrees): F_y = 1/2 rho V^2 L T C_y(90); C_x(90) = C_mz(90) = 0
+    force = 0.5 * WATER * speed ** 2 * ship.length * ship.draft * beam_coefficient(
+        repo_root, depth / ship.draft)
+    statics = ship_statics(setup, load=[0.0, force, 0.0, 0.0, 0.0, 0.0])
+    system, body = moorpy_system(statics, statics.start)
+    assert system.solveEquilibrium(tol=1e-7, maxIter=1000)
+    offset = body.r6 - statics.start.vector
+    assert case.offset[0] == pytest.approx(offset[0], rel=0.02, abs=2e-3)
+    assert case.offset[1] == pytest.approx(offset[1], rel=0.01)
+    assert case.offset[2] == pytest.approx(offset[5], rel=0.02, abs=1e-5)
+    assert case.tensions == pytest.approx([line.TB for line in system.lineList], rel=0.01)
+
+
+def test_the_same_beam_current_moves_the_ship_further_in_shallower_water(repo_root):
+    speed = 0.75 * 1852.0 / 3600.0
+    cases = []
+    for depth in (16.0, 28.0, None):
+        values = dict(BERTH, water_level=0.0,
+                      seabed_level=-depth if depth else -math.inf)
+        setup = read_setup(repo_root / 'config' / 'berth.yaml', values)
+        cases.append(berth_check.check(setup, 0.0, [(0.0, -speed, 0.0)], directions=1)[0])
+    shallow, middle, deep = cases
+    # the current's lateral coefficient is 2.6 at 1.14 T, 1.25 at 2 T, 0.6 in deep water:
+    # 0.77 m off the quay, 0.11 m, and in deep water the lines' pretension still holds the
+    # ship on its fenders
+    assert -shallow.offset[1] > 5.0 * -middle.offset[1] > 0.0
+    assert deep.offset[1] > 0.0 and deep.fenders.sum() > 0.0
+    assert not shallow.fenders.any() and not middle.fenders.any()
+    assert shallow.tensions.max() > 1.5 * middle.tensions.max()
 
 
 def rope_sim_matrix(capsys, *args) -> np.ndarray:

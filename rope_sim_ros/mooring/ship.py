@@ -22,6 +22,9 @@ driven or free, as MoorDyn's bodies are coupled or free: a driven ship's body is
 host's newest pose puts it, at rest (its fairleads follow the pose's samples); a free ship's
 body is integrated with its lines in their System (its fairleads are points it carries).
 Its fenders, its loads, its published state and its stiffness read the same body either way.
+The loads are those at the depth of the water, water_level - seabed_level (no sea bed, or
+no water: deep): the passing ship's are summed over the sea bed's images, the current's
+table is the one for the ratio of that depth to the ship's draft.
 """
 
 from collections import deque
@@ -39,11 +42,13 @@ from ..model.frames import rotation_matrix
 from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
                             BODY_QUATERNION, BODY_VELOCITY, FENDER_COLUMNS)
 from ..model.objects import System
+from ..model.ship.coefficients import table_at_ratio
 from ..model.ship.loads import PassingShip, ShipLoads, Wind, world_load
 from ..model.ship.passing import Hull
 from ..model.ship.wind import GustyWind
 from ..params.arrangement import ArrangementParams
-from ..params.ship import read_coefficients, ShipParams
+from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables, ShipParams
+from ..params.table import LineParams, ParameterError
 
 
 def ship_body(setup: ArrangementParams) -> Body:
@@ -71,31 +76,58 @@ def start_pose(setup: ArrangementParams) -> tuple:
             np.array([0.0, 0.0, np.sin(half), np.cos(half)]))
 
 
+def water_depth(shared: LineParams) -> float:
+    """Return the depth of the water, water_level - seabed_level [m]; math.inf: deep."""
+    if shared.water_level == -math.inf or shared.seabed_level == -math.inf:
+        return math.inf
+    return shared.water_level - shared.seabed_level
+
+
+def passing_ship(setup: ArrangementParams) -> Optional[PassingShip]:
+    """
+    Return the ship passing the arrangement's, its track from the ship's start pose, or None.
+
+    (ship.start_position, ship.start_yaw; ShipLoads sets it moving in the current.)
+
+    :raises ParameterError: a depth of water its keel or the moored ship's would not float
+        in.
+    """
+    ship, passing = setup.ship, setup.passing
+    if not passing.present:
+        return None
+    depth = water_depth(setup.shared)
+    if depth <= max(ship.draft, passing.draft):
+        raise ParameterError(
+            f'the water is {depth:g} m deep (water_level - seabed_level): a ship passing '
+            f'({PASSING_SHIP}.speed > 0) needs it deeper than both drafts (ship.draft '
+            f'{ship.draft:g} m, {PASSING_SHIP}.draft {passing.draft:g} m)')
+    return PassingShip.beside(
+        Hull(passing.length, passing.beam, passing.draft, passing.block_coefficient),
+        passing.speed, passing.direction, passing.separation, passing.start_x,
+        ship.start_position, ship.start_yaw)
+
+
 def ship_loads(setup: ArrangementParams) -> ShipLoads:
     """
     Return the wind, current and passing-ship loads of the arrangement's ship.
 
-    The passing ship's track starts from the ship's start pose (ship.start_position,
-    ship.start_yaw).
+    At the depth of the water (module docstring); the passing ship as passing_ship gives it.
 
-    :raises ParameterError: a coefficient table that cannot be read.
+    :raises ParameterError: a coefficient table that cannot be read; a passing ship in water
+        too shallow for it.
     """
-    ship, shared, passing = setup.ship, setup.shared, setup.passing
+    ship, shared = setup.ship, setup.shared
     hull = Hull(ship.length, ship.beam, ship.draft, ship.block_coefficient)
-    other = None
-    if passing.present:
-        other = PassingShip.beside(
-            Hull(passing.length, passing.beam, passing.draft, passing.block_coefficient),
-            passing.speed, passing.direction, passing.separation, passing.start_x,
-            ship.start_position, ship.start_yaw)
+    depth = water_depth(shared)
     return ShipLoads(
         hull, read_coefficients(ship, 'wind_coefficients'),
-        read_coefficients(ship, 'current_coefficients'),
+        table_at_ratio(read_current_tables(ship), depth / ship.draft),
         (ship.wind_area_front, ship.wind_area_side),
         (ship.current_area_front or ship.beam * ship.draft,
          ship.current_area_side or ship.length * ship.draft),
         shared.air_density, shared.water_density,
-        ship_wind(ship), tuple(shared.current), other)
+        ship_wind(ship), tuple(shared.current), passing_ship(setup), depth,
+        setup.passing.image_pairs)
 
 
 def ship_wind(ship: ShipParams) -> Wind:

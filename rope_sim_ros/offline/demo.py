@@ -18,7 +18,7 @@
 Starts, in their own ROS domain (unless ROS_DOMAIN_ID is set), the colcon-installed mooring
 node with config/berth.yaml (a 225 m bulk carrier on eight lines at 10 % of their MBL, four
 fenders) and, on top, config/berth_demo.yaml (the event: the ship free, ship_mode: free; a
-200 m ship passing 70 m off at 4.5 m/s from 450 m astern), use_sim_time, recording to a new
+200 m ship passing 100 m off at 2.5 m/s from 350 m astern), use_sim_time, recording to a new
 bag out/demo_<time>/bag; and the berth demo (ros/berth_demo_node.py: /clock, sim time
 running at --speed times the wall clock, and the live table, one row a simulated second:
 where the passing ship is, how far the ship moved, the passing ship's force on it and the
@@ -45,6 +45,7 @@ import time
 from typing import Optional
 
 from .plot import abeam_time
+from ..mooring.ship import water_depth
 from ..params.arrangement import ArrangementParams, flatten, NODE_NAME, read_setup
 from ..params.files import read_params_file
 from ..params.table import ParameterError
@@ -120,8 +121,10 @@ def story(setup: ArrangementParams) -> str:
         return 'The free ship at its berth, no ship passing'
     when = abeam_time(passing)
     side = 'starboard' if passing.separation > 0.0 else 'port'
+    depth = water_depth(setup.shared)
     return (f'A {passing.length:g} m ship passes {abs(passing.separation):g} m off the '
             f'{side} side at {passing.speed:g} m/s ({passing.speed * 3600 / 1852:.1f} kn)'
+            + ('' if depth == math.inf else f' in {depth:g} m of water')
             + ('' if when is None else f', abeam at t = {when:.0f} s')
             + ': it moves the free ship, the lines hold it')
 

@@ -21,7 +21,9 @@ A study's plots: what a newcomer reads at once.
   the MBL drawn across;
 - heatmap.png (two factors or more): the worst case's largest utilisation over two factors
   (the study's `heatmap`, else its first two), each cell naming the line that governs it
-  (and saying so when a line parted in one of its cases).
+  (and saying so when a line parted in one of its cases), the working load limit drawn as
+  a contour through the cells; with one factor more, a map for each of its values side by
+  side (with more, the worst case over them).
 
 Failed cases are left out (the titles say how many). Matplotlib without a display (Agg).
 """
@@ -155,24 +157,70 @@ def plot_study(folder, study: Study, rows: Sequence[Mapping[str, Any]], lines: S
 
     pair = study.heatmap or (tuple(study.factors[:2]) if len(study.factors) >= 2 else None)
     if pair is not None:
-        written.append(_heatmap(plt, folder, study, rows, lines, pair, title, gone))
+        written.append(_heatmap(plt, folder, study, rows, lines, pair, title, gone,
+                                wll_fraction))
     return written
 
 
 def _heatmap(plt, folder: str, study: Study, rows: Sequence[Mapping[str, Any]],
-             lines: Sequence[str], pair: Tuple[str, str], title: str, gone: str) -> str:
+             lines: Sequence[str], pair: Tuple[str, str], title: str, gone: str,
+             wll_fraction: Optional[float] = None) -> str:
     import numpy as np
 
     across, down = pair
-    ok = [row for row in rows if row.get('status') == OK]
     xs, ys = _levels(study, across, rows), _levels(study, down, rows)
+    others = [name for name in study.factors if name not in pair]
+    # one more factor: a map for each of its values; more: the worst case over them
+    panels = _levels(study, others[0], rows) if len(others) == 1 else [None]
+    figure, axes = plt.subplots(1, len(panels), squeeze=False, figsize=(
+        max(6.0, (1.1 * len(xs) + 1.2) * len(panels) + 1.8), max(4.0, 0.8 * len(ys) + 2.0)))
+    cmap = plt.get_cmap('RdYlGn_r').with_extremes(bad='lightgrey')
+    fontsize = 'small' if len(panels) == 1 else 'x-small'
+    for axis, value in zip(axes[0], panels):
+        chosen = rows if value is None else [
+            row for row in rows if others[0] in row
+            and format_value(row[others[0]]) == format_value(value)]
+        grid, labels = _heat_grid(chosen, lines, across, down, xs, ys)
+        image = axis.imshow(np.ma.masked_invalid(grid), cmap=cmap, vmin=0.0, vmax=100.0,
+                            aspect='auto', origin='lower')
+        for (i, j), text in labels.items():
+            axis.text(j, i, text, ha='center', va='center', fontsize=fontsize)
+        if wll_fraction is not None and min(grid.shape) >= 2 and \
+                np.nanmin(grid) < 100.0 * wll_fraction < np.nanmax(grid):
+            level = 100.0 * wll_fraction
+            contour = axis.contour(np.ma.masked_invalid(grid), levels=[level], colors='black',
+                                   linewidths=2.0, linestyles='--')
+            axis.clabel(contour, fmt={level: f'WLL {level:g} %'}, fontsize=fontsize)
+        axis.set_xticks(range(len(xs)))
+        axis.set_xticklabels([_label(across, v) for v in xs], rotation=20, ha='right')
+        axis.set_yticks(range(len(ys)))
+        axis.set_yticklabels([_label(down, v) for v in ys])
+        axis.set_xlabel(across)
+        axis.set_ylabel(down)
+        if value is not None:
+            axis.set_title(f'{others[0]} = {_label(others[0], value)}', fontsize='medium')
+    figure.colorbar(image, ax=list(axes[0]), label='largest line utilisation [% of MBL]')
+    over = f', worst over {", ".join(others)}' if len(others) > 1 else ''
+    wll = ('; dashed: the working load limit' if wll_fraction is not None else '')
+    figure.suptitle(f'{title}: the most loaded line{over}{wll}{gone}', fontsize='medium')
+    path = os.path.join(folder, HEATMAP_PNG)
+    figure.savefig(path, dpi=100, bbox_inches='tight')
+    plt.close(figure)
+    return path
+
+
+def _heat_grid(rows: Sequence[Mapping[str, Any]], lines: Sequence[str], across: str,
+               down: str, xs: Sequence[Any], ys: Sequence[Any]):
+    """Return one map's grid of the worst utilisation [%] and each cell's text."""
+    import numpy as np
+
     column = {format_value(v): i for i, v in enumerate(xs)}
     row_of = {format_value(v): i for i, v in enumerate(ys)}
     grid = np.full((len(ys), len(xs)), np.nan)
     governing: Dict[Tuple[int, int], str] = {}
     parted_cells = set()
-    for row in ok:
-        if across not in row or down not in row:
+    for row in rows:
+        if row.get('status') != OK or across not in row or down not in row:
             continue
         i, j = row_of[format_value(row[down])], column[format_value(row[across])]
         utilisation, line, parted = worst(row, lines)
@@ -181,33 +229,11 @@ def _heatmap(plt, folder: str, study: Study, rows: Sequence[Mapping[str, Any]],
             governing[(i, j)] = line
         if parted:
             parted_cells.add((i, j))
-    figure, axis = plt.subplots(figsize=(max(6.0, 1.3 * len(xs) + 2.5),
-                                         max(4.0, 0.8 * len(ys) + 2.0)))
-    cmap = plt.get_cmap('RdYlGn_r').with_extremes(bad='lightgrey')
-    image = axis.imshow(np.ma.masked_invalid(grid), cmap=cmap, vmin=0.0, vmax=100.0,
-                        aspect='auto', origin='lower')
-    for (i, j), line in governing.items():
-        parted = '\na line parted' if (i, j) in parted_cells else ''
-        axis.text(j, i, f'{grid[i, j]:.0f} %\n{line}{parted}', ha='center', va='center',
-                  fontsize='small')
+    labels = {(i, j): f'{grid[i, j]:.0f} %\n{line}'
+              + ('\na line parted' if (i, j) in parted_cells else '')
+              for (i, j), line in governing.items()}
     for row in rows:  # a cell whose every case failed says so
         if row.get('status') != OK and across in row and down in row:
             i, j = row_of[format_value(row[down])], column[format_value(row[across])]
-            if (i, j) not in governing:
-                axis.text(j, i, 'failed', ha='center', va='center', fontsize='small')
-                governing[(i, j)] = ''
-    axis.set_xticks(range(len(xs)))
-    axis.set_xticklabels([_label(across, v) for v in xs], rotation=20, ha='right')
-    axis.set_yticks(range(len(ys)))
-    axis.set_yticklabels([_label(down, v) for v in ys])
-    axis.set_xlabel(across)
-    axis.set_ylabel(down)
-    figure.colorbar(image, ax=axis, label='largest line utilisation [% of MBL]')
-    others = [name for name in study.factors if name not in pair]
-    over = f', worst over {", ".join(others)}' if others else ''
-    axis.set_title(f'{title}: the most loaded line{over}{gone}', fontsize='medium')
-    figure.tight_layout()
-    path = os.path.join(folder, HEATMAP_PNG)
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
-    return path
+            labels.setdefault((i, j), 'failed')
+    return grid, labels

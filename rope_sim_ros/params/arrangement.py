@@ -41,9 +41,10 @@ from typing import Any, Dict, List, Mapping, Optional, Tuple
 import yaml
 
 from .files import read_params_file
-from .ship import (check_fender_names, check_passing_clear, fender_setup, FENDER_SPECS, FENDERS,
-                   FenderSetup, field_name, PASSING_SHIP, passing_ship, PASSING_SPECS,
-                   PassingShipParams, SHIP, SHIP_SPECS, ShipParams)
+from .ship import (check_current_tables, check_fender_names, check_passing_clear,
+                   CURRENT_TABLES, fender_setup, FENDER_SPECS, FENDERS, FenderSetup, field_name,
+                   PASSING_SHIP, passing_ship, PASSING_SPECS, PassingShipParams, SHIP,
+                   SHIP_SPECS, ShipParams, tables_relative_to)
 from .table import allowed, check, LineParams, ParameterError, Spec, SPECS
 from .table import NODE_NAME as LINE_NODE_NAME
 
@@ -257,6 +258,8 @@ def check_top_value(name: str, value: Any) -> Any:
     """
     if name in ARRANGEMENT_SPECS:
         return check(name, value, ARRANGEMENT_SPECS)
+    if name == CURRENT_TABLES:  # a path, or tables by depth
+        return check_current_tables(value)
     if name in SHIP_SPECS:
         return check(name, value, SHIP_SPECS)
     if name in PASSING_SPECS:
@@ -399,9 +402,9 @@ def read_setup(path, overrides: Optional[Mapping[str, Any]] = None) -> Arrangeme
 def with_tables_from(setup: ArrangementParams, folder: str) -> ArrangementParams:
     """Return the setup with its ship's coefficient tables relative to `folder` made absolute."""
     ship = setup.ship
-    tables = {name: os.path.join(folder, getattr(ship, name))
-              for name in ('wind_coefficients', 'current_coefficients')
-              if getattr(ship, name) and not os.path.isabs(getattr(ship, name))}
+    tables = {name: tables_relative_to(getattr(ship, name), folder)
+              for name in ('wind_coefficients', 'current_coefficients')}
+    tables = {name: value for name, value in tables.items() if value != getattr(ship, name)}
     return replace(setup, ship=replace(ship, **tables)) if tables else setup
 
 

@@ -30,6 +30,7 @@ start without further settings; a study of a real ship gives that ship's numbers
 
 from dataclasses import dataclass, field, fields
 import math
+import os
 import re
 from typing import Any, Dict, List, Mapping, Tuple
 
@@ -115,9 +116,14 @@ SHIP_SPECS: Mapping[str, Spec] = {
         "relative to the parameter file's folder; empty = the shipped loaded tanker "
         "(config/ship/wind_coefficients_tanker_loaded.csv): use your own ship's"),
     'ship.current_coefficients': Spec(
-        '', '', 'CSV table angle_deg, cx, cy, cmz of the current loads, as '
-        'ship.wind_coefficients; empty = the shipped loaded tanker '
-        '(config/ship/current_coefficients_tanker_loaded.csv)'),
+        '', '', 'CSV table(s) angle_deg, cx, cy, cmz of the current loads, as '
+        'ship.wind_coefficients: one path (one table at every depth), or a list of '
+        '[ratio, path] pairs, one table per water depth / draft ratio (the depth: '
+        'water_level - seabed_level), ratios >= 1 and rising, interpolated linearly in the '
+        "ratio (a ROS parameter file takes the flat form ['1.1', a.csv, '1.5', b.csv]); "
+        'empty = the shipped loaded tanker or bulk carrier, deep '
+        '(config/ship/current_coefficients_tanker_loaded.csv) and at 1.1 to 5 times the '
+        "draft (UFC 4-159-03's depth factor: current_coefficients_tanker_loaded_depth_*.csv)"),
     'stiffness_rate': Spec(
         1.0, 'Hz', 'rate of ship/stiffness (the 6x6 stiffness of the lines and fenders about '
         "the ship's present pose); 0 = off", 0.0, 100.0, read_only=False),
@@ -134,7 +140,8 @@ SHIP_SPECS: Mapping[str, Spec] = {
         'repeatable with wind_seed', choices=WIND_SPECTRA),
     'wind_seed': Spec(0, '', "seed of the gusts' random phases", 0, 2 ** 31 - 1),
 }
-# A ship passing the moored one (Wang's slender-body loads, deep water): `passing_ship.*`.
+# A ship passing the moored one (Wang's slender-body loads, at the water's depth):
+# `passing_ship.*`.
 PASSING_SPECS: Mapping[str, Spec] = {
     'passing_ship.speed': Spec(
         0.0, 'm/s', "the passing ship's speed through the water; 0 = no passing ship", 0.0,
@@ -153,6 +160,11 @@ PASSING_SPECS: Mapping[str, Spec] = {
         -1.0e5, 1.0e5),
     'passing_ship.direction': Spec(
         1, '', "+1: it moves along the moored ship's body +x; -1: along -x", -1, 1),
+    'passing_ship.image_pairs': Spec(
+        0, '', "at a finite depth (water_level - seabed_level), the sea bed's images its "
+        'loads sum: 0 = until the sum changes by less than 1e-4 of itself; n > 0 = the '
+        'images -n..n only (the legacy programs sum -10..10, 0.6 to 1.2 % low abeam)',
+        0, 1000),
 }
 # A fender's settings, under its name (`fender_1.position`).
 FENDER_SPECS: Mapping[str, Spec] = {
@@ -207,7 +219,8 @@ class ShipParams:
     current_area_front: float = SHIP_SPECS['ship.current_area_front'].default
     current_area_side: float = SHIP_SPECS['ship.current_area_side'].default
     wind_coefficients: str = SHIP_SPECS['ship.wind_coefficients'].default
-    current_coefficients: str = SHIP_SPECS['ship.current_coefficients'].default
+    # a path, or [ratio, path, ratio, path, ...] as text (check_current_tables)
+    current_coefficients: Any = SHIP_SPECS['ship.current_coefficients'].default
     stiffness_rate: float = SHIP_SPECS['stiffness_rate'].default
     wind_speed: float = SHIP_SPECS['wind_speed'].default
     wind_direction: float = SHIP_SPECS['wind_direction'].default
@@ -250,6 +263,7 @@ class PassingShipParams:
     separation: float = PASSING_SPECS['passing_ship.separation'].default
     start_x: float = PASSING_SPECS['passing_ship.start_x'].default
     direction: int = PASSING_SPECS['passing_ship.direction'].default
+    image_pairs: int = PASSING_SPECS['passing_ship.image_pairs'].default
 
     @property
     def present(self) -> bool:
@@ -370,21 +384,103 @@ def fender_setup(name: str, values: Mapping[str, Any]) -> FenderSetup:
                        rated)
 
 
-# The shipped coefficient tables (config/ship/), for a table parameter left empty.
+# The shipped coefficient tables (config/ship/), for a table parameter left empty: the wind's,
+# the current's in deep water, and the current's set by water depth / draft (its deepest
+# entry the deep table: test/data/ship_coefficients/ufc_depth_current_tanker_loaded.py).
 DEFAULT_TABLES = {'wind_coefficients': 'wind_coefficients_tanker_loaded.csv',
                   'current_coefficients': 'current_coefficients_tanker_loaded.csv'}
+DEFAULT_CURRENT_TABLES = tuple(
+    [(ratio, f'current_coefficients_tanker_loaded_depth_{ratio:g}T.csv')
+     for ratio in (1.1, 1.2, 1.3, 1.5, 2.0, 3.0, 5.0)]
+    + [(10.0, DEFAULT_TABLES['current_coefficients'])])
+CURRENT_TABLES = f'{SHIP}.current_coefficients'
+
+
+def check_current_tables(value: Any) -> Any:
+    """
+    Validate ship.current_coefficients: a path, or [ratio, path] pairs (flat or nested).
+
+    :returns: the path, or the flat list [ratio, path, ...] as text (a ROS string array).
+    :raises ParameterError: anything else, or ratios not >= 1 and rising.
+    """
+    bad = ParameterError(
+        f'parameter {CURRENT_TABLES!r} = {value!r} is not allowed: must be a CSV path, or a '
+        'list of [ratio, path] pairs, one table per water depth / draft ratio, the ratios '
+        ">= 1 and rising (a ROS parameter file takes the flat form ['1.1', a.csv, '1.5', "
+        'b.csv])')
+    if isinstance(value, str):
+        return value
+    if not isinstance(value, (list, tuple)) or not value:
+        raise bad
+    if all(isinstance(pair, (list, tuple)) for pair in value):
+        pairs = value
+    elif len(value) % 2 == 0:
+        pairs = [value[i:i + 2] for i in range(0, len(value), 2)]
+    else:
+        raise bad
+    checked = []
+    for pair in pairs:
+        if len(pair) != 2 or not isinstance(pair[1], str) or not pair[1] \
+                or isinstance(pair[0], bool):
+            raise bad
+        try:
+            ratio = float(pair[0])
+        except (TypeError, ValueError):
+            raise bad from None
+        if not (math.isfinite(ratio) and ratio >= 1.0) or \
+                (checked and ratio <= float(checked[-2])):
+            raise bad
+        checked += [repr(ratio), pair[1]]
+    return checked
+
+
+def current_table_paths(value: Any) -> List[Tuple[float, str]]:
+    """Return the (ratio, path) pairs of a checked ship.current_coefficients ('' included)."""
+    if isinstance(value, str):
+        return [(1.0, value)]
+    return [(float(value[i]), value[i + 1]) for i in range(0, len(value), 2)]
+
+
+def tables_relative_to(value: Any, folder: str) -> Any:
+    """Return a table parameter's value with its relative paths taken from `folder`."""
+    def absolute(path: str) -> str:
+        return os.path.join(folder, path) if path and not os.path.isabs(path) else path
+    if isinstance(value, str):
+        return absolute(value)
+    return [item if k % 2 == 0 else absolute(item) for k, item in enumerate(value)]
 
 
 def read_coefficients(ship: ShipParams, name: str):
     """
-    Return the ship's wind or current coefficient table (model/ship/coefficients.py).
+    Return the ship's wind coefficient table, or a current table's (model/ship/coefficients.py).
 
-    :param name: 'wind_coefficients' or 'current_coefficients'; an empty path takes the
-        shipped table.
+    :param name: 'wind_coefficients' or 'current_coefficients' (one path only: a set by
+        depth is read_current_tables'); an empty path takes the shipped (deep) table.
     :raises ParameterError: the file cannot be read or is not a coefficient table (one line
         naming the parameter, the file and what is wrong).
     """
-    path = getattr(ship, name) or str(default_config_dir() / 'ship' / DEFAULT_TABLES[name])
+    return _read_table(name, getattr(ship, name) or str(
+        default_config_dir() / 'ship' / DEFAULT_TABLES[name]))
+
+
+def read_current_tables(ship: ShipParams) -> List[Tuple[float, Any]]:
+    """
+    Return the ship's current tables by water depth / draft: (ratio, CoefficientTable) pairs.
+
+    One path gives one pair (its ratio 1: one table at every depth); empty, the shipped set.
+
+    :raises ParameterError: a file that cannot be read or is not a coefficient table.
+    """
+    if not ship.current_coefficients:
+        folder = default_config_dir() / 'ship'
+        pairs = [(ratio, str(folder / name)) for ratio, name in DEFAULT_CURRENT_TABLES]
+    else:
+        pairs = current_table_paths(ship.current_coefficients)
+    return [(ratio, _read_table('current_coefficients', path)) for ratio, path in pairs]
+
+
+def _read_table(name: str, path: str):
+    """Read one coefficient table for the parameter `name` (ParameterError naming both)."""
     try:
         with open(path, encoding='utf-8') as stream:
             return parse_coefficient_csv(stream.read(), path)

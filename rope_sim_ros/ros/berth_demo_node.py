@@ -48,8 +48,8 @@ from rosgraph_msgs.msg import Clock
 
 from ..messages.topics import FAIRLEAD_TENSION, PASSING_WRENCH, SHIP_POSE
 from ..model.ship.loads import PassingShip
-from ..model.ship.passing import Hull
 from ..mooring.driver import MAX_LAG
+from ..mooring.ship import ship_loads
 from ..params import arrangement
 from ..params.files import read_params_file
 from ..params.materials import load_materials
@@ -97,14 +97,8 @@ def read_setup(paths: Sequence[str]) -> arrangement.ArrangementParams:
 
 
 def passing_ship(setup: arrangement.ArrangementParams) -> Optional[PassingShip]:
-    """Return the ship passing this one (its track from the start pose), or None."""
-    passing, ship = setup.passing, setup.ship
-    if not passing.present:
-        return None
-    return PassingShip.beside(
-        Hull(passing.length, passing.beam, passing.draft, passing.block_coefficient),
-        passing.speed, passing.direction, passing.separation, passing.start_x,
-        ship.start_position, ship.start_yaw)
+    """Return the ship passing this one as the mooring node moves it, or None."""
+    return ship_loads(setup).passing
 
 
 def yaw_of(q: Sequence[float]) -> float:

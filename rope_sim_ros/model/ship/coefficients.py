@@ -50,6 +50,16 @@ The published loads are quasi-steady: they assume the ship's own yaw rate does n
 flow, which is the standard use of OCIMF-type tables (OCIMF, "Prediction of Wind and Current
 Loads on VLCCs", 2nd ed., 1994) with the relative velocity in place of the absolute one.
 
+Water depth
+-----------
+OCIMF gives current coefficients for several ratios of the water depth to the draft: the
+nearer the keel to the bottom, the harder the same current pushes the ship across.
+``table_at_ratio`` takes such a set, one table per ratio, and returns the table at the ratio
+of a berth: each coefficient at each angle linear in the ratio between the two tables
+around it (the union of their angles), the first table's below the first ratio and the last
+table's beyond the last (deep water, an infinite ratio, takes the last). One table alone is
+the table at every depth.
+
 Files
 -----
 ``parse_coefficient_csv`` reads the text of a table (the caller reads the file: this layer
@@ -225,6 +235,48 @@ def ocimf_loads(table: CoefficientTable, density: float, relative_velocity_body_
     if fx.ndim == 0:
         return float(fx), float(fy), float(mz)
     return fx, fy, mz
+
+
+def table_at_ratio(tables: Sequence[Tuple[float, CoefficientTable]],
+                   ratio: float) -> CoefficientTable:
+    """
+    Return the coefficients at a water depth / draft ratio from tables at several ratios.
+
+    The module docstring (Water depth) says how: linear in the ratio between neighbours,
+    the end tables beyond the ends.
+
+    :param tables: (ratio, table) pairs, the ratios finite, >= 1 and strictly increasing.
+    :param ratio: the water depth over the draft, > 0; math.inf for deep water.
+    :raises ValueError: no table, a ratio out of order or range, a table that is not one.
+    """
+    if not tables:
+        raise ValueError('tables must hold at least one (ratio, table) pair')
+    ratios = [float(r) for r, _ in tables]
+    for (r, table) in tables:
+        if not isinstance(table, CoefficientTable):
+            raise ValueError(f'the table for ratio {r!r} must be a CoefficientTable, got '
+                             f'{type(table).__name__}')
+        if not (math.isfinite(float(r)) and float(r) >= 1.0):
+            raise ValueError(f'ratio {r!r} of a table must be a finite number >= 1 (water '
+                             'depth over draft)')
+    if any(b <= a for a, b in zip(ratios, ratios[1:])):
+        raise ValueError(f'the ratios of the tables must rise strictly, got {ratios}')
+    ratio = float(ratio)
+    if not ratio > 0.0:  # (NaN too)
+        raise ValueError(f'ratio {ratio!r} must be > 0 (water depth over draft), or inf')
+    if ratio <= ratios[0]:
+        return tables[0][1]
+    if ratio >= ratios[-1]:
+        return tables[-1][1]
+    above = next(k for k, r in enumerate(ratios) if r > ratio)
+    weight = (ratio - ratios[above - 1]) / (ratios[above] - ratios[above - 1])
+    low, high = tables[above - 1][1], tables[above][1]
+    start = low.angles_deg[0]
+    angles = np.unique(np.concatenate([
+        start + np.mod(table.angles_deg - start, FULL_TURN) for table in (low, high)]))
+    mixed = [(1.0 - weight) * np.asarray(a) + weight * np.asarray(b)
+             for a, b in zip(low.at(angles), high.at(angles))]
+    return CoefficientTable(angles_deg=angles, cx=mixed[0], cy=mixed[1], cmz=mixed[2])
 
 
 def _fail(source: str, line: int, column: str, message: str) -> CoefficientFileError:

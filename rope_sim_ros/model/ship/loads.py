@@ -19,16 +19,20 @@ The wind, the current and a passing ship on a moored ship, at one instant: one p
   air or water RELATIVE to the ship's origin, in its body axes (a surging ship feels its
   own motion: the current's load on a ship moving in still water is its drag). The wind
   is steady, or gusty about its mean (wind.py), along a direction it comes FROM.
-- A passing ship (passing.py, Wang's deep-water slender-body loads): its midship starts at
-  start_x along the moored ship's body x at its start pose and moves along that start
-  heading at its speed, separation off the centreline; at each instant its stagger and
-  separation are measured in the moored ship's body axes where it is then.
+- A passing ship (passing.py, Wang's slender-body loads, in deep water or at the depth of
+  the water, summed over the sea bed's images): its midship starts at start_x along the
+  moored ship's body x at its start pose and moves along that start heading, separation
+  off the centreline, at its speed through the water plus the current's component along
+  its track (it holds its track: the current across it it steers against); at each instant
+  its stagger and separation are measured in the moored ship's body axes where it is then,
+  and the loads take its speed through the water. A current changed at run time changes
+  its speed over the ground from the next instant the loads are asked for.
 
 Every load is in the ship's body axes about its origin (F_x, F_y, M_z); world_load turns
 their sum into the frame_id axes a free ship's body takes.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 import math
 from typing import Optional, Sequence, Tuple
 
@@ -64,9 +68,12 @@ class PassingShip:
     """
     A ship passing on a parallel course (see the module docstring).
 
-    :ivar hull: its hull; speed [m/s] > 0; direction +1 / -1 along the start heading.
-    :ivar start: where its midship is at t = 0, frame_id (3,); heading: the unit vector it
-        moves along (times direction), frame_id (3,).
+    :ivar hull: its hull; speed: through the water [m/s] > 0; direction +1 / -1 along the
+        start heading.
+    :ivar start: where its midship is at start_time [s], frame_id (3,); heading: the unit
+        vector it moves along (times direction), frame_id (3,).
+    :ivar drift: the current's component along heading [m/s]: over the ground it moves at
+        direction * speed + drift along heading.
     """
 
     hull: Hull
@@ -74,6 +81,8 @@ class PassingShip:
     direction: int
     start: np.ndarray
     heading: np.ndarray
+    drift: float = 0.0
+    start_time: float = 0.0
 
     @classmethod
     def beside(cls, hull: Hull, speed: float, direction: int, separation: float,
@@ -86,7 +95,13 @@ class PassingShip:
 
     def midship(self, t: float) -> np.ndarray:
         """Return its midship at time t, frame_id (3,)."""
-        return self.start + self.direction * self.speed * t * self.heading
+        return self.start + (self.direction * self.speed + self.drift) * \
+            (t - self.start_time) * self.heading
+
+    def in_current(self, t: float, current) -> 'PassingShip':
+        """Return it from time t on in a current (frame_id (3,), where the water goes)."""
+        drift = float(np.dot(np.asarray(current, dtype=float), self.heading))
+        return replace(self, start=self.midship(t), start_time=float(t), drift=drift)
 
 
 @dataclass
@@ -99,7 +114,10 @@ class ShipLoads:
     :ivar wind_areas, current_areas: (A_T, A_L) of each table [m^2].
     :ivar air_density, water_density: [kg/m^3].
     :ivar wind: the wind; current: the water's velocity (where it goes TO), frame_id (3,).
-    :ivar passing: a passing ship, or None.
+    :ivar passing: a passing ship, or None; it moves in `current` (the module docstring).
+    :ivar depth: the depth of the water [m] (math.inf: deep water), for the passing ship's
+        loads (the current's table is the caller's, for this depth).
+    :ivar image_pairs: passing.passing_loads's: 0 sums the images until converged.
     """
 
     hull: Hull
@@ -112,6 +130,22 @@ class ShipLoads:
     wind: Wind = Wind()
     current: Tuple[float, float, float] = (0.0, 0.0, 0.0)
     passing: Optional[PassingShip] = None
+    depth: float = math.inf
+    image_pairs: int = 0
+    # the current the passing ship's track was set for (at run time the current may change)
+    _track_current: Optional[tuple] = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        """Set the passing ship moving in the current from its start time."""
+        self._follow_current(None)
+
+    def _follow_current(self, t: Optional[float]) -> None:
+        """Give the passing ship the current's drift from time t on (None: its start)."""
+        current = tuple(float(c) for c in self.current)
+        if self.passing is not None and current != self._track_current:
+            when = self.passing.start_time if t is None else t
+            self.passing = self.passing.in_current(when, current)
+        self._track_current = current
 
     @property
     def acts(self) -> bool:
@@ -140,12 +174,13 @@ class ShipLoads:
             loads[1] = ocimf_loads(self.current_table, self.water_density, water[:2],
                                    *self.current_areas, self.hull.length)
         if self.passing is not None:
+            self._follow_current(t)
             apart = (self.passing.midship(t) - np.asarray(position, dtype=float)) @ rotation
             separation = -apart[1]
             if abs(separation) >= 0.5 * (self.hull.beam + self.passing.hull.beam):
                 loads[2] = passing_loads(self.hull, self.passing.hull, self.passing.speed,
-                                         separation, apart[0], math.inf, self.water_density,
-                                         self.passing.direction)
+                                         separation, apart[0], self.depth, self.water_density,
+                                         self.passing.direction, image_pairs=self.image_pairs)
         return loads
 
 
