@@ -42,6 +42,7 @@ from rope_sim_ros.mooring.status import Rating, ratings
 from rope_sim_ros.offline import cli
 from rope_sim_ros.offline.study import run_study
 from rope_sim_ros.offline.study_file import prepare, read_study
+from rope_sim_ros.offline.study_plots import _heat_grid
 from rope_sim_ros.offline.study_results import OK, summarise
 from rope_sim_ros.offline.study_run import job_of, run_case, StudyProgress
 from rope_sim_ros.params.arrangement import read_setup
@@ -451,3 +452,21 @@ def test_a_free_ships_case_runs_under_its_loads_and_reports_its_excursions(tmp_p
         assert 0.01 < outcome.summary['max_surge'] < 0.5, outcome.summary
         assert 0.01 < outcome.summary['max_sway'] < 0.5, outcome.summary
     assert outcomes[0].summary != outcomes[1].summary  # the spring's material counts
+
+
+def test_a_heat_map_cell_is_its_worst_case_and_says_what_parted_or_failed():
+    """Two speeds by two separations, a third factor's two cases in one cell."""
+    def row(speed, separation, fwd, aft, parted=0, status=OK):
+        return {'speed': speed, 'separation': separation, 'status': status,
+                'breast_fwd_max_utilisation': fwd, 'breast_aft_max_utilisation': aft,
+                'breast_fwd_parted': parted, 'breast_aft_parted': 0}
+
+    rows = [row(2.0, 70.0, 0.3, 0.2), row(2.0, 70.0, 0.4, 0.1),  # two depths, one cell
+            row(3.0, 70.0, 1.0, 0.5, parted=1), row(2.0, 100.0, 0.1, 0.15),
+            row(3.0, 100.0, None, None, status='no equilibrium')]
+    grid, labels = _heat_grid(rows, ['breast_fwd', 'breast_aft'], 'speed', 'separation',
+                              [2.0, 3.0], [70.0, 100.0])
+    assert grid[0, 0] == pytest.approx(40.0) and labels[(0, 0)] == '40 %\nbreast_fwd'
+    assert labels[(0, 1)] == '100 %\nbreast_fwd\na line parted'
+    assert grid[1, 0] == pytest.approx(15.0) and labels[(1, 0)].endswith('breast_aft')
+    assert math.isnan(grid[1, 1]) and labels[(1, 1)] == 'failed'

@@ -185,8 +185,9 @@ def _heatmap(plt, folder: str, study: Study, rows: Sequence[Mapping[str, Any]],
                             aspect='auto', origin='lower')
         for (i, j), text in labels.items():
             axis.text(j, i, text, ha='center', va='center', fontsize=fontsize)
-        if wll_fraction is not None and min(grid.shape) >= 2 and \
-                np.nanmin(grid) < 100.0 * wll_fraction < np.nanmax(grid):
+        known = grid[np.isfinite(grid)]
+        if wll_fraction is not None and min(grid.shape) >= 2 and known.size and \
+                known.min() < 100.0 * wll_fraction < known.max():
             level = 100.0 * wll_fraction
             contour = axis.contour(np.ma.masked_invalid(grid), levels=[level], colors='black',
                                    linewidths=2.0, linestyles='--')
