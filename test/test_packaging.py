@@ -85,6 +85,24 @@ print(json.dumps({'file': rope_sim_ros.__file__, 'codes': codes, 'said': said,
 """
 
 
+# A process that multiprocessing spawns (Dask's nanny starts a study's workers so) runs its
+# parent's main file again, as __mp_main__, before what it was given. The parent here is a
+# launcher that has started: python -S, then site; its main file the launcher.
+SPAWN_PROBE = r"""
+import site, sys
+site.main()
+import multiprocessing
+sys.modules['__main__'].__file__ = sys.argv[1]
+child = multiprocessing.get_context('spawn').Process(target=print, args=('spawned',))
+child.start()
+child.join(30)
+if child.exitcode is None:
+    child.kill()  # it ran the executable, which runs on
+    child.join()
+print('exit', child.exitcode)
+"""
+
+
 def test_colcon_build_duration(colcon_build):
     # Recorded so slow builds show up in the log (-rA or -s); the build ran in the fixture.
     print('colcon build took {:.1f} s'.format(colcon_build['seconds']))
@@ -121,11 +139,28 @@ def test_one_launcher_runs_every_executable():
         assert (folder / name).is_symlink() and os.readlink(folder / name) == 'launcher', name
     text = (folder / 'launcher').read_text()
     assert text.startswith('#!python -S\n')
-    assert text.endswith('from rope_sim_ros.ros.executables import run_named  # noqa: E402, '
-                         'I100\n\nsys.exit(run_named(__file__))\n')
+    assert text.endswith('    from rope_sim_ros.ros.executables import run_named  # noqa: '
+                         'I100\n\n    sys.exit(run_named(__file__))\n')
+    # imported, not run (a process multiprocessing spawns imports it as __mp_main__), it
+    # only defines: its statements run under `if __name__ == '__main__':`
+    body = ast.parse(text).body
+    assert [type(s) for s in body] == [ast.Expr] + [ast.Import] * 3 + [ast.FunctionDef, ast.If]
+    assert ast.unparse(body[-1].test) == "__name__ == '__main__'"
     from rope_sim_ros.ros import executables
     assert sorted(executables.ENTRY_POINTS) == sorted(EXECUTABLES)
     assert executables.run_named('/somewhere/not_ours') == 2  # refused, named
+
+
+@pytest.mark.parametrize('name', EXECUTABLES)
+def test_a_process_spawned_from_an_executable_runs_only_what_it_is_given(
+        colcon_install, colcon_env, tmp_path, name):
+    # the executable does not run again in the child: it prints what it was given, exits 0
+    launcher = colcon_install / 'lib' / PACKAGE / name
+    result = subprocess.run([sys.executable, '-S', '-c', SPAWN_PROBE, str(launcher)],
+                            env=colcon_env, cwd=str(tmp_path), stdin=subprocess.DEVNULL,
+                            capture_output=True, text=True, timeout=120)
+    assert (result.returncode, result.stdout, result.stderr) == (0, 'spawned\nexit 0\n', ''), \
+        result.stdout + result.stderr[-3000:]
 
 
 @pytest.mark.parametrize('relative', SHARE_FILES)
