@@ -26,7 +26,7 @@ demo: build
 	$(BIN)/python -m rope_sim_ros.offline.demo
 
 # The kernels the tests load from the source tree, compiled once: copied from install/ when
-# `make build` compiled them from these sources (2-3 minutes saved), else compiled here; the
+# `make build` compiled them from these sources (4 s, not 2-5 minutes), else compiled here; the
 # colcon build of the tests then copies them into its install instead of compiling them.
 SEED := $(if $(wildcard install/rope_sim_ros),--seed-from install/rope_sim_ros)
 

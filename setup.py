@@ -63,7 +63,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 # Compiling the numba kernels took 7.7 s (quiet 2 cores) to 44 s (loaded) at the first start
 # after every fresh build, 90 s to 3 minutes since; compiled here, right after installing,
-# numba's cache lands next to the installed sources and every start only loads it (0.4 s):
+# numba's cache lands next to the installed sources and every start only loads it (0.5 s):
 # rope_sim_ros/mooring/precompile.py. It starts from the source tree's cache (the one
 # `make test` compiles) where that was compiled from these very sources.
 PRECOMPILE = ('import sys; from rope_sim_ros.mooring.precompile import main; '
@@ -118,10 +118,10 @@ class InstallLibCompiled(install_lib):
     Install the package with its sources' times, and byte-compile it even so.
 
     PYTHONDONTWRITEBYTECODE (the Makefile's: no bytecode in the source tree) made setuptools
-    skip the byte-compiling ('byte-compiling is disabled'), so every start compiled the
-    package's 26,000 lines again (0.1 s of a node's start on a quiet machine, seconds on a
-    loaded one) or the first wrote them into the install. The byte code goes where it always
-    would: __pycache__ beside each installed source, listed in the install's record.
+    skip the byte-compiling ('byte-compiling is disabled'), so the first start compiled the
+    package's sources (the node's --help, which imports all it is made of, took 0.76 s of CPU
+    instead of 0.59 s) and wrote them into the install, or every start did. The bytecode goes
+    where it always would: __pycache__ beside each installed source, in the install's record.
 
     The installed sources keep their source's modification time to the nanosecond (copying
     keeps whole seconds): numba before 0.68 keys a cached kernel by its file's time and size
