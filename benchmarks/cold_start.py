@@ -33,7 +33,7 @@ is a first start after the build too.
 --source builds another checkout (e.g. `git archive HEAD | tar -x -C DIR` of an older
 commit) for a before/after comparison; ROPE_SIM_PRECOMPILE=0 in the environment builds
 without compiling the kernels. A --symlink-install runs the package from the source tree, so
-its kernels compile into the source tree's __pycache__ (once: the second build finds them).
+its kernels compile into the source tree's __pycache__, and no start writes bytecode there.
 
     python benchmarks/cold_start.py --make-demo [--source DIR]
 
@@ -122,7 +122,7 @@ def hook_paths(prefix: Path, dsv: Path, variable: str) -> list:
     return paths
 
 
-def overlay(prefix: Path, home: Path) -> dict:
+def overlay(prefix: Path, home: Path, bytecode: bool) -> dict:
     """Return the environment of a sourced install/setup.bash, with a fresh HOME."""
     env = clean_environment(home)
     package_dsv = prefix / 'share' / 'rope_sim_ros' / 'package.dsv'
@@ -134,7 +134,10 @@ def overlay(prefix: Path, home: Path) -> dict:
     env['PYTHONPATH'] = os.pathsep.join(
         hook_paths(prefix, package_dsv, 'PYTHONPATH') + python_path)
     env['PYTHONUNBUFFERED'] = '1'
-    env.pop('PYTHONDONTWRITEBYTECODE', None)  # as a user's shell; the Makefile sets it
+    if bytecode:  # a start may write it, as from a user's shell (the Makefile's make does not)
+        env.pop('PYTHONDONTWRITEBYTECODE', None)
+    else:  # --symlink-install: it would go into the source tree
+        env['PYTHONDONTWRITEBYTECODE'] = '1'
     return env
 
 
@@ -170,7 +173,7 @@ class Probe:
         msg.pose.orientation.w = 1.0
         self.publisher.publish(msg)
 
-    def time_to_tension(self, prefix: Path, home: Path, log: Path) -> tuple:
+    def time_to_tension(self, prefix: Path, home: Path, log: Path, bytecode: bool) -> tuple:
         """
         Start the node; return (s to the first tension, s to ready, logged PREPARING).
 
@@ -182,7 +185,7 @@ class Probe:
             node = subprocess.Popen(
                 [str(prefix / 'lib' / 'rope_sim_ros' / 'mooring_line'), '--ros-args',
                  '-r', f'__ns:={self.namespace}'],
-                env=overlay(prefix, home), stdin=subprocess.DEVNULL, stdout=out,
+                env=overlay(prefix, home, bytecode), stdin=subprocess.DEVNULL, stdout=out,
                 stderr=subprocess.STDOUT)
             try:
                 while self.first_tension is None and node.poll() is None \
@@ -205,13 +208,13 @@ class Probe:
         return seconds, ready_seconds, PREPARING in text
 
 
-def run_time(prefix: Path, home: Path, out: Path) -> tuple:
+def run_time(prefix: Path, home: Path, out: Path, bytecode: bool) -> tuple:
     """Run `rope_sim run` (60 s, 50 segments, steel_wire); return (seconds, PREPARING seen)."""
     command = [str(prefix / 'lib' / 'rope_sim_ros' / 'rope_sim'), 'run',
                '--motion', str(REPO / 'examples' / 'surge.csv'), '--out', str(out),
                '--set', 'segments=50', '--set', 'material=steel_wire']
     start = time.monotonic()
-    result = subprocess.run(command, env=overlay(prefix, home), stdin=subprocess.DEVNULL,
+    result = subprocess.run(command, env=overlay(prefix, home, bytecode), stdin=subprocess.DEVNULL,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     seconds = time.monotonic() - start
     if result.returncode:
@@ -308,7 +311,8 @@ def main(argv=None) -> int:
         count[0] += 1
         probe = Probe(context, f'{NAMESPACE}_{count[0]}')
         try:
-            return probe.time_to_tension(prefix, home, root / f'node_{count[0]}.log')
+            return probe.time_to_tension(prefix, home, root / f'node_{count[0]}.log',
+                                         not args.symlink_install)
         finally:
             probe.node.destroy_node()
 
@@ -318,7 +322,7 @@ def main(argv=None) -> int:
         node = [node_start(prefix, root / 'home') for _ in range(1 + args.later)]
         for path in installed_files(prefix) - built:  # what the node's starts wrote
             path.unlink()
-        runs = [run_time(prefix, root / 'home_run', root / 'out.csv')
+        runs = [run_time(prefix, root / 'home_run', root / 'out.csv', not args.symlink_install)
                 for _ in range(1 + args.later)]
     finally:
         rclpy.try_shutdown(context=context)

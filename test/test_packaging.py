@@ -245,8 +245,8 @@ def _site_packages(prefix):
 
 def test_installed_sources_are_byte_compiled_with_their_sources_times(colcon_install):
     # PYTHONDONTWRITEBYTECODE is set for the build (test/conftest.py, the Makefile): the
-    # install byte-compiles even so, and keeps each source's time to the nanosecond (numba's
-    # cache of the source tree, keyed by it, then serves the install: setup.py)
+    # install byte-compiles even so, and keeps each source's time to the nanosecond (numba
+    # before 0.68 keys its cache by it: the source tree's cache then serves the install)
     package = _site_packages(colcon_install) / PACKAGE
     sources = sorted(package.rglob('*.py'))
     assert len(sources) > 50, _listing(package)
@@ -313,7 +313,7 @@ print(sum(twice.stats.cache_hits.values()), sum(twice.stats.cache_misses.values(
 
 def test_a_cache_seeded_from_a_tree_of_the_same_sources_is_loaded(tmp_path):
     # What lets `make test` and the colcon build of the tests use the kernels compiled in
-    # another tree instead of compiling them again (2-3 minutes each): precompile's seed_cache
+    # another tree instead of compiling them again (2-5 minutes each): precompile's seed_cache
     # copies them, and numba takes them for the same sources (with their times, as setup.py
     # installs them: numba before 0.68 compares the times too)
     def load(tree):
