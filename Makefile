@@ -25,14 +25,17 @@ build: venv
 demo: build
 	$(BIN)/python -m rope_sim_ros.offline.demo
 
-# test/conftest.py gives the run its own ROS_DOMAIN_ID (1..101) unless one is set. The
-# kernels are compiled first, once: the tests load them, and the colcon build of the tests
-# copies them into its install (setup.py's seed_cache) instead of compiling them again.
+# The kernels the tests load from the source tree, compiled once: copied from install/ when
+# `make build` compiled them from these sources (4 s, not 2-5 minutes), else compiled here; the
+# colcon build of the tests then copies them into its install instead of compiling them.
+SEED := $(if $(wildcard install/rope_sim_ros),--seed-from install/rope_sim_ros)
+
+# test/conftest.py gives the run its own ROS_DOMAIN_ID (1..101) unless one is set.
 # The tests that need no node process run side by side, a worker a core (each worker its
 # own ROS_DOMAIN_ID); then those that run the installed nodes on the wall clock (marked
 # `alone` by test/conftest.py), one at a time: their timing is what they test.
 test: venv
-	$(BIN)/python -m rope_sim_ros.mooring.precompile
+	$(BIN)/python -m rope_sim_ros.mooring.precompile $(SEED)
 	$(BIN)/python -m pytest -q -n auto -m 'not alone' test
 	$(BIN)/python -m pytest -q -m alone test
 
@@ -42,7 +45,7 @@ lint: venv
 # A study of 54 cases of the berth on a local cluster (docs/study.md): results and plots in
 # out/study_demo. The kernels are prepared first, once, for every worker to load.
 study-demo: venv
-	$(BIN)/python -m rope_sim_ros.mooring.precompile
+	$(BIN)/python -m rope_sim_ros.mooring.precompile $(SEED)
 	$(BIN)/python -m rope_sim_ros study examples/study/berth_study.yaml --out out/study_demo
 
 bench: venv

@@ -14,13 +14,14 @@
 
 from glob import glob
 import os
-import shutil
 import subprocess
 import sys
 
 from setuptools import Distribution, find_packages, setup
+from setuptools.command.build_py import build_py
 from setuptools.command.develop import develop
 from setuptools.command.install import install
+from setuptools.command.install_lib import install_lib
 
 package_name = 'rope_sim_ros'
 
@@ -58,36 +59,15 @@ def launcher_interpreter(python):
     return held if works else python
 
 
+HERE = os.path.dirname(os.path.abspath(__file__))
+
 # Compiling the numba kernels took 7.7 s (quiet 2 cores) to 44 s (loaded) at the first start
-# after every fresh build; compiled here, right after installing, numba's cache lands next to
-# the installed sources and every start only loads it (0.4 s): rope_sim_ros/mooring/precompile.py.
-PRECOMPILE = 'import sys; from rope_sim_ros.mooring.precompile import main; sys.exit(main())'
-
-
-def seed_cache(package_parent):
-    """
-    Copy the source tree's numba cache beside the installed sources, if it has one.
-
-    The tests run the kernels from the source tree first, and compiling them again for the
-    install took another 2-4 minutes of every test run on 2 loaded cores. A copy is only
-    ever loaded where it fits: precompile removes it unless its fingerprint is that of the
-    installed sources, and numba takes an entry only for a source file of its size and
-    modification time (which the install keeps).
-    """
-    source = os.path.join(os.path.dirname(os.path.abspath(__file__)), package_name)
-    target = os.path.join(package_parent, package_name)
-    fingerprint = os.path.join(source, '__pycache__', 'numba-kernels.sha256')
-    if os.path.realpath(source) == os.path.realpath(target) or not os.path.isfile(fingerprint):
-        return
-    for folder, _, names in os.walk(source):
-        if os.path.basename(folder) != '__pycache__':
-            continue
-        copied = [name for name in names if name.endswith(('.nbi', '.nbc', '.sha256'))]
-        there = os.path.join(target, os.path.relpath(folder, source))
-        if copied and os.path.isdir(os.path.dirname(there)):
-            os.makedirs(there, exist_ok=True)
-            for name in copied:
-                shutil.copy2(os.path.join(folder, name), os.path.join(there, name))
+# after every fresh build, 90 s to 3 minutes since; compiled here, right after installing,
+# numba's cache lands next to the installed sources and every start only loads it (0.5 s):
+# rope_sim_ros/mooring/precompile.py. It starts from the source tree's cache (the one
+# `make test` compiles) where that was compiled from these very sources.
+PRECOMPILE = ('import sys; from rope_sim_ros.mooring.precompile import main; '
+              'sys.exit(main(sys.argv[1:]))')
 
 
 def precompile(package_parent):
@@ -95,14 +75,16 @@ def precompile(package_parent):
     if os.environ.get('ROPE_SIM_PRECOMPILE', '1') == '0':
         print('ROPE_SIM_PRECOMPILE=0: the numba kernels compile at the first start instead')
         return
-    seed_cache(package_parent)
     env = dict(os.environ)
     env['PYTHONPATH'] = os.pathsep.join(
         [package_parent] + [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p])
     print('compiling the numba kernels into ' + package_parent, flush=True)
+    source = os.path.join(HERE, package_name)
+    seed = [] if os.path.realpath(source) == os.path.realpath(
+        os.path.join(package_parent, package_name)) else ['--seed-from', source]
     try:
         # cwd: the installed package, never the source tree beside setup.py, is imported
-        result = subprocess.run([sys.executable, '-c', PRECOMPILE], cwd=package_parent,
+        result = subprocess.run([sys.executable, '-c', PRECOMPILE] + seed, cwd=package_parent,
                                 env=env, stdin=subprocess.DEVNULL, timeout=1800)
         failed = result.returncode != 0
     except (OSError, subprocess.TimeoutExpired) as e:
@@ -112,6 +94,53 @@ def precompile(package_parent):
         # the package works without it: the kernels then compile at the first start
         print('warning: compiling the numba kernels failed (see above); they will compile at '
               'the first start instead', file=sys.stderr)
+
+
+def bytecode_allowed(byte_compile):
+    """Wrap a command's byte_compile so that it runs whatever PYTHONDONTWRITEBYTECODE says."""
+    def run(command, files):
+        dont_write_bytecode, sys.dont_write_bytecode = sys.dont_write_bytecode, False
+        try:
+            byte_compile(command, files)
+        finally:
+            sys.dont_write_bytecode = dont_write_bytecode
+    return run
+
+
+class BuildPy(build_py):
+    """build_py, without its warning that byte-compiling is disabled: the install does it."""
+
+    byte_compile = bytecode_allowed(build_py.byte_compile)  # compiles nothing: no --compile
+
+
+class InstallLibCompiled(install_lib):
+    """
+    Install the package with its sources' times, and byte-compile it even so.
+
+    PYTHONDONTWRITEBYTECODE (the Makefile's: no bytecode in the source tree) made setuptools
+    skip the byte-compiling ('byte-compiling is disabled'), so the first start compiled the
+    package's sources (the node's --help, which imports all it is made of, took 0.76 s of CPU
+    instead of 0.59 s) and wrote them into the install, or every start did. The bytecode goes
+    where it always would: __pycache__ beside each installed source, in the install's record.
+
+    The installed sources keep their source's modification time to the nanosecond (copying
+    keeps whole seconds): numba before 0.68 keys a cached kernel by its file's time and size
+    (0.68 by its content), and a cache compiled in either tree serves the other
+    (precompile's --seed-from: this build, `make test`).
+    """
+
+    def install(self):
+        """Copy the build into the install, then give each source its source's time."""
+        outfiles = super().install()
+        for path in outfiles or ():
+            source = os.path.join(HERE, os.path.relpath(path, self.install_dir))
+            if path.endswith('.py') and os.path.isfile(source) and \
+                    os.path.getsize(source) == os.path.getsize(path):
+                status = os.stat(source)
+                os.utime(path, ns=(status.st_atime_ns, status.st_mtime_ns))
+        return outfiles
+
+    byte_compile = bytecode_allowed(install_lib.byte_compile)
 
 
 class InstallAndPrecompile(install):
@@ -172,7 +201,8 @@ setup(
     description='Real-time mooring line simulation (mass-spring rope) for ROS 2 Jazzy.',
     license='Apache-2.0',
     tests_require=['pytest'],
-    cmdclass={'build_scripts': BuildLaunchers, 'install': InstallAndPrecompile,
+    cmdclass={'build_py': BuildPy, 'build_scripts': BuildLaunchers,
+              'install': InstallAndPrecompile, 'install_lib': InstallLibCompiled,
               'develop': DevelopAndPrecompile},
     scripts=['bin/' + name for name in EXECUTABLES],
 )

@@ -19,4 +19,5 @@ import sys
 
 from .ros.executables import rope_sim
 
-sys.exit(rope_sim())
+if __name__ == '__main__':  # python -m rope_sim_ros; an import runs nothing
+    sys.exit(rope_sim())

@@ -20,6 +20,7 @@ The build itself is the session fixture ``colcon_build`` (test/conftest.py): a f
 """
 
 import ast
+import importlib.util
 import json
 import os
 from pathlib import Path
@@ -85,6 +86,24 @@ print(json.dumps({'file': rope_sim_ros.__file__, 'codes': codes, 'said': said,
 """
 
 
+# A process that multiprocessing spawns (Dask's nanny starts a study's workers so) runs its
+# parent's main file again, as __mp_main__, before what it was given. The parent here is a
+# launcher that has started: python -S, then site; its main file the launcher.
+SPAWN_PROBE = r"""
+import site, sys
+site.main()
+import multiprocessing
+sys.modules['__main__'].__file__ = sys.argv[1]
+child = multiprocessing.get_context('spawn').Process(target=print, args=('spawned',))
+child.start()
+child.join(30)
+if child.exitcode is None:
+    child.kill()  # it ran the executable, which runs on
+    child.join()
+print('exit', child.exitcode)
+"""
+
+
 def test_colcon_build_duration(colcon_build):
     # Recorded so slow builds show up in the log (-rA or -s); the build ran in the fixture.
     print('colcon build took {:.1f} s'.format(colcon_build['seconds']))
@@ -121,11 +140,28 @@ def test_one_launcher_runs_every_executable():
         assert (folder / name).is_symlink() and os.readlink(folder / name) == 'launcher', name
     text = (folder / 'launcher').read_text()
     assert text.startswith('#!python -S\n')
-    assert text.endswith('from rope_sim_ros.ros.executables import run_named  # noqa: E402, '
-                         'I100\n\nsys.exit(run_named(__file__))\n')
+    assert text.endswith('    from rope_sim_ros.ros.executables import run_named  # noqa: '
+                         'I100\n\n    sys.exit(run_named(__file__))\n')
+    # imported, not run (a process multiprocessing spawns imports it as __mp_main__), it
+    # only defines: its statements run under `if __name__ == '__main__':`
+    body = ast.parse(text).body
+    assert [type(s) for s in body] == [ast.Expr] + [ast.Import] * 3 + [ast.FunctionDef, ast.If]
+    assert ast.unparse(body[-1].test) == "__name__ == '__main__'"
     from rope_sim_ros.ros import executables
     assert sorted(executables.ENTRY_POINTS) == sorted(EXECUTABLES)
     assert executables.run_named('/somewhere/not_ours') == 2  # refused, named
+
+
+@pytest.mark.parametrize('name', EXECUTABLES)
+def test_a_process_spawned_from_an_executable_runs_only_what_it_is_given(
+        colcon_install, colcon_env, tmp_path, name):
+    # the executable does not run again in the child: it prints what it was given, exits 0
+    launcher = colcon_install / 'lib' / PACKAGE / name
+    result = subprocess.run([sys.executable, '-S', '-c', SPAWN_PROBE, str(launcher)],
+                            env=colcon_env, cwd=str(tmp_path), stdin=subprocess.DEVNULL,
+                            capture_output=True, text=True, timeout=120)
+    assert (result.returncode, result.stdout, result.stderr) == (0, 'spawned\nexit 0\n', ''), \
+        result.stdout + result.stderr[-3000:]
 
 
 @pytest.mark.parametrize('relative', SHARE_FILES)
@@ -201,6 +237,108 @@ def test_install_tree_holds_the_kernel_cache(colcon_install):
     assert fingerprint.is_file(), 'the build compiled no kernels: no {}'.format(fingerprint)
     recorded = fingerprint.read_text().strip()
     assert recorded == precompile.sources_fingerprint(package)
+
+
+def _site_packages(prefix):
+    return prefix / 'lib' / 'python{}.{}'.format(*sys.version_info[:2]) / 'site-packages'
+
+
+def test_installed_sources_are_byte_compiled_with_their_sources_times(colcon_install):
+    # PYTHONDONTWRITEBYTECODE is set for the build (test/conftest.py, the Makefile): the
+    # install byte-compiles even so, and keeps each source's time to the nanosecond (numba
+    # before 0.68 keys its cache by it: the source tree's cache then serves the install)
+    package = _site_packages(colcon_install) / PACKAGE
+    sources = sorted(package.rglob('*.py'))
+    assert len(sources) > 50, _listing(package)
+    for path in sources:
+        source = REPO_ROOT / PACKAGE / path.relative_to(package)
+        assert path.stat().st_mtime_ns == source.stat().st_mtime_ns, path
+        cached = Path(importlib.util.cache_from_source(str(path)))
+        assert cached.is_file(), '{} not byte-compiled: {} missing'.format(path, cached)
+        header = cached.read_bytes()[:16]  # magic, flags, the source's time and size
+        assert header[:4] == importlib.util.MAGIC_NUMBER, cached
+        assert (int.from_bytes(header[4:8], 'little'), int.from_bytes(header[8:12], 'little'),
+                int.from_bytes(header[12:16], 'little')) == \
+            (0, int(path.stat().st_mtime) & 0xFFFFFFFF, path.stat().st_size), cached
+
+
+@pytest.mark.parametrize('name, args', [
+    ('mooring_line', ['--help']),
+    ('rope_sim', ['run', '--motion', '{motion}', '--out', '{out}', '--quiet']),
+])
+def test_a_first_start_compiles_nothing_into_the_install(
+        colcon_install, colcon_env, tmp_path, name, args):
+    # As a user's shell starts it: bytecode may be written, HOME has never run it. The node's
+    # --help imports all the node is made of; the run also loads its kernels and runs them.
+    motion = tmp_path / 'motion.csv'
+    motion.write_text('\n'.join(
+        (REPO_ROOT / 'examples' / 'surge.csv').read_text().splitlines()[:11]) + '\n')
+    home = tmp_path / 'home'
+    home.mkdir()
+    env = dict(colcon_env, HOME=str(home))
+    for variable in ('PYTHONDONTWRITEBYTECODE', 'NUMBA_CACHE_DIR', 'XDG_CACHE_HOME'):
+        env.pop(variable, None)
+
+    def files():
+        return {str(p.relative_to(colcon_install)): p.stat().st_mtime_ns
+                for p in colcon_install.rglob('*') if p.is_file()}
+
+    before = files()
+    command = [str(colcon_install / 'lib' / PACKAGE / name)] + [
+        a.format(motion=motion, out=tmp_path / 'out.csv') for a in args]
+    result = subprocess.run(command, env=env, cwd=str(tmp_path), stdin=subprocess.DEVNULL,
+                            capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stdout + result.stderr[-3000:]
+    after = files()
+    assert after == before, 'the first start wrote into the install: {}'.format(
+        sorted(set(after.items()) - set(before.items()))[:20])
+
+
+KERNEL = """
+import numba
+
+
+@numba.njit(cache=True)
+def twice(x):
+    return 2.0 * x
+"""
+
+# Loads the kernel of the package beside it, says whether numba compiled it or loaded it.
+LOAD_KERNEL = """
+from pkg.kernel import twice
+assert twice(2.0) == 4.0
+print(sum(twice.stats.cache_hits.values()), sum(twice.stats.cache_misses.values()))
+"""
+
+
+def test_a_cache_seeded_from_a_tree_of_the_same_sources_is_loaded(tmp_path):
+    # What lets `make test` and the colcon build of the tests use the kernels compiled in
+    # another tree instead of compiling them again (2-5 minutes each): precompile's seed_cache
+    # copies them, and numba takes them for the same sources (with their times, as setup.py
+    # installs them: numba before 0.68 compares the times too)
+    def load(tree):
+        result = subprocess.run([sys.executable, '-c', LOAD_KERNEL], cwd=str(tree),
+                                env=dict(os.environ, PYTHONPATH=str(tree)),
+                                capture_output=True, text=True, timeout=300)
+        assert result.returncode == 0, result.stderr[-3000:]
+        return tuple(int(word) for word in result.stdout.split())  # (loaded, compiled)
+
+    source, package = tmp_path / 'a' / 'pkg', tmp_path / 'b' / 'pkg'
+    for folder in (source, package):
+        folder.mkdir(parents=True)
+    (source / '__init__.py').write_text('')
+    (source / 'kernel.py').write_text(KERNEL)
+    assert load(source.parent) == (0, 1)
+    fingerprint = precompile.sources_fingerprint(source)
+    precompile.record_fingerprint(source, fingerprint)
+    for module in ('__init__.py', 'kernel.py'):
+        (package / module).write_bytes((source / module).read_bytes())
+        times = (source / module).stat()
+        os.utime(package / module, ns=(times.st_atime_ns, times.st_mtime_ns))
+    assert precompile.seed_cache(source, package, 'another fingerprint') == 0
+    assert precompile.seed_cache(source, package, fingerprint) == 2  # the index and its data
+    assert precompile.seed_cache(source, package, fingerprint) == 0  # it has its own now
+    assert load(package.parent) == (1, 0)
 
 
 def test_stale_kernel_cache_is_removed_when_a_compiled_source_changes(tmp_path):

@@ -16,19 +16,23 @@
 Compile the numba kernels once, ahead of the first start, into numba's cache.
 
 numba compiles a kernel on its first call and, with ``cache=True``, keeps the machine code in
-``__pycache__`` next to the source file, keyed by a hash of that file's content and the CPU.
-Compiling every kernel the node and the offline runner use takes about 90 s on a 2-core
-machine, 3 minutes with other work on it (7.7 s before the water and ground terms, when a
-node's first tension still came 44 s after its start on a loaded machine). setup.py runs
-this module right after installing (``colcon build``, with or without ``--symlink-install``),
-so the cache lands beside the installed sources and every start, whatever HOME is, only
-loads it (0.4 s).
+``__pycache__`` next to the source file, keyed by that file (its content; its time and size
+before numba 0.68) and the CPU. The default settings (config/mooring_line.yaml,
+config/berth.yaml, the berth demo) run the adaptive integrator, which steps with both
+integrators' kernels: its one line compiles 98 % of what all of CONFIGURATIONS do (128 of
+131 s, two cores at load 2; about 2 minutes on a quiet machine, 5 at load 8). setup.py runs
+this module right after installing (``colcon build``, with or without
+``--symlink-install``), so the cache lands beside the installed sources and every start,
+whatever HOME is, only loads it (0.5 s).
+``--seed-from`` first copies the cache of another tree of the same sources (the source
+tree's into the install, the install's into the source tree for ``make test``), which numba
+then loads instead of compiling it again.
 
 numba uses that cache only where it may also write: in a read-only install tree (another
 user's) it caches in ``~/.cache/numba`` instead and compiles at the first start; a wheel
 (``pip install .``) holds no compiled code, built for one CPU. Then run, as that user::
 
-    python3 -m rope_sim_ros.precompile
+    python3 -m rope_sim_ros.mooring.precompile
 """
 
 import argparse
@@ -37,6 +41,7 @@ import hashlib
 import math
 from pathlib import Path
 import re
+import shutil
 import sys
 import time
 from typing import Callable, Dict, Iterator, List, Optional
@@ -47,12 +52,16 @@ PACKAGE = __package__.split('.')[0]  # rope_sim_ros
 FINGERPRINT_NAME = 'numba-kernels.sha256'
 CACHE_SUFFIXES = ('.nbi', '.nbc')  # numba's index and data files
 COMPILED_ROOMS = frozenset({'model', 'stepping'})
-USES_NUMBA = re.compile(rb'^\s*(?:import|from)\s+numba\b', re.MULTILINE)
+# a module of kernels imports numba at its top (this one imports it in a function only: an
+# edit of it threw every cache away)
+USES_NUMBA = re.compile(rb'^(?:import|from)\s+numba\b', re.MULTILINE)
 
 # Every kernel specialisation comes from one run of each integrator: all the other parameters
 # (material, bending, interpolation, superelastic_adjustment, payload_mass) change values, not
 # types (a System packs any lines and points into the same tables). The payload runs only
-# make sure that stays so.
+# make sure that stays so. The first (the default settings' line) compiles 128 of the 131 s
+# all take, the others 0.3 s and exercise_mooring 2 s more: all are compiled at the build,
+# so that no first use compiles anything.
 CONFIGURATIONS = (
     {'integrator': 'adaptive', 'end_interpolation': 'cubic'},
     {'integrator': 'adaptive', 'payload_mass': 1000.0},
@@ -222,13 +231,56 @@ def record_fingerprint(package_dir: Path, fingerprint: str) -> None:
         pass
 
 
+def installed_package(folder: Path) -> Path:
+    """Return the package in folder: folder itself, or an install prefix's site-packages."""
+    found = [folder] + sorted(folder.glob(f'lib/python*/site-packages/{PACKAGE}'))
+    return next((path for path in found if (path / '__init__.py').is_file()), folder)
+
+
+def seed_cache(source: Path, package_dir: Path, fingerprint: str) -> int:
+    """
+    Copy numba's cache of source, another tree of these sources, into package_dir.
+
+    Only a cache whose recorded fingerprint is ``fingerprint`` (that of package_dir's
+    sources), and only the kernels package_dir has no cache of: each with its index and its
+    data files. numba takes an entry only for the source it was compiled from (numba before
+    0.68: of that time and size; setup.py installs the sources with their times).
+
+    :returns: files copied.
+    """
+    try:
+        recorded = (source / '__pycache__' / FINGERPRINT_NAME).read_text().strip()
+    except OSError:
+        return 0
+    if recorded != fingerprint or source.resolve() == package_dir.resolve():
+        return 0
+    copied = 0
+    for index in source.rglob('__pycache__/*.nbi'):
+        target = package_dir / index.relative_to(source)
+        if target.exists():
+            continue  # package_dir's own (its fingerprint is this one, or it was removed)
+        base = index.name[:-len('.nbi')]
+        try:
+            target.parent.mkdir(exist_ok=True)
+            for path in [*index.parent.glob(base + '.*.nbc'), index]:  # the index last
+                shutil.copy2(path, target.parent / path.name)
+                copied += 1
+        except OSError:
+            pass
+    return copied
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     """Compile (or load) every kernel specialisation; print what it did and where."""
     parser = argparse.ArgumentParser(
         prog='python3 -m rope_sim_ros.mooring.precompile',
         description="Compile the numba kernels of rope_sim_ros into numba's cache, so that "
         'the first start of the node or the runner does not wait for them.')
-    parser.parse_args(argv)
+    parser.add_argument(
+        '--seed-from', type=Path, metavar='DIR',
+        help='first copy the cache of the package in DIR (or in the install prefix DIR), '
+        'where it was compiled from these very sources')
+    args = parser.parse_args(argv)
     try:
         import numba  # noqa: F401
     except ImportError as e:
@@ -237,6 +289,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     start = time.monotonic()
     fingerprint = sources_fingerprint(PACKAGE_DIR)
     removed = refresh_in_tree_cache(PACKAGE_DIR, fingerprint)
+    seeded = 0
+    if args.seed_from is not None:
+        seeded = seed_cache(installed_package(args.seed_from), PACKAGE_DIR, fingerprint)
     for values in CONFIGURATIONS:
         exercise(values)
     exercise_mooring()
@@ -248,6 +303,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     places = sorted({str(getattr(getattr(d, '_cache', None), 'cache_path', '?'))
                      for d in found.values() if d.signatures})
     stale = f'; removed {removed} stale cache files first' if removed else ''
+    if seeded:
+        stale += f'; {seeded} cache files copied from {args.seed_from} first'
     print(f'rope_sim_ros: numba kernels: {compiled} specialisations compiled, {loaded} loaded '
           f'from the cache, in {time.monotonic() - start:.1f} s{stale}; cache: '
           + ', '.join(places))
