@@ -80,6 +80,7 @@ class OneLine:
 
     params = property(lambda self: self.line.params)
     props = property(lambda self: self.line.props)
+    environment = property(lambda self: self.mooring.environment)
     material = property(lambda self: self.line.material)
     time_step = property(lambda self: self.line.time_step)
     reach = property(lambda self: self.line.reach)

@@ -232,7 +232,7 @@ def test_wrench_of_two_lines_by_hand():
     driver.push_ship(T0, [0.0, 0.0, 0.0], q)
     published = driver.advance(math.inf, max_lag=math.inf).outputs[0]  # the start, at rest
     props = driver.mooring.lines[0].props
-    w, ea = props.weight_per_length, props.axial_stiffness
+    w, ea = props.weight_per_length(driver.mooring.environment), props.axial_stiffness
     ahead = solve_catenary(30.0, 10.0, 32.0, w, ea)
     astern = solve_catenary(25.0, 10.0, 26.5, w, ea)
     h1, v1, h2, v2 = (ahead.horizontal_tension, ahead.vertical_b, astern.horizontal_tension,
@@ -275,18 +275,18 @@ def test_pretension_starts_the_line_at_its_tension(eight_lines):
 
 def test_length_for_tension_inverts_the_catenary():
     driver = Driver(arrangement.from_values(berth_values()), rate=RATE)
-    props = driver.mooring.lines[0].props
+    props, air = driver.mooring.lines[0].props, driver.mooring.environment
     bollard, fairlead = np.array([0.0, 0.0, 0.0]), np.array([40.0, 5.0, 9.0])
     for tension in (2.0e3, 50.0e3, 400.0e3):
-        length = length_for_tension(props, bollard, fairlead, tension)
+        length = length_for_tension(props, air, bollard, fairlead, tension)
         span, rise = math.hypot(40.0, 5.0), 9.0
-        got = solve_catenary(span, rise, length, props.weight_per_length,
+        got = solve_catenary(span, rise, length, props.weight_per_length(air),
                              props.axial_stiffness).tension_b
         assert got == pytest.approx(tension, rel=1e-9)
     with pytest.raises(PretensionError, match='least fairlead tension'):
-        length_for_tension(props, bollard, fairlead, 100.0)  # less than its weight holds
+        length_for_tension(props, air, bollard, fairlead, 100.0)  # less than its weight holds
     with pytest.raises(PretensionError, match='reach'):
-        length_for_tension(props, bollard, fairlead, 1e9)
+        length_for_tension(props, air, bollard, fairlead, 1e9)
 
 
 def test_length_for_tension_follows_the_lines_curve():
@@ -294,16 +294,16 @@ def test_length_for_tension_follows_the_lines_curve():
     values = berth_values()
     values['head_1'] = {**values['head_1'], 'material': 'nylon', 'load_extension': 'curve'}
     driver = Driver(arrangement.from_values(values), rate=RATE)
-    props = driver.mooring.lines[0].props
+    props, air = driver.mooring.lines[0].props, driver.mooring.environment
     assert props.curve is not None
     bollard, fairlead = np.array([0.0, 0.0, 0.0]), np.array([40.0, 5.0, 9.0])
     for tension in (50.0e3, 300.0e3):
-        length = length_for_tension(props, bollard, fairlead, tension)
-        got = solve_catenary(math.hypot(40.0, 5.0), 9.0, length, props.weight_per_length,
+        length = length_for_tension(props, air, bollard, fairlead, tension)
+        got = solve_catenary(math.hypot(40.0, 5.0), 9.0, length, props.weight_per_length(air),
                              props.axial_stiffness, props.curve).tension_b
         assert got == pytest.approx(tension, rel=1e-9)
-        linear = solve_catenary(math.hypot(40.0, 5.0), 9.0, length, props.weight_per_length,
-                                props.axial_stiffness).tension_b
+        linear = solve_catenary(math.hypot(40.0, 5.0), 9.0, length,
+                                props.weight_per_length(air), props.axial_stiffness).tension_b
         assert abs(linear / tension - 1.0) > 0.05  # EA alone would start it elsewhere
 
 
@@ -561,7 +561,7 @@ def test_an_arrangement_too_far_behind_skips_ahead_and_restarts_every_line_at_re
     assert out.t == 1.58 and driver.time == 1.58
     for k, line in enumerate(mooring.lines):
         ends = mooring.drive(k, [1.58])[0][0]
-        at_rest = line.at_rest(ends, bool(mooring.held[k])).lines[0]
+        at_rest = line.at_rest(ends, bool(mooring.held[k]), mooring.environment).lines[0]
         assert np.array_equal(out.positions[k], at_rest.x), line.name
         assert np.abs(mooring.rope(k).v).max() == 0.0, line.name
     # then the grid from there: due 1/rate after the skip (here at most 3 per call)

@@ -21,6 +21,7 @@ parameter file; the material presets carry MoorPy's coefficients; a line of the 
 them.
 """
 
+from dataclasses import fields
 import math
 
 import numpy as np
@@ -30,8 +31,11 @@ import rclpy
 from rclpy.exceptions import ParameterException
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
+from rope_sim_ros.model.objects import Environment
+from rope_sim_ros.model.rope import RopeProperties
+from rope_sim_ros.mooring.driver import Driver
 from rope_sim_ros.params.arrangement import (from_stored, LINE_PARAMETERS_KEY, parameters_yaml,
-                                             single_line, stored)
+                                             read_setup, single_line, stored)
 from rope_sim_ros.params.files import load_params, parse_set, read_params_file
 from rope_sim_ros.params.materials import load_materials
 from rope_sim_ros.params.table import check, from_values, ParameterError, SPECS
@@ -220,7 +224,7 @@ def test_simulator_takes_the_materials_coefficients():
     assert line_type.normal_drag == pytest.approx(material.normal_drag_coefficient)
     assert line_type.tangential_drag == material.tangential_drag_coefficient == 0.0
     assert line_type.normal_added_mass == 1.1 and line_type.tangential_added_mass == 0.15
-    env = sim.props.environment
+    env = sim.environment
     assert env.water_level == 0.0 and env.water_density == 1025.0
     assert env.seabed_level == -math.inf and env.air_density == 1.225
     # explicit values beat the material's, 0 included
@@ -234,7 +238,7 @@ def test_simulator_takes_the_materials_coefficients():
     assert (line_type.normal_drag, line_type.tangential_drag) == (1.2, 0.0)
     assert (line_type.normal_added_mass, line_type.tangential_added_mass) == (0.0, 0.5)
     assert line_type.volume_diameter == D
-    env = sim.props.environment
+    env = sim.environment
     assert (env.seabed_level, env.seabed_friction, env.quay_depth) == (-60.0, 0.5, 8.0)
     assert env.quay_edge == (3.0, -1.0, 2.0) and env.quay_normal == (0.0, 1.0, 0.0)
     sim.push_fairlead(0.0, [0.0, 0.0, 10.0])
@@ -250,9 +254,9 @@ def test_weight_for_the_start_shape_is_less_the_fluids_buoyancy():
     sim = OneLine(from_values({'water_level': 0.0}))
     props, material = sim.props, sim.material
     area = math.pi / 4 * material.volume_diameter ** 2
-    assert props.weight_per_length == pytest.approx(
+    assert props.weight_per_length(sim.environment) == pytest.approx(
         (material.mass_per_length - 1.225 * area) * 9.81, rel=1e-12)
-    assert props.submerged_weight_per_length == pytest.approx(
+    assert props.submerged_weight_per_length(sim.environment) == pytest.approx(
         (material.mass_per_length - 1025.0 * area) * 9.81, rel=1e-12)
 
 
@@ -336,3 +340,28 @@ def test_params_file_round_trip(tmp_path):
     path = tmp_path / 'stored.yaml'
     path.write_text(text)
     assert from_values(read_params_file(path)) == params
+
+
+def test_one_environment_per_mooring_its_lines_systems_and_ship_read_it(repo_root):
+    # (issue: the environment was copied into every line, and the ship's current was the
+    # last updated line's)
+    setup = read_setup(repo_root / 'config' / 'berth.yaml',
+                       {'ship_mode': 'free', 'segments': 8})
+    driver = Driver(setup)
+    driver.start_free(0)
+    mooring = driver.mooring
+    assert not {f.name for f in fields(RopeProperties)} & {f.name for f in fields(Environment)}
+    assert all(group.system.environment is mooring.environment for group in mooring.groups)
+    assert not driver.advance(0.0).outputs[-1].output.ship_loads[:2].any()
+    driver.update(None, {'current': [0.0, -0.5, 0.0], 'wind_speed': 12.0})
+    changed = mooring.environment
+    assert changed.current == (0.0, -0.5, 0.0) and changed.wind.speed == 12.0
+    assert changed.depth == 16.0  # the berth's: 0 - (-16)
+    assert all(group.system.environment is changed for group in mooring.groups)
+    assert driver.arrangement.shared.current == [0.0, -0.5, 0.0]
+    assert all(line.params.current == [0.0, -0.5, 0.0] for line in driver.arrangement.lines)
+    assert driver.arrangement.ship.wind_speed == 12.0
+    mooring.advance_to(0.1)
+    wind, current, _ = mooring.output().ship_loads
+    assert wind[0] < 0.0  # from ahead (wind_direction 0): pushes the ship astern
+    assert current[1] < 0.0  # the current goes to -y: off the quay

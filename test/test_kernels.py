@@ -21,6 +21,7 @@ from one_line import OneLine
 import pytest
 
 from rope_sim_ros.model import linalg
+from rope_sim_ros.model.objects import Environment
 from rope_sim_ros.model.rope import RopeProperties
 from rope_sim_ros.params.table import from_values
 from rope_sim_ros.stepping import kernels
@@ -78,13 +79,14 @@ def test_dense_cholesky_solves_the_point_system():
 
 
 def test_improved_euler_needs_damping():
+    air = Environment()
     undamped = RopeProperties(20, 40.0, 2.6, 5e7, 0.0)
-    assert stability_limit(undamped) == 0.0
+    assert stability_limit(undamped, air) == 0.0
     with pytest.raises(ValueError, match='axial_damping > 0'):
-        automatic_time_step(undamped)
+        automatic_time_step(undamped, air)
     damped = RopeProperties(20, 40.0, 2.6, 5e7, 2903.0)
     wave = 2.0 * math.sqrt(2.6 / 5e7)
-    assert 0.0 < automatic_time_step(damped) < wave
+    assert 0.0 < automatic_time_step(damped, air) < wave
 
 
 def _settle(bending, time_step, gust):

@@ -56,9 +56,10 @@ def log_lines(node: NodeProcess, word: str) -> list:
 
 def equilibrium(bollard, fairlead) -> tuple:
     """Return (bollard, fairlead) tension [N] of the default line at rest between the ends."""
-    p = OneLine(default_line()).props
+    sim = OneLine(default_line())
+    p, air = sim.props, sim.environment
     chain = catenary.chain_equilibrium(bollard, fairlead, p.length, p.segments,
-                                       p.weight_per_length, p.axial_stiffness, p.gravity)
+                                       p.weight_per_length(air), p.axial_stiffness, air.gravity)
     return float(np.linalg.norm(chain.force_a)), float(np.linalg.norm(chain.force_b))
 
 

@@ -84,11 +84,12 @@ def line_values() -> dict:
     """Return the arrangement's parameters: each length chosen for its target tension."""
     end_position, end_orientation = ship_pose(RAMP[1])
     values = {'lines': NAMES, 'marker_rate': 10.0, 'publish_rate': RATE}
-    props = OneLine(from_values(LINE)).props
+    line = OneLine(from_values(LINE))
+    props = line.props
     for name, target, offset, bollard in zip(NAMES, TARGETS, OFFSETS, BOLLARDS):
         fairlead = pose_point(end_position, end_orientation, offset).point
         mbl = OneLine(from_values(LINE)).material.mbl
-        length = length_for_tension(props, bollard, fairlead, target * mbl)
+        length = length_for_tension(props, line.environment, bollard, fairlead, target * mbl)
         values[name] = dict(LINE, fairlead_offset=offset, bollard_position=bollard,
                             length=round(length, 6))
     return values

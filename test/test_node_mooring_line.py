@@ -227,9 +227,9 @@ def default_line() -> LineParams:
 def chain_at(fairlead) -> catenary.ChainEquilibrium:
     """Exact static equilibrium of the default line between the origin and `fairlead`."""
     sim = OneLine(default_line())
-    p = sim.props
+    p, air = sim.props, sim.environment
     return catenary.chain_equilibrium([0.0, 0.0, 0.0], fairlead, p.length, p.segments,
-                                      p.weight_per_length, p.axial_stiffness, p.gravity)
+                                      p.weight_per_length(air), p.axial_stiffness, air.gravity)
 
 
 def smooth_step(t: float, start: float, duration: float) -> float:

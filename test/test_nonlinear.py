@@ -258,6 +258,9 @@ def test_spring_block_of_a_slack_segment_keeps_the_first_slope():
 
 # -- the step rules -------------------------------------------------------------------------
 
+IN_AIR = Environment()  # what the line hangs in: air, standard gravity
+
+
 def _props(**overrides):
     values = dict(segments=20, length=LENGTH, mass_per_length=MASS, axial_stiffness=5.0 * MBL,
                   axial_damping=BA, mbl=MBL, tension_curve=TABLE)
@@ -285,13 +288,15 @@ def test_step_rules_take_the_stiffest_tangent():
     stiffest = curved.stiffest_axial_stiffness
     assert stiffest == pytest.approx((TABLE[-1][1] - TABLE[-2][1]) / 0.05)
     linear = _props(tension_curve=(), axial_stiffness=stiffest)
-    assert stability_limit(curved) == pytest.approx(stability_limit(linear), rel=1e-12)
-    assert automatic_time_step(curved) == pytest.approx(automatic_time_step(linear), rel=1e-12)
-    assert automatic_time_step(curved, 'implicit_euler') == pytest.approx(
-        automatic_time_step(linear, 'implicit_euler'), rel=1e-12)
+    assert stability_limit(curved, IN_AIR) == pytest.approx(stability_limit(linear, IN_AIR),
+                                                            rel=1e-12)
+    assert automatic_time_step(curved, IN_AIR) == pytest.approx(
+        automatic_time_step(linear, IN_AIR), rel=1e-12)
+    assert automatic_time_step(curved, IN_AIR, 'implicit_euler') == pytest.approx(
+        automatic_time_step(linear, IN_AIR, 'implicit_euler'), rel=1e-12)
     # the state check's bound: twice the pull at the limit, 2 x 2 MBL, and the dampers at
     # the fastest wave's speed (11 % more here)
-    assert 4.0 * MBL < tension_bound(curved) < 1.2 * 4.0 * MBL
+    assert 4.0 * MBL < tension_bound(curved, IN_AIR) < 1.2 * 4.0 * MBL
 
 
 def test_a_stretch_to_the_reach_stays_stable_at_the_automatic_step():
@@ -315,7 +320,7 @@ def test_a_stretch_to_the_reach_stays_stable_at_the_automatic_step():
     # peak 2.000012 MBL), far inside the state check's bound (4.5 MBL at 22 m/s)
     assert peak == pytest.approx(2.0 * MBL, rel=1e-4)
     assert output.fairlead_tension == pytest.approx(2.0 * MBL, rel=1e-4)
-    assert peak < tension_bound(sim.props, 22.0)
+    assert peak < tension_bound(sim.props, sim.environment, 22.0)
 
 
 # -- a dynamic case against MoorDyn ---------------------------------------------------------

@@ -155,7 +155,7 @@ def test_a_crane_tip_heaving_faster_than_g_snatches_the_line(integrator):
 
     sim = hanging(1000.0, integrator, tip=tip, duration=12.0, segments=20, length=40.0)
     static = sim.output().fairlead_tension
-    bound = tension_bound(sim.props, 1.5 * amplitude * omega * 1.5)
+    bound = tension_bound(sim.props, sim.environment, 1.5 * amplitude * omega * 1.5)
     tensions, restarts = [], []
     for when in np.arange(0.01, 12.0, 0.01):
         restarts.append(sim.advance_to(float(when)).restarted)

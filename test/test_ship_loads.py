@@ -15,6 +15,7 @@
 """Wind, current and a passing ship on the moored ship; the berth check against a run."""
 
 import csv
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -22,9 +23,11 @@ import pytest
 
 from rope_sim_ros.model.frames import rotation_matrix
 from rope_sim_ros.model.layout import BODY_LINEAR_DAMPING
+from rope_sim_ros.model.objects import Environment
 from rope_sim_ros.model.ship.coefficients import parse_coefficient_csv
-from rope_sim_ros.model.ship.loads import PassingShip, ShipLoads, Wind, world_load
+from rope_sim_ros.model.ship.loads import PassingShip, ShipLoads, world_load
 from rope_sim_ros.model.ship.passing import Hull, passing_loads
+from rope_sim_ros.model.ship.wind import Wind
 from rope_sim_ros.mooring.mooring import Mooring
 from rope_sim_ros.mooring.ship import ship_loads
 from rope_sim_ros.offline import berth_check, cli
@@ -39,10 +42,35 @@ HULL = Hull(225.0, 32.2, 14.0, 0.85)
 AIR, WATER = 1.225, 1025.0
 
 
-def loads(**changes) -> ShipLoads:
+class Loads:
+    """ShipLoads in an environment of their own: AIR, water, a wind and a current."""
+
+    def __init__(self, model: ShipLoads, water: float = WATER, wind: Wind = Wind(),
+                 current=(0.0, 0.0, 0.0)):
+        self.model = model
+        self.environment = Environment(air_density=AIR, water_density=water, wind=wind,
+                                       current=tuple(current))
+
+    @property
+    def passing(self) -> PassingShip:
+        return self.model.passing
+
+    @property
+    def current(self) -> tuple:
+        return self.environment.current
+
+    @current.setter
+    def current(self, value) -> None:
+        self.environment = replace(self.environment, current=tuple(value))
+
+    def at(self, t: float, position, rotation, velocity) -> np.ndarray:
+        return self.model.at(t, self.environment, position, rotation, velocity)
+
+
+def loads(wind: Wind = Wind(), current=(0.0, 0.0, 0.0), **changes) -> Loads:
     """Return loads of TABLE for wind and current, windage 450 x 2500, below water B T x L T."""
-    return ShipLoads(HULL, TABLE, TABLE, (450.0, 2500.0), (32.2 * 14.0, 225.0 * 14.0), AIR,
-                     WATER, **changes)
+    return Loads(ShipLoads(HULL, TABLE, TABLE, (450.0, 2500.0), (32.2 * 14.0, 225.0 * 14.0),
+                           **changes), wind=wind, current=current)
 
 
 def heading(yaw: float) -> np.ndarray:
@@ -126,8 +154,9 @@ def test_the_passing_ship_moves_at_its_speed_through_the_water_plus_the_current(
     track = PassingShip.beside(passer, through_water, -1, -300.0 * FT, 1200.0 * FT,
                                np.zeros(3), 0.0)
     slug_per_ft3 = KIP / 1000.0 / FT ** 4  # [kg/m^3]: a slug is 1 lbf s^2 / ft
-    model = ShipLoads(moored, TABLE, TABLE, (1.0, 1.0), (1.0, 1.0), AIR, 1.9905 * slug_per_ft3,
-                      current=current, passing=track, depth=50.0 * FT, image_pairs=10)
+    model = Loads(ShipLoads(moored, TABLE, TABLE, (1.0, 1.0), (1.0, 1.0), passing=track,
+                            depth=50.0 * FT, image_pairs=10),
+                  water=1.9905 * slug_per_ft3, current=current)
     typo = math.pi / 3.1415279  # PARSHIP's pi
     for row in rows:
         t = float(row['step']) - 10.0  # [s]

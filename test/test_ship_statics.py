@@ -34,6 +34,7 @@ import numpy as np
 import pytest
 
 from rope_sim_ros.model.body import Body, Fender
+from rope_sim_ros.model.objects import Environment
 from rope_sim_ros.model.rope import RopeProperties
 from rope_sim_ros.model.statics.pretension import length_for_tension
 from rope_sim_ros.model.statics.ship import Pose, ShipStatics, StaticLine, StaticsError
@@ -80,11 +81,14 @@ def ship_body(yaw: float = 0.0) -> Body:
                      [GM, GM], START, yaw, HULL, WATER, G)
 
 
+IN_AIR = Environment(gravity=(0.0, 0.0, -G))  # what the lines hang in
+
+
 def rope(kind, length: float = 1.0) -> RopeProperties:
-    """Return a line of MoorPy's numbers (mass, EA, diameter) in air."""
+    """Return a line of MoorPy's numbers (mass, EA, diameter) (in IN_AIR)."""
     mass, ea, diameter = kind
     return RopeProperties(segments=20, length=length, mass_per_length=mass, axial_stiffness=ea,
-                          axial_damping=0.0, diameter=diameter, gravity=(0.0, 0.0, -G))
+                          axial_damping=0.0, diameter=diameter)
 
 
 def turn(yaw: float, point) -> np.ndarray:
@@ -103,10 +107,11 @@ def statics(yaw: float = 0.0, load=LOAD) -> ShipStatics:
         bollard = turn(yaw, bollard)
         end = start.position + start.rotation @ np.array(fairlead)
         if tension > 0.0:
-            length = length_for_tension(rope(kind), bollard, end, tension)
+            length = length_for_tension(rope(kind), IN_AIR, bollard, end, tension)
         else:
             length = -tension * float(np.linalg.norm(end - bollard))
-        lines.append(StaticLine(rope(kind, length), bollard, np.array(fairlead), f'line_{k}'))
+        lines.append(StaticLine(rope(kind, length), IN_AIR, bollard, np.array(fairlead),
+                                f'line_{k}'))
     force = turn(yaw, np.add(START, load[:3])) - START
     return ShipStatics(lines, body, None, [*force, *load[3:]])
 
@@ -126,7 +131,8 @@ def moorpy_system(ship: ShipStatics, pose: Pose):
         props = line.props
         # MoorPy's weight is (m - rho pi d_vol^2 / 4) g: d_vol follows from w
         system.setLineType(dnommm=1e3 * props.diameter, name=f'type_{k}',
-                           mass=props.mass_per_length, w=props.weight_per_length,
+                           mass=props.mass_per_length,
+                           w=props.weight_per_length(line.environment),
                            EA=props.axial_stiffness)
         bollard = system.addPoint(1, line.bollard)
         fairlead = system.addPoint(1, line.fairlead, body=1)
@@ -283,7 +289,7 @@ def test_a_ship_nothing_holds_has_no_equilibrium():
 
 def test_a_line_beyond_its_reach_pulls_its_limit_tension():
     props = rope(HMPE, 40.0)
-    line = StaticLine(props, np.zeros(3), np.zeros(3))
+    line = StaticLine(props, IN_AIR, np.zeros(3), np.zeros(3))
     far = np.array([60.0, 0.0, 5.0])  # 60.2 m > 40 (1 + 0.25) = 50 m
     force, fairlead, bollard, beyond = line.force(far)
     assert beyond and fairlead == bollard == pytest.approx(HMPE[1] * 0.25)

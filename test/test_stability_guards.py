@@ -64,7 +64,8 @@ def run(params, fairlead, duration, rate=100.0, sample=0.01):
     sim.start(0.0)
     samples = np.array([fairlead(t) for t in times])
     speed = (np.linalg.norm(np.diff(samples, axis=0), axis=1) / sample).max()
-    bound = tension_bound(sim.props, 1.5 * speed)  # a spline runs up to 1.5 times the secant
+    # a spline runs up to 1.5 times the secant
+    bound = tension_bound(sim.props, sim.environment, 1.5 * speed)
     outputs, advances = [sim.output()], []
     for t in np.arange(1.0, round(duration * rate) + 1.0) / rate:
         feed(t)
@@ -113,7 +114,8 @@ def test_the_users_step_is_refused_naming_the_largest_stable_one():
 
 @pytest.mark.parametrize('line', LINES)
 def test_improved_euler_refuses_exactly_the_unstable_steps(line):
-    limit = stability_limit(OneLine(LINES[line]()).props)
+    sim = OneLine(LINES[line]())
+    limit = stability_limit(sim.props, sim.environment)
     for step in (1.01 * limit, 2.0 * limit, 0.1):
         with pytest.raises(ParameterError, match='above improved_euler') as error:
             OneLine(LINES[line](integrator='improved_euler', time_step=step))
@@ -128,7 +130,8 @@ def test_improved_euler_refuses_exactly_the_unstable_steps(line):
 @pytest.mark.parametrize('line', ['reference polyester N20', 'reference wire N50',
                                   'hmpe N40, stiff bending'])
 def test_improved_euler_at_its_largest_step_matches_the_automatic_step(line):
-    limit = stability_limit(OneLine(LINES[line]()).props)
+    sim = OneLine(LINES[line]())
+    limit = stability_limit(sim.props, sim.environment)
     _, automatic, _ = run(LINES[line](integrator='improved_euler'), jerk(3.0), 2.0)
     sim, largest, advances = run(
         LINES[line](integrator='improved_euler', time_step=0.999 * limit), jerk(3.0), 2.0)
@@ -159,7 +162,8 @@ def test_a_run_time_change_that_makes_the_step_unstable_is_refused():
 
 @pytest.mark.parametrize('line', LINES)
 def test_implicit_euler_divides_a_coarse_step_into_automatic_ones(line):
-    automatic = automatic_time_step(OneLine(LINES[line]()).props, 'implicit_euler')
+    sim = OneLine(LINES[line]())
+    automatic = automatic_time_step(sim.props, sim.environment, 'implicit_euler')
     for step in (0.1, 0.01, 1.5 * automatic):
         sim = OneLine(LINES[line](integrator='implicit_euler', time_step=step))
         assert sim.time_step == pytest.approx(step / math.ceil(step / automatic - 1e-9))
@@ -216,11 +220,13 @@ def test_a_state_past_the_bound_is_restarted_at_rest(velocity, reason):
 
 
 def test_the_bound_of_the_reference_line():
-    props = OneLine(reference_params('polyester', 20)).props
+    sim = OneLine(reference_params('polyester', 20))
+    props, air = sim.props, sim.environment
     # 2 EA max_strain = 25 MN; dampers at twice (c max_strain + sqrt(2 g L)), 3.4 MN; the
     # weight, 1 kN; an end at 10 m/s adds 29 kN
-    assert tension_bound(props) == pytest.approx(28.27e6, rel=1e-3)
-    assert tension_bound(props, 10.0) - tension_bound(props) == pytest.approx(29.03e3, rel=1e-3)
+    assert tension_bound(props, air) == pytest.approx(28.27e6, rel=1e-3)
+    assert tension_bound(props, air, 10.0) - tension_bound(props, air) == pytest.approx(
+        29.03e3, rel=1e-3)
 
 
 # -- ends beyond reach ----------------------------------------------------------------------
@@ -286,7 +292,7 @@ def test_a_line_let_go_at_its_limit_rings_down():
 def test_ends_at_one_point_hang_still(values, over):
     """Before: the fold's bending springs kicked it open; 2 N to 4.4 kN for 14 s."""
     sim, outputs, _ = run(from_values(values), lambda t: np.zeros(3), 4.0)
-    share = 0.5 * sim.props.weight_per_length * sim.props.length
+    share = 0.5 * sim.props.weight_per_length(sim.environment) * sim.props.length
     tensions = np.array([out.fairlead_tension for out in outputs])
     assert tensions.max() - tensions.min() < 1e-3 * share
     # each end holds half the weight; the bending springs holding the bottom of the fold
@@ -319,7 +325,8 @@ def test_rope_sim_run_refuses_an_unstable_step_in_one_line(tmp_path):
     assert result.stderr.startswith(
         "rope_sim run: error: time_step 0.01 s is above improved_euler's stability limit "
         'for this line (largest stable step ')
-    limit = stability_limit(OneLine(from_values({})).props)
+    line = OneLine(from_values({}))
+    limit = stability_limit(line.props, line.environment)
     largest = float(LARGEST.search(result.stderr).group(1))
     assert 0.9 * limit <= largest <= limit
     assert not out.exists()  # refused before anything was written

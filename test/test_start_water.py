@@ -39,19 +39,15 @@ from rope_sim_ros.stepping.step import step
 G = 9.81
 
 
-def _props(line_type: LineType, environment: Environment, length: float,
-           segments: int) -> RopeProperties:
-    """Return the RopeProperties of a uniform line of line_type in environment."""
-    t, e = line_type, environment
+def _props(line_type: LineType, length: float, segments: int) -> RopeProperties:
+    """Return the RopeProperties of a uniform line of line_type."""
+    t = line_type
     return RopeProperties(
         segments=segments, length=length, mass_per_length=t.mass_per_length,
-        axial_stiffness=t.axial_stiffness, axial_damping=t.axial_damping, gravity=e.gravity,
+        axial_stiffness=t.axial_stiffness, axial_damping=t.axial_damping,
         diameter=t.diameter, volume_diameter=t.volume_diameter, normal_drag=t.normal_drag,
         tangential_drag=t.tangential_drag, normal_added_mass=t.normal_added_mass,
-        tangential_added_mass=t.tangential_added_mass, air_density=e.air_density,
-        water_level=e.water_level, water_density=e.water_density, current=e.current,
-        seabed_level=e.seabed_level, seabed_stiffness=e.seabed_stiffness,
-        seabed_damping=e.seabed_damping, seabed_friction=e.seabed_friction)
+        tangential_added_mass=t.tangential_added_mass)
 
 
 def _rows(reference_dir, name: str) -> list:
@@ -65,7 +61,7 @@ def _vector(row: dict, prefix: str) -> np.ndarray:
 
 def _start(line_type, environment, end_b, length, segments, end_a=(0.0, 0.0, 0.0)):
     """Build the line at its start shape, relax it; return (props, system, relaxed)."""
-    props = _props(line_type, environment, length, segments)
+    props = _props(line_type, length, segments)
     shape = start_shape(line_type, environment, end_a, end_b, length, segments)
     system = single_line(line_type, environment, length, segments, shape,
                          Point('fixed', end_a), Point('fixed', end_b))
@@ -221,7 +217,8 @@ def test_no_ringing_at_start(integrator, case):
     props, system, relaxed = _start(line_type, environment, end_b, length, segments)
     assert relaxed
     start = system.end_forces()[0]
-    forces = _hold(system, integrator, automatic_time_step(props, integrator), 5.0)
+    forces = _hold(system, integrator, automatic_time_step(props, environment, integrator),
+                   5.0)
     drift = np.linalg.norm(forces - start, axis=2).max()
     assert drift < 1e-4 * np.linalg.norm(start[1]), drift
 
@@ -231,7 +228,7 @@ def test_no_ringing_at_start(integrator, case):
 
 def _laid(line_type, environment, length, segments, span):
     """Return a line lying on the seabed at z = 0 between ends on it, its sag in the ground."""
-    props = _props(line_type, environment, length, segments)
+    props = _props(line_type, length, segments)
     a, b = np.zeros(3), np.array([span, 0.0, 0.0])
     shape = start_shape(line_type, environment, a, b, length, segments)
     system = single_line(line_type, environment, length, segments, shape, Point('fixed', a),
@@ -246,19 +243,21 @@ def test_contact_damping_limits_the_explicit_step():
     # for as long as it runs (the ground never pulls, so the unstable mode saturates rather
     # than blows up); at the automatic step they lie still.
     environment = Environment(gravity=(0.0, 0.0, -G), seabed_level=0.0)
-    free = _props(POLYESTER, Environment(gravity=(0.0, 0.0, -G)), 40.0, 10)
+    air = Environment(gravity=(0.0, 0.0, -G))  # the free line's: no ground
+    free = _props(POLYESTER, 40.0, 10)
     props, system = _laid(POLYESTER, environment, 40.0, 10, 39.0)
-    stiffness, damping = contact_rates(props)
+    stiffness, damping = contact_rates(props, environment)
     assert damping == pytest.approx(3.0e5 * 0.064 / 2.6)
     assert stiffness == pytest.approx(3.0e6 * 0.064 / 2.6)
-    assert contact_rates(free) == (0.0, 0.0)
-    assert stability_limit(props) <= 2.0 / damping
-    assert stability_limit(props) < 0.9 * stability_limit(free)
-    assert automatic_time_step(props) < stability_limit(props)
-    assert automatic_time_step(free) > 2.0 / damping
+    assert contact_rates(free, air) == (0.0, 0.0)
+    assert stability_limit(props, environment) <= 2.0 / damping
+    assert stability_limit(props, environment) < 0.9 * stability_limit(free, air)
+    assert automatic_time_step(props, environment) < stability_limit(props, environment)
+    assert automatic_time_step(free, air) > 2.0 / damping
     shape = system.x.copy()
     shape[1:-1, 2] += 1e-6 * np.sin(np.arange(1, 10))  # what rounding would grow from
-    for dt, still in ((automatic_time_step(props), True), (automatic_time_step(free), False)):
+    for dt, still in ((automatic_time_step(props, environment), True),
+                      (automatic_time_step(free, air), False)):
         system.x[:] = shape
         system.v[:] = 0.0
         _hold(system, 'improved_euler', dt, 1.0)
@@ -274,15 +273,15 @@ def test_slack_dampers_limit_the_explicit_step():
     # it falls as a chain does.
     line_type, length, segments = _chain(2.5), 50.0, 20
     environment = Environment(gravity=(0.0, 0.0, -G))
-    props = _props(line_type, environment, length, segments)
+    props = _props(line_type, length, segments)
     slack_limit = props.particle_mass / (2.0 * props.structural_damping)
-    assert stability_limit(props) == pytest.approx(slack_limit, rel=1e-9)
+    assert stability_limit(props, environment) == pytest.approx(slack_limit, rel=1e-9)
     a, b = np.array([0.0, 0.0, 1.0]), np.array([40.0, 0.0, 1.0])
     shape = np.linspace(a, b, segments + 1)
     shape[:, 2] = 1.0 + 0.4 * np.sin(np.linspace(0.0, math.pi, segments + 1))
     system = single_line(line_type, environment, length, segments, shape, Point('fixed', a),
                          Point('fixed', b))
-    forces = _hold(system, 'improved_euler', automatic_time_step(props), 5.0)
+    forces = _hold(system, 'improved_euler', automatic_time_step(props, environment), 5.0)
     assert np.abs(system.v).max() < 20.0  # a fall of 13 m: 16 m/s
     hanging = np.linalg.norm(chain_equilibrium(a, b, length, segments, 390.0 * G,
                                                line_type.axial_stiffness,
@@ -300,13 +299,13 @@ def test_line_dropped_on_the_seabed_comes_to_rest(integrator, line):
     else:
         line_type, length, segments, span = POLYESTER, 40.0, 20, 30.0
     environment = Environment(gravity=(0.0, 0.0, -G), seabed_level=0.0)
-    props = _props(line_type, environment, length, segments)
+    props = _props(line_type, length, segments)
     a, b = np.array([0.0, 0.0, 1.0]), np.array([span, 0.0, 1.0])
     shape = np.linspace(a, b, segments + 1)
     shape[:, 2] = 1.0 + 0.4 * np.sin(np.linspace(0.0, math.pi, segments + 1))  # no stretch
     system = single_line(line_type, environment, length, segments, shape, Point('fixed', a),
                          Point('fixed', b))
-    dt = automatic_time_step(props, integrator)
+    dt = automatic_time_step(props, environment, integrator)
     _hold(system, integrator, dt, 20.0)
     assert np.all(np.isfinite(system.x))
     assert np.abs(system.v).max() < 1e-3

@@ -36,7 +36,7 @@ def _straight(a, b, segments):
 def _step_of(line_type, length, segments, integrator):
     props = RopeProperties(segments, length, line_type.mass_per_length,
                            line_type.axial_stiffness, line_type.axial_damping)
-    return automatic_time_step(props, integrator)
+    return automatic_time_step(props, ENVIRONMENT, integrator)
 
 
 def _run(system, integrator, dt, duration):

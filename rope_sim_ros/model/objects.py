@@ -72,6 +72,7 @@ from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, SNAP_FLOOR
                      WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND, WINCH_END,
                      WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
                      WINCH_RESPONSE, WINCH_SPEED)
+from .ship.wind import Wind
 from .tension_curve import check_curve, TensionCurve
 
 KINDS = {'fixed': FIXED, 'driven': DRIVEN, 'free': FREE, 'carried': CARRIED}
@@ -175,7 +176,9 @@ class LineType:
 @dataclass(frozen=True)
 class Environment:
     """
-    What the lines live in. Heights are z in the System's frame (REP-103: z up).
+    What a mooring lives in: one per mooring, its lines, points and ship read it.
+
+    Heights are z in the System's frame (REP-103: z up).
 
     :ivar gravity: gravity vector [m/s^2], (3,).
     :ivar air_density: [kg/m^3]: buoyancy, drag and added mass above the water (the seed's
@@ -191,6 +194,8 @@ class Environment:
     :ivar quay_normal: the face's outward normal, towards the water, (3,) (its horizontal part
         counts); all zero: no quay.
     :ivar quay_depth: how far below the deck the quay block reaches [m].
+    :ivar wind: the wind over the water (ship/wind.py's Wind): it pushes the ship, not the
+        lines.
     """
 
     gravity: tuple = (0.0, 0.0, -9.81)
@@ -205,6 +210,7 @@ class Environment:
     quay_edge: tuple = (0.0, 0.0, 0.0)
     quay_normal: tuple = (0.0, 0.0, 0.0)
     quay_depth: float = 1.0e4
+    wind: Wind = Wind()
 
     def __post_init__(self):
         """Check every number: a one-line error naming the first that is wrong."""
@@ -234,6 +240,13 @@ class Environment:
     def has_water(self) -> bool:
         """Tell whether there is water (a water level above -inf)."""
         return self.water_level > -math.inf
+
+    @property
+    def depth(self) -> float:
+        """Return the depth of the water, water_level - seabed_level [m]; math.inf: deep."""
+        if self.water_level == -math.inf or self.seabed_level == -math.inf:
+            return math.inf
+        return self.water_level - self.seabed_level
 
     def array(self) -> np.ndarray:
         """Return the ENV array the kernels take (layout.ENV_*), quay normal made a unit."""
@@ -682,9 +695,16 @@ class System:
 
     def set_current(self, current) -> None:
         """Set the water's uniform current (3,) [m/s] now, without rebuilding anything."""
-        vector = _vector('current', current)
-        self.environment = replace(self.environment, current=vector)
-        self.env[ENV_CURRENT:ENV_CURRENT + 3] = vector
+        self.set_environment(replace(self.environment, current=_vector('current', current)))
+
+    def set_environment(self, environment: Environment) -> None:
+        """
+        Take the environment as a run changed it (its current, its wind) from now on.
+
+        Nothing else of it changes at run time: the current alone goes into the tables.
+        """
+        self.environment = environment
+        self.env[ENV_CURRENT:ENV_CURRENT + 3] = environment.current
         self._loads_at = -1  # the end forces' drag changes with it
 
     # -- what the integrators and the outputs need -----------------------------------------

@@ -39,6 +39,9 @@ class RopeProperties:
     """
     The physical numbers of one line, all resolved (no 'take from material' values).
 
+    The line's own numbers only: what it lives in (gravity, the fluids, the ground) is the
+    mooring's one objects.Environment, which the functions that need it take beside these.
+
     :ivar segments: number of segments N.
     :ivar length: unstretched length L [m].
     :ivar mass_per_length: [kg/m].
@@ -49,7 +52,6 @@ class RopeProperties:
     :ivar bending_damping_ratio: bending spring damping / structural spring damping.
     :ivar damping_model: 'axial' (stretch rate only) or 'seed' (K_SD (V_A - V_B)).
     :ivar air_drag_coefficient: K_A per metre [N s^2 / m^3].
-    :ivar gravity: gravity vector [m/s^2], shape (3,).
     :ivar max_strain: super-elasticity threshold (strain); a curve may raise it (strain_limit).
     :ivar superelastic_adjustment: apply the position/velocity adjustment.
     :ivar payload_mass: mass of a free payload at the bollard end [kg]; 0: the bollard is a
@@ -60,15 +62,6 @@ class RopeProperties:
     :ivar mbl: minimum breaking load [N].
     :ivar normal_drag, tangential_drag: MoorDyn's Cd (on d) and CdAx (on pi d).
     :ivar normal_added_mass, tangential_added_mass: MoorDyn's Ca and CaAx.
-    :ivar air_density, water_density: [kg/m^3].
-    :ivar water_level: z of the still water surface [m]; -inf: no water.
-    :ivar current: uniform current below the surface [m/s], (3,).
-    :ivar seabed_level: z of the seabed [m]; -inf: none.
-    :ivar seabed_stiffness, seabed_damping, seabed_friction: MoorDyn's kBot [Pa/m], cBot
-        [Pa s/m] and friction coefficient, for the seabed and the quay.
-    :ivar quay_edge: a point on the top edge of the quay face [m], (3,).
-    :ivar quay_normal: unit horizontal normal out of the face, (3,); zeros: no quay.
-    :ivar quay_depth: how far below the deck the quay reaches [m].
     :ivar payload_volume: [m^3]; payload_drag_area: CdA [m^2]; payload_added_mass: Ca.
     :ivar tension_curve: the load-extension as (strain, tension [N]) pairs (LineType's);
         () for a linear line of EA.
@@ -83,7 +76,6 @@ class RopeProperties:
     bending_damping_ratio: float = 0.0
     damping_model: str = 'axial'
     air_drag_coefficient: float = 0.0
-    gravity: tuple = (0.0, 0.0, -9.81)
     max_strain: float = 0.25
     superelastic_adjustment: bool = True
     payload_mass: float = 0.0
@@ -94,17 +86,6 @@ class RopeProperties:
     tangential_drag: float = 0.0
     normal_added_mass: float = 0.0
     tangential_added_mass: float = 0.0
-    air_density: float = 1.225
-    water_level: float = -math.inf
-    water_density: float = 1025.0
-    current: tuple = (0.0, 0.0, 0.0)
-    seabed_level: float = -math.inf
-    seabed_stiffness: float = 3.0e6
-    seabed_damping: float = 3.0e5
-    seabed_friction: float = 0.0
-    quay_edge: tuple = (0.0, 0.0, 0.0)
-    quay_normal: tuple = (0.0, 0.0, 0.0)
-    quay_depth: float = 1.0e4
     payload_volume: float = 0.0
     payload_drag_area: float = 0.0
     payload_added_mass: float = 0.0
@@ -166,23 +147,6 @@ class RopeProperties:
             tangential_added_mass=self.tangential_added_mass, tension_curve=self.tension_curve)
 
     @property
-    def environment(self) -> Environment:
-        """Return the Environment of the line."""
-        return Environment(
-            gravity=_vector(self.gravity), air_density=float(self.air_density),
-            water_level=float(self.water_level), water_density=float(self.water_density),
-            current=_vector(self.current), seabed_level=float(self.seabed_level),
-            seabed_stiffness=float(self.seabed_stiffness),
-            seabed_damping=float(self.seabed_damping),
-            seabed_friction=float(self.seabed_friction), quay_edge=_vector(self.quay_edge),
-            quay_normal=_vector(self.quay_normal), quay_depth=float(self.quay_depth))
-
-    @property
-    def has_water(self) -> bool:
-        """Tell whether there is water (a finite water_level)."""
-        return math.isfinite(self.water_level)
-
-    @property
     def volume_area(self) -> float:
         """Displaced area per metre, pi dv^2 / 4 [m^2] (dv = 0: the nominal diameter)."""
         dv = self.volume_diameter or self.diameter
@@ -223,19 +187,17 @@ class RopeProperties:
         """Bending spring damping [N s/m]."""
         return self.bending_damping_ratio * self.structural_damping
 
-    @property
-    def weight_per_length(self) -> float:
+    def weight_per_length(self, environment: Environment) -> float:
         """Weight per length in air, less the air's buoyancy: (m - rho_a A_v) |g| [N/m]."""
-        return self.fluid_weight_per_length(self.air_density)
+        return self.fluid_weight_per_length(environment.air_density, environment)
 
-    @property
-    def submerged_weight_per_length(self) -> float:
+    def submerged_weight_per_length(self, environment: Environment) -> float:
         """Weight per length in water, (m - rho_w A_v) |g| [N/m] (< 0: the line floats)."""
-        return self.fluid_weight_per_length(self.water_density)
+        return self.fluid_weight_per_length(environment.water_density, environment)
 
-    def fluid_weight_per_length(self, density: float) -> float:
+    def fluid_weight_per_length(self, density: float, environment: Environment) -> float:
         """Weight per length less the buoyancy of a fluid of `density`, [N/m]."""
-        g = float(np.linalg.norm(self.gravity))
+        g = float(np.linalg.norm(environment.gravity))
         return (self.mass_per_length - density * self.volume_area) * g
 
     @property
@@ -249,11 +211,8 @@ class RopeProperties:
         return math.sqrt(self.stiffest_axial_stiffness / self.mass_per_length)
 
 
-def _vector(values) -> tuple:
-    return tuple(float(v) for v in values)
-
-
-def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
+def tension_bound(props: RopeProperties, environment: Environment,
+                  end_speed: float = 0.0) -> float:
     """
     Largest force [N] the line can put on an end; a state past it is a numerical artefact.
 
@@ -306,12 +265,13 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
     A slack-taut snap of a 1 t payload on the default 40 m polyester line under a crane tip
     heaving at 1.4 g peaks well under a tenth of this bound (test_payload.py).
 
+    :param environment: what the line lives in (gravity, the fluids, the current).
     :param end_speed: the largest speed of an end [m/s].
     """
     ea, strain = props.axial_stiffness, props.strain_limit
     stiffest = props.stiffest_axial_stiffness
     r_s, r_d = props.bending_stiffness_ratio, props.bending_damping_ratio
-    g = math.hypot(*props.gravity)
+    g = math.hypot(*environment.gravity)
     fall = math.sqrt(2.0 * g * props.length)
     payload = props.payload_mass
     snatch = 0.0
@@ -324,9 +284,10 @@ def tension_bound(props: RopeProperties, end_speed: float = 0.0) -> float:
     v_star = props.wave_speed * strain + fall + end_speed
     springs = 2.0 * props.limit_tension + 2.0 * r_s * ea * (2.0 * strain + 1.0)
     dampers = 2.0 * props.axial_damping * v_star / props.segment_length * (1.0 + 2.0 * r_d)
-    rho = max(props.air_density, props.water_density if props.has_water else 0.0)
+    water = math.isfinite(environment.water_level)
+    rho = max(environment.air_density, environment.water_density if water else 0.0)
     weight = (props.mass_per_length + rho * props.volume_area) * g * props.length
-    speed = math.hypot(*props.current) * props.has_water + end_speed
+    speed = math.hypot(*environment.current) * water + end_speed
     if payload > 0.0:
         speed += fall
     drag = (0.25 * rho * (props.normal_drag + math.pi * props.tangential_drag)

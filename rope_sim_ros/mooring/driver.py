@@ -61,7 +61,6 @@ from .records import MooringAdvance, Published, Report
 from .statics import stiffness_now
 from .status import Rating, ratings
 from ..params.arrangement import ArrangementParams
-from ..params.ship import WIND_SETTINGS
 from ..params.table import ParameterError
 
 SHIP = 'ship'  # the ship's pose stream; a bollard's stream is named by its line
@@ -442,33 +441,21 @@ class Driver:
 
     def check_update(self, name: Optional[str], values: dict) -> None:
         """Refuse run-time changes of one line's parameters (None: every line's)."""
-        values = {k: v for k, v in values.items() if k not in WIND_SETTINGS}
-        for k in self._indices(name):
-            self.mooring.check_update(k, values)
+        self.mooring.check_update(self._index(name), values)
 
     def update(self, name: Optional[str], values: dict) -> None:
         """
         Apply run-time changes of one line's parameters (None: a shared one, every line).
 
-        publish_rate changes the output rate (see set_rate); wind_speed and wind_direction
-        (None only) the wind on the ship.
+        publish_rate changes the output rate (see set_rate); current, wind_speed and
+        wind_direction (None only) the mooring's one environment (Mooring.update).
         """
-        wind = {k: values[k] for k in WIND_SETTINGS if k in values}
-        if wind:
-            ship = self.mooring.arrangement.ship
-            self.mooring.set_wind(wind.get('wind_speed', ship.wind_speed),
-                                  wind.get('wind_direction', ship.wind_direction))
-            values = {k: v for k, v in values.items() if k not in WIND_SETTINGS}
-        for k in self._indices(name) if values else ():
-            self.mooring.update(k, values)
+        self.mooring.update(self._index(name), values)
         if 'publish_rate' in values:
             self.set_rate(self.mooring.lines[0].params.publish_rate)
 
-    def _indices(self, name: Optional[str]) -> range:
-        if name is None:
-            return range(len(self.mooring.lines))
-        k = self.mooring.names.index(name)
-        return range(k, k + 1)
+    def _index(self, name: Optional[str]) -> Optional[int]:
+        return None if name is None else self.mooring.names.index(name)
 
     def set_rate(self, rate: float) -> None:
         """

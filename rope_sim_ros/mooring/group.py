@@ -50,7 +50,7 @@ import numpy as np
 
 from .line import MooringLine, Parting
 from .records import MooringAdvance
-from ..model.objects import Line, Point, System
+from ..model.objects import Environment, Line, Point, System
 from ..model.superelastic import MAX_ITERATIONS
 from ..stepping.rules import (fine_steps, implicit_bending, lines_motion_spreads,
                               lowest_bound, step_divisions)
@@ -93,8 +93,8 @@ class GroupRules:
         m/s of its ends [N] (MooringLine.load_bound).
     """
 
-    def __init__(self, lines: Sequence[MooringLine]):
-        """Take the lines' rules now."""
+    def __init__(self, lines: Sequence[MooringLine], environment: Environment):
+        """Take the lines' rules now, in the environment."""
         count = len(lines)
         self.reach = np.empty(count)
         self.segment_length = np.empty(count)
@@ -103,20 +103,21 @@ class GroupRules:
         self.current = np.empty(count)
         self.bound_at_rest = np.empty(count)
         self.bound_per_speed = np.empty(count)
-        self._of = [None] * count  # what each row was taken from: (props, length, parted)
-        self.refresh(lines)
+        # what each row was taken from: (props, length, parted, step, environment)
+        self._of = [None] * count
+        self.refresh(lines, environment)
 
-    def refresh(self, lines: Sequence[MooringLine]) -> None:
-        """Take again the rules of the lines whose numbers changed since."""
+    def refresh(self, lines: Sequence[MooringLine], environment: Environment) -> None:
+        """Take again the rules of the lines whose numbers (or environment) changed since."""
         for j, line in enumerate(lines):
-            key = (line.props, line.length, line.parting, line.time_step)
+            key = (line.props, line.length, line.parting, line.time_step, environment)
             if self._of[j] == key:
                 continue
             self._of[j] = key
             self.reach[j] = line.reach
             self.segment_length[j] = line.line_props.segment_length
-            self.stable[j], self.rate[j], self.current[j] = line.fine_step()
-            self.bound_at_rest[j], self.bound_per_speed[j] = line.load_bound()
+            self.stable[j], self.rate[j], self.current[j] = line.fine_step(environment)
+            self.bound_at_rest[j], self.bound_per_speed[j] = line.load_bound(environment)
 
 
 class Group:
@@ -144,9 +145,9 @@ class Group:
         self.index = np.array(members, dtype=np.int64)  # members, to index arrays with
         self.winches = (None, [])  # (j, k) of its lines with a winch, and of when
 
-    def refresh(self, lines: Sequence[MooringLine]) -> None:
+    def refresh(self, lines: Sequence[MooringLine], environment: Environment) -> None:
         """Take again the rules of its lines (of the mooring's `lines`) that changed."""
-        self.rules.refresh([lines[k] for k in self.members])
+        self.rules.refresh([lines[k] for k in self.members], environment)
 
     def build(self, sources: Dict[int, System], indices: Dict[int, int], mooring) -> None:
         """
@@ -160,7 +161,7 @@ class Group:
         :param mooring: the Mooring: its lines, its ship and their ends.
         """
         members = [(sources[k], indices[k]) for k in self.members]
-        system = System(members[0][0].environment)
+        system = System(mooring.environment)
         free = mooring.ship.free
         if free:
             system.add_body(mooring.ship.body)
@@ -184,7 +185,7 @@ class Group:
             system.load_line(j, source, i)
         self.system = system
         self.starts = np.array([0] + [len(line.x) for line in system.lines]).cumsum()
-        self.rules = GroupRules([mooring.lines[k] for k in self.members])
+        self.rules = GroupRules([mooring.lines[k] for k in self.members], mooring.environment)
         self.fine = np.empty(len(self.members))
 
     # -- its steps ------------------------------------------------------------------------
@@ -198,7 +199,8 @@ class Group:
         ends = mooring.ends
         if mooring.ship.free:
             self._check_ship(mooring, done)
-            mooring.ship.set_body_loads(self.system, self.time, float(times[-1]))
+            mooring.ship.set_body_loads(self.system, self.time, float(times[-1]),
+                                        mooring.environment)
         drive_x, drive_v, distances, far = ends.drive_group(self, times)
         if not (far or ends.held.any()):  # the common case
             self._step(mooring, times, drive_x, drive_v, done)
@@ -300,7 +302,7 @@ class Group:
             done.parted[k] = line.parting
             changed = True
         if changed:
-            self.refresh(lines)
+            self.refresh(lines, mooring.environment)
 
     # -- its checks -----------------------------------------------------------------------
 

@@ -20,7 +20,9 @@ step it takes (the one rule of time_step), how far its ends can be apart (its re
 a physical state of it can pull (its load bound), its winch and its parting, and how it
 starts at rest between two ends: in a System of its own, which the Mooring then puts in the
 System its group shares. It steps nothing itself: the Mooring steps every line of a group
-at once, with these rules as arrays of the group (GroupRules).
+at once, with these rules as arrays of the group (GroupRules). What it lives in is the
+mooring's one Environment, which the rules that depend on it (the step, the load bound, the
+shape at rest) are given.
 """
 
 from dataclasses import dataclass, replace
@@ -30,7 +32,7 @@ from typing import Optional
 import numpy as np
 
 from ..model.materials import MaterialLibrary
-from ..model.objects import Line, Point, System, Winch
+from ..model.objects import Environment, Line, Point, System, Winch
 from ..model.rope import RopeProperties, tension_bound
 from ..model.statics.start import hanging_shape, start_shape
 from ..params.resolve import rope_properties
@@ -77,7 +79,7 @@ def _round_down(value: float) -> float:
     return shown
 
 
-def choose_time_step(params: LineParams, props: RopeProperties,
+def choose_time_step(params: LineParams, props: RopeProperties, environment: Environment,
                      output_interval: float = 0.0) -> float:
     """
     Return the step of a line with these parameters: the one rule of time_step.
@@ -94,9 +96,9 @@ def choose_time_step(params: LineParams, props: RopeProperties,
     :raises ParameterError: improved_euler's time_step is above its stability limit.
     """
     if params.time_step == 0.0:
-        dt = automatic_time_step(props, params.integrator)
+        dt = automatic_time_step(props, environment, params.integrator)
     elif params.integrator == 'improved_euler':
-        limit = stability_limit(props)
+        limit = stability_limit(props, environment)
         if params.time_step > limit:
             largest = _round_down(limit)
             raise ParameterError(
@@ -105,22 +107,24 @@ def choose_time_step(params: LineParams, props: RopeProperties,
                 f'<= {largest:g} or 0 (automatic)')
         dt = params.time_step
     else:
-        automatic = automatic_time_step(props, params.integrator)
+        automatic = automatic_time_step(props, environment, params.integrator)
         dt = params.time_step / math.ceil(params.time_step / automatic - 1e-9)
     if output_interval > 0.0:
         dt = output_interval / math.ceil(output_interval / dt - 1e-9)
     return dt
 
 
-def _explicit_step(params: LineParams, props: RopeProperties) -> float:
+def _explicit_step(params: LineParams, props: RopeProperties,
+                   environment: Environment) -> float:
     """Return the improved Euler step a line takes (inf: it takes none)."""
     if params.integrator == 'adaptive' or (params.integrator == 'improved_euler'
                                            and params.time_step == 0.0):
-        return automatic_time_step(props)
+        return automatic_time_step(props, environment)
     return math.inf
 
 
-def check_pace(params: LineParams, props: RopeProperties, material) -> None:
+def check_pace(params: LineParams, props: RopeProperties, material,
+               environment: Environment) -> None:
     """
     Refuse an axial_damping that makes the line's improved Euler step shorter than it can run.
 
@@ -130,13 +134,13 @@ def check_pace(params: LineParams, props: RopeProperties, material) -> None:
 
     :raises ParameterError: the damping makes the step shorter than MIN_EXPLICIT_STEP.
     """
-    step = _explicit_step(params, props)
+    step = _explicit_step(params, props, environment)
     if step >= MIN_EXPLICIT_STEP or params.axial_damping <= 0.0:
         return
 
     def step_at(damping: float) -> float:
         return _explicit_step(params, rope_properties(
-            params.with_values({'axial_damping': damping}), material))
+            params.with_values({'axial_damping': damping}), material), environment)
 
     if step_at(0.0) < MIN_EXPLICIT_STEP:
         return
@@ -169,9 +173,9 @@ class MooringLine:
     """
 
     def __init__(self, name: str, params: LineParams, materials: MaterialLibrary,
-                 output_interval: float = 0.0):
+                 environment: Environment, output_interval: float = 0.0):
         """
-        Resolve the line's parameters.
+        Resolve the line's parameters, for a line in this environment (its step's).
 
         :raises ParameterError / MaterialError / ValueError: it cannot be built; the
             message says why.
@@ -181,8 +185,8 @@ class MooringLine:
         self.material = materials.properties(params.material, params.diameter)
         self.props = rope_properties(params, self.material)
         self.output_interval = output_interval
-        self.time_step = choose_time_step(params, self.props, output_interval)
-        check_pace(params, self.props, self.material)
+        self.time_step = choose_time_step(params, self.props, environment, output_interval)
+        check_pace(params, self.props, self.material, environment)
         self.length = params.length
         self.parting: Optional[Parting] = None
         self.winch_command = 0.0  # the speed last commanded [m/s]
@@ -224,7 +228,7 @@ class MooringLine:
             return math.inf
         return self.params.break_load or self.props.mbl
 
-    def load_bound(self) -> tuple:
+    def load_bound(self, environment: Environment) -> tuple:
         """
         Return the largest end force or EA strain [N] a physical state can have, as two terms.
 
@@ -233,10 +237,10 @@ class MooringLine:
         restarted.
         """
         props = self.line_props
-        at_rest = tension_bound(props)
-        return at_rest, tension_bound(props, 1.0) - at_rest
+        at_rest = tension_bound(props, environment)
+        return at_rest, tension_bound(props, environment, 1.0) - at_rest
 
-    def fine_step(self) -> tuple:
+    def fine_step(self, environment: Environment) -> tuple:
         """
         Return improved Euler's step at the line's length now: its stable step and drag rate.
 
@@ -249,9 +253,10 @@ class MooringLine:
         """
         props = self.line_props
         own = props is self.props and self.params.integrator == 'improved_euler'
-        stable = self.time_step if own else automatic_time_step(props)
-        current = math.hypot(*props.current) if props.has_water else 0.0
-        return stable, drag_rate(props, 1.0), current
+        stable = self.time_step if own else automatic_time_step(props, environment)
+        water = math.isfinite(environment.water_level)
+        current = math.hypot(*environment.current) if water else 0.0
+        return stable, drag_rate(props, environment, 1.0), current
 
     def winch(self) -> Winch:
         """Return the fairlead's winch as the parameters and the last command set it."""
@@ -269,11 +274,11 @@ class MooringLine:
 
     # -- at rest -----------------------------------------------------------------------------
 
-    def at_rest(self, ends: np.ndarray, held: bool) -> System:
+    def at_rest(self, ends: np.ndarray, held: bool, environment: Environment) -> System:
         """
         Return a System of this line alone at rest between its ends (2, 3) [m].
 
-        The catenary in its environment (start_shape: submerged weight below the surface,
+        The catenary in the environment (start_shape: submerged weight below the surface,
         laid on the seabed where it reaches it), brought to rest under the bending springs,
         the fluids and the ground too (relax); the start shape itself wherever that fails
         or the ends are held at the reach. With a payload: hanging straight down from the
@@ -281,13 +286,13 @@ class MooringLine:
         """
         p = self.line_props
         if self.payload:
-            shape = hanging_shape(p, ends[1])
+            shape = hanging_shape(p, environment, ends[1])
         else:
-            shape = start_shape(p.line_type, p.environment, ends[0], ends[1], p.length,
+            shape = start_shape(p.line_type, environment, ends[0], ends[1], p.length,
                                 p.segments)
-        alone = self.build(shape)
-        if not held and (not relax(p, alone) or not self._physical(alone)):
-            alone = self.build(shape)
+        alone = self.build(shape, environment)
+        if not held and (not relax(p, alone) or not self._physical(alone, environment)):
+            alone = self.build(shape, environment)
         return alone
 
     def parted_if_overloaded(self, t: float, alone: System) -> System:
@@ -317,14 +322,14 @@ class MooringLine:
         shape = x[0] + along[:, None] * u  # the bollard's piece from the bollard, the
         shape[segment + 1:] = x[-1] - (along[-1] - along[segment + 1:])[:, None] * u  # other
         self.parting = Parting(t, segment, self.break_load)
-        return self.build(shape)
+        return self.build(shape, alone.environment)
 
-    def _physical(self, system: System) -> bool:
+    def _physical(self, system: System, environment: Environment) -> bool:
         """Tell whether a System of this line alone is finite and within its load bound."""
         finite, largest = system.largest_load()
-        return finite and largest <= self.load_bound()[0]
+        return finite and largest <= self.load_bound(environment)[0]
 
-    def build(self, shape: np.ndarray) -> System:
+    def build(self, shape: np.ndarray, environment: Environment) -> System:
         """
         Make the System of the line at rest at `shape` (N+1, 3), its ends on the points.
 
@@ -334,7 +339,7 @@ class MooringLine:
         p = self.line_props
         if shape.shape != (p.segments + 1, 3):
             raise ValueError(f'shape must have shape ({p.segments + 1}, 3), got {shape.shape}')
-        system = System(p.environment)
+        system = System(environment)
         if self.payload:
             system.add_point(Point('free', shape[0], mass=p.payload_mass,
                                    volume=p.payload_volume, drag_area=p.payload_drag_area,
@@ -368,9 +373,11 @@ class MooringLine:
         self.parting = None
         self.held_tension = math.nan
 
-    def updated(self, values: dict) -> tuple:
+    def updated(self, values: dict, environment: Environment) -> tuple:
         """
         Return (params, props, time_step) with run-time changes applied; change nothing.
+
+        :param environment: the environment the line is in then (its step's).
 
         :raises ParameterError: a bad value, or one that makes the fixed time_step unstable
             (e.g. axial_damping lowered under improved_euler); the message says why.
@@ -378,25 +385,28 @@ class MooringLine:
         params = self.params.with_values(values)
         props = rope_properties(params, self.material)
         try:
-            time_step = choose_time_step(params, props, self.output_interval)
-            check_pace(params, props, self.material)
+            time_step = choose_time_step(params, props, environment, self.output_interval)
+            check_pace(params, props, self.material, environment)
         except ParameterError as e:
             changes = ', '.join(f'{k} = {v}' for k, v in values.items())
             raise ParameterError(f'with {changes}, {e}') from None
         return params, props, time_step
 
-    def update(self, values: dict) -> None:
+    def update(self, values: dict, environment: Environment) -> None:
         """
-        Apply run-time parameter changes (damping, drag, max_strain, current, ...).
+        Apply run-time parameter changes (damping, drag, max_strain, a winch's, ...).
+
+        Also for a new environment (values {}, or the shared ones it is made of): the step
+        is the line's in it.
 
         :raises ParameterError: as updated() (nothing is changed then).
         """
         before = (self.params.winch_mode, self.params.winch_tension)
-        self.params, self.props, self.time_step = self.updated(values)
+        self.params, self.props, self.time_step = self.updated(values, environment)
         if (self.params.winch_mode, self.params.winch_tension) != before:
             self.held_tension = math.nan  # constant_tension takes the tension of now
 
-    def set_output_interval(self, interval: float) -> None:
+    def set_output_interval(self, interval: float, environment: Environment) -> None:
         """Choose the step again so that it divides a new output interval [s] (0: any)."""
         self.output_interval = interval
-        self.time_step = choose_time_step(self.params, self.props, interval)
+        self.time_step = choose_time_step(self.params, self.props, environment, interval)

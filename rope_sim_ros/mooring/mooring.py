@@ -47,6 +47,8 @@ from ..model.objects import Line, System
 from ..model.statics.pretension import length_for_tension, PretensionError
 from ..params.arrangement import ArrangementParams
 from ..params.materials import load_materials
+from ..params.resolve import environment
+from ..params.ship import ENVIRONMENT_SETTINGS, WIND_SETTINGS
 from ..params.table import ParameterError
 
 
@@ -78,6 +80,8 @@ class Mooring:
         self._materials = materials or load_materials()
         self._output_interval = output_interval
         self.compiled = compiled
+        # the one environment of the mooring: its lines, their Systems and the ship read it
+        self.environment = environment(arrangement.shared, arrangement.ship)
         self.lines = [self._line(setup.name, setup.params) for setup in arrangement.lines]
         self.time = math.nan
         self.ship = Ship(arrangement)
@@ -86,7 +90,8 @@ class Mooring:
 
     def _line(self, name: str, params) -> MooringLine:
         try:
-            return MooringLine(name, params, self._materials, self._output_interval)
+            return MooringLine(name, params, self._materials, self.environment,
+                               self._output_interval)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             if not name:  # the single line of a line node: its own parameters
                 raise
@@ -280,7 +285,8 @@ class Mooring:
             line = self.lines[k]
             try:
                 ends = self.free_ends(k, [t])[0][0]
-                length = length_for_tension(line.props, ends[0], ends[1], setup.pretension)
+                length = length_for_tension(line.props, self.environment, ends[0], ends[1],
+                                            setup.pretension)
                 params = setup.params.with_values({'length': length})
             except (ParameterError, PretensionError) as e:
                 raise ParameterError(f'line {setup.name!r}: {e}') from None
@@ -301,7 +307,8 @@ class Mooring:
         line = self.lines[k]
         ends, _, distances = self.drive(k, [t])
         self.held[k] = bool(distances[0] > line.reach)
-        alone = line.parted_if_overloaded(t, line.at_rest(ends[0], bool(self.held[k])))
+        alone = line.parted_if_overloaded(
+            t, line.at_rest(ends[0], bool(self.held[k]), self.environment))
         if line.parting is not None:
             self.held[k] = False  # in pieces: nothing to hold at a reach
         return alone
@@ -309,7 +316,8 @@ class Mooring:
     def place_line(self, k: int, shape: np.ndarray) -> None:
         """Put line k at rest at `shape` (N+1, 3) [m], its ends on its points (after start)."""
         group, j = self.where(k)
-        group.system.load_line(j, self.lines[k].build(np.asarray(shape, dtype=float)))
+        group.system.load_line(j, self.lines[k].build(np.asarray(shape, dtype=float),
+                                                      self.environment))
         self._apply_winch(k)
 
     def restart_line(self, k: int, t: Optional[float] = None) -> None:
@@ -321,7 +329,7 @@ class Mooring:
         group.system.load_line(j, self._at_rest_or_parted(k, t))
         self._apply_winch(k)
         group.system.take_peaks(j)  # nor before the restart: the peaks start from its rest
-        group.refresh(self.lines)
+        group.refresh(self.lines, self.environment)
 
     def _apply_winch(self, k: int) -> None:
         """Give line k the winch and break load its parameters ask for now."""
@@ -408,61 +416,111 @@ class Mooring:
 
     # -- parameters -----------------------------------------------------------------------
 
-    def check_update(self, k: int, values: dict) -> None:
-        """Refuse run-time changes of line k's parameters update() could not apply."""
-        try:
-            self.lines[k].updated(values)
-        except ParameterError as e:
-            if not self.names[k]:  # the single line of a line node: its own parameters
-                raise
-            raise ParameterError(f'line {self.names[k]!r}: {e}') from None
+    def check_update(self, k: Optional[int], values: dict) -> None:
+        """Refuse run-time changes update() could not apply (k None: every line's)."""
+        changes, own = _split(values)
+        if changes:
+            self.check_environment(changes)
+        for i in self._indices(k) if own else ():
+            try:
+                self.lines[i].updated(own, self.environment)
+            except ParameterError as e:
+                if not self.names[i]:  # the single line of a line node: its own parameters
+                    raise
+                raise ParameterError(f'line {self.names[i]!r}: {e}') from None
 
-    def update(self, k: int, values: dict) -> None:
+    def update(self, k: Optional[int], values: dict) -> None:
         """
-        Apply run-time changes of line k's parameters (a shared one: call it for every line).
+        Apply run-time changes of line k's parameters (None: every line's).
 
-        The rope goes on from where it is (no restart): a new current acts from the next step.
+        The environment's (current, wind_speed, wind_direction) change the mooring's one
+        environment (set_environment); the others line k's own. The ropes go on from where
+        they are (no restart).
 
-        :raises ParameterError: as MooringLine.updated (nothing changed then).
+        :raises ParameterError: as check_update (nothing changed then).
         """
         self.check_update(k, values)
+        changes, own = _split(values)
+        if changes:
+            self.set_environment(changes)
+        for i in self._indices(k) if own else ():
+            self._update_line(i, own)
+
+    def _indices(self, k: Optional[int]) -> range:
+        return range(len(self.lines)) if k is None else range(k, k + 1)
+
+    def _update_line(self, k: int, values: dict) -> None:
+        """Apply checked run-time changes of line k's own parameters."""
         line = self.lines[k]
         dt = line.time_step
-        line.update(values)
+        line.update(values, self.environment)
         self.ends.changed()  # (a payload's, a bollard's place are its parameters)
         self.arrangement = self.arrangement.with_line(self.names[k], line.params)
-        self.ship.loads.current = line.props.current  # (the same for every line)
         if not self.started:
             if line.time_step != dt:
                 self._group()
             return
         group, j = self.where(k)
-        system = group.system
-        system.lines[j].line_type = line.props.line_type
+        group.system.lines[j].line_type = line.props.line_type
         self._apply_winch(k)  # also refreshes the tables
-        if tuple(system.environment.current) != line.props.current:
-            system.set_current(line.props.current)
         if line.time_step != dt:
             self._regroup()
         else:
-            group.refresh(self.lines)
+            group.refresh(self.lines, self.environment)
 
-    def set_wind(self, speed: float, direction: float) -> None:
+    def check_environment(self, changes: dict) -> tuple:
         """
-        Blow the wind at this mean speed [m/s] from this direction [rad] from now on.
+        Return (arrangement, environment) with run-time changes of the environment.
 
-        Gusty wind (wind_spectrum) keeps its spectrum and seed about the new mean.
+        :param changes: ENVIRONMENT_SETTINGS: current [m/s] (3,), wind_speed [m/s],
+            wind_direction [rad] (where it comes FROM).
+        :raises ParameterError: a line cannot run in it (its step); nothing changed.
         """
-        ship = replace(self.arrangement.ship, wind_speed=float(speed),
-                       wind_direction=float(direction))
-        self.arrangement = replace(self.arrangement, ship=ship)
-        self.ship.set_wind(ship)
+        shared = {k: v for k, v in changes.items() if k not in WIND_SETTINGS}
+        wind = {k: float(v) for k, v in changes.items() if k in WIND_SETTINGS}
+        ship = replace(self.arrangement.ship, **wind)
+        setup = replace(self.arrangement.with_shared(shared), ship=ship)
+        changed = environment(setup.shared, setup.ship)
+        for k in range(len(self.lines)):
+            try:
+                self.lines[k].updated(shared, changed)
+            except ParameterError as e:
+                raise ParameterError(f'line {self.names[k]!r}: {e}' if self.names[k] else
+                                     str(e)) from None
+        return setup, changed
+
+    def set_environment(self, changes: dict) -> None:
+        """
+        Change the mooring's one environment from now on: its current, its wind.
+
+        Every line, its System and the ship's loads take it from the next step; a line
+        whose step changes with it (a current's drag) is grouped again. Gusty wind
+        (wind_spectrum) keeps its spectrum and seed about a new mean.
+
+        :raises ParameterError: as check_environment (nothing changed then).
+        """
+        self.arrangement, self.environment = self.check_environment(changes)
+        shared = {k: v for k, v in changes.items() if k not in WIND_SETTINGS}
+        steps = [line.time_step for line in self.lines]
+        for line in self.lines:
+            line.update(shared, self.environment)
+        if not self.started:
+            if steps != [line.time_step for line in self.lines]:
+                self._group()
+            return
+        for group in self.groups:
+            group.system.set_environment(self.environment)
+        if steps != [line.time_step for line in self.lines]:
+            self._regroup()
+        else:
+            for group in self.groups:
+                group.refresh(self.lines, self.environment)
 
     def set_output_interval(self, interval: float) -> None:
         """Choose the steps again so that each divides a new output interval [s]."""
         self._output_interval = interval
         for line in self.lines:
-            line.set_output_interval(interval)
+            line.set_output_interval(interval, self.environment)
         self._regroup()
 
     # -- outputs --------------------------------------------------------------------------
@@ -474,3 +532,9 @@ class Mooring:
         The peaks are those since the previous output (this call clears them).
         """
         return mooring_output(self)
+
+
+def _split(values: dict) -> Tuple[dict, dict]:
+    """Return run-time changes split: the environment's (ENVIRONMENT_SETTINGS), the lines'."""
+    changes = {k: v for k, v in values.items() if k in ENVIRONMENT_SETTINGS}
+    return changes, {k: v for k, v in values.items() if k not in ENVIRONMENT_SETTINGS}

@@ -77,4 +77,5 @@ def mooring_output(mooring) -> MooringOutput:
         bollard_tensions=tensions[:, 0], bollard_peaks=peaks[:, 0], line_lengths=lengths,
         winch_speeds=winch_speeds, finite=math.isfinite(total), ship=state,
         fender_compressions=compressions, fender_forces=fender_forces, fender_points=points,
-        ship_loads=ship.loads_at(mooring.time, state, mooring.arrangement))
+        ship_loads=ship.loads_at(mooring.time, state, mooring.arrangement,
+                                 mooring.environment))

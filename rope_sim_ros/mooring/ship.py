@@ -41,13 +41,13 @@ from ..model.forces.fender import fender_force
 from ..model.frames import rotation_matrix
 from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
                             BODY_QUATERNION, BODY_VELOCITY, FENDER_COLUMNS)
-from ..model.objects import System
+from ..model.objects import Environment, System
 from ..model.ship.coefficients import table_at_ratio
-from ..model.ship.loads import PassingShip, ShipLoads, Wind, world_load
+from ..model.ship.loads import PassingShip, ShipLoads, world_load
 from ..model.ship.passing import Hull
-from ..model.ship.wind import GustyWind
 from ..params.arrangement import ArrangementParams
-from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables, ShipParams
+from ..params.resolve import environment
+from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables
 from ..params.table import LineParams, ParameterError
 
 
@@ -78,16 +78,15 @@ def start_pose(setup: ArrangementParams) -> tuple:
 
 def water_depth(shared: LineParams) -> float:
     """Return the depth of the water, water_level - seabed_level [m]; math.inf: deep."""
-    if shared.water_level == -math.inf or shared.seabed_level == -math.inf:
-        return math.inf
-    return shared.water_level - shared.seabed_level
+    return environment(shared).depth
 
 
 def passing_ship(setup: ArrangementParams) -> Optional[PassingShip]:
     """
     Return the ship passing the arrangement's, its track from the ship's start pose, or None.
 
-    (ship.start_position, ship.start_yaw; ShipLoads sets it moving in the current.)
+    (ship.start_position, ship.start_yaw), moving in the arrangement's current from its
+    start (ShipLoads follows a current changed at run time from then on).
 
     :raises ParameterError: a depth of water its keel or the moored ship's would not float
         in.
@@ -101,10 +100,11 @@ def passing_ship(setup: ArrangementParams) -> Optional[PassingShip]:
             f'the water is {depth:g} m deep (water_level - seabed_level): a ship passing '
             f'({PASSING_SHIP}.speed > 0) needs it deeper than both drafts (ship.draft '
             f'{ship.draft:g} m, {PASSING_SHIP}.draft {passing.draft:g} m)')
-    return PassingShip.beside(
+    track = PassingShip.beside(
         Hull(passing.length, passing.beam, passing.draft, passing.block_coefficient),
         passing.speed, passing.direction, passing.separation, passing.start_x,
         ship.start_position, ship.start_yaw)
+    return track.in_current(track.start_time, setup.shared.current)
 
 
 def ship_loads(setup: ArrangementParams) -> ShipLoads:
@@ -125,17 +125,7 @@ def ship_loads(setup: ArrangementParams) -> ShipLoads:
         (ship.wind_area_front, ship.wind_area_side),
         (ship.current_area_front or ship.beam * ship.draft,
          ship.current_area_side or ship.length * ship.draft),
-        shared.air_density, shared.water_density,
-        ship_wind(ship), tuple(shared.current), passing_ship(setup), depth,
-        setup.passing.image_pairs)
-
-
-def ship_wind(ship: ShipParams) -> Wind:
-    """Return the wind of the ship's parameters: steady, or gusty about its mean."""
-    gusts = None
-    if ship.wind_spectrum != 'none' and ship.wind_speed > 0.0:
-        gusts = GustyWind(ship.wind_spectrum, ship.wind_speed, ship.wind_seed)
-    return Wind(ship.wind_speed, ship.wind_direction, gusts)
+        passing_ship(setup), depth, setup.passing.image_pairs)
 
 
 # The largest external load a free ship takes (ship/external_wrench, LOADS.csv): a force of a
@@ -357,7 +347,8 @@ class Ship:
             load += [np.interp(t, times, loads[:, c]) for c in range(6)]
         return load
 
-    def set_body_loads(self, system: System, start: float, end: float) -> None:
+    def set_body_loads(self, system: System, start: float, end: float,
+                       environment: Environment) -> None:
         """
         Give the free body its loads from start to end [s]: their value at start, their rate.
 
@@ -373,7 +364,8 @@ class Ship:
         values = []
         for t in (start, end):
             load = self.load_at(t)
-            load += world_load(self.loads.at(t, origin, rotation, velocity), rotation)
+            load += world_load(self.loads.at(t, environment, origin, rotation, velocity),
+                               rotation)
             load[3:] -= np.cross(lever, load[:3])  # the moment about the CG
             values.append(load)
         row[BODY_LOAD:BODY_LOAD + 6] = values[0]
@@ -381,11 +373,8 @@ class Ship:
             (values[1] - values[0]) / (end - start) if end > start else 0.0)
         row[BODY_CLOCK] = 0.0
 
-    def set_wind(self, ship: ShipParams) -> None:
-        """Blow the wind of these ship parameters from now on."""
-        self.loads.wind = ship_wind(ship)
-
-    def loads_at(self, t: float, state: ShipState, setup: ArrangementParams) -> np.ndarray:
+    def loads_at(self, t: float, state: ShipState, setup: ArrangementParams,
+                 environment: Environment) -> np.ndarray:
         """
         Return the wind's, current's and passing ship's loads on it at t (3, 3), body axes.
 
@@ -393,12 +382,12 @@ class Ship:
         reports them: reports_ship_loads), else zeros: a single line's current acts on the
         line alone.
 
-        :param setup: the arrangement in force (its wind and current now).
+        :param setup: the arrangement in force; environment: the mooring's now.
         """
-        if not (self.free or (self.loads.acts and reports_ship_loads(setup))):
+        if not (self.free or (self.loads.acts(environment) and reports_ship_loads(setup))):
             return np.zeros((3, 3))
-        return self.loads.at(t, state.position, rotation_matrix(state.orientation),
-                             state.velocity)
+        return self.loads.at(t, environment, state.position,
+                             rotation_matrix(state.orientation), state.velocity)
 
     # -- its fenders ----------------------------------------------------------------------
 

@@ -61,7 +61,7 @@ def mooring_statics(mooring: Mooring, load: Optional[Sequence[float]] = None,
         bollard = np.array(line.params.bollard_position, dtype=float)
         if mooring.started and mooring.has_bollard_samples(k):
             bollard = mooring.free_ends(k, [mooring.time])[0][0, 0]
-        lines.append(StaticLine(line.line_props, bollard,
+        lines.append(StaticLine(line.line_props, mooring.environment, bollard,
                                 np.array(line.params.fairlead_offset, dtype=float), line.name))
     fenders = [fender.row() for fender in mooring.ship.fenders]
     return ShipStatics(lines, mooring.body, fenders, load, load_function)

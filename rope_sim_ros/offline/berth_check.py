@@ -32,19 +32,21 @@ mean at 10 m. --wind-speed and --current give another scenario.
 """
 
 import csv
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 import os
 from typing import Any, Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..model.ship.loads import Wind, world_load
+from ..model.ship.loads import world_load
+from ..model.ship.wind import Wind
 from ..model.statics.ship import StaticsError
 from ..mooring.ship import ship_loads
 from ..mooring.statics import ship_statics
 from ..mooring.status import ratings
 from ..params.arrangement import ArrangementParams
+from ..params.resolve import environment
 from ..params.table import ParameterError
 
 KNOT = 1852.0 / 3600.0  # [m/s]
@@ -113,15 +115,16 @@ def check(setup: ArrangementParams, wind_speed: float = MEG4_WIND,
     loads = ship_loads(setup)
     loads.passing = None  # a ship at rest: no passing ship in the check
     names_mbl = [rating.mbl for rating in ratings(setup)]
-    statics = ship_statics(setup, materials, load_function=_load_function(loads))
+    weather = [environment(setup.shared, setup.ship)]  # each case's wind and current
+    statics = ship_statics(setup, materials, load_function=_load_function(loads, weather))
     cases: List[Case] = []
     total = directions * len(cases_of_current)
     previous = None
     for i in range(directions):
         direction = 360.0 * i / directions
-        loads.wind = Wind(wind_speed, heading + math.radians(direction))
+        wind = Wind(wind_speed, heading + math.radians(direction))
         for current, described in cases_of_current:
-            loads.current = current
+            weather[0] = replace(weather[0], wind=wind, current=tuple(current))
             case = Case(direction, described)
             try:
                 found = statics.equilibrium(previous)
@@ -165,12 +168,16 @@ def _currents(currents, heading: float) -> List[Tuple[Tuple[float, float, float]
     return out
 
 
-def _load_function(loads):
-    """Return the statics' load function of the wind and current on a ship at rest."""
+def _load_function(loads, weather: list):
+    """
+    Return the statics' load function of the wind and current on a ship at rest.
+
+    :param weather: [the environment of the case at hand]: its wind and current.
+    """
     still = np.zeros(3)
 
     def load(position, rotation):
-        return world_load(loads.at(0.0, position, rotation, still), rotation)
+        return world_load(loads.at(0.0, weather[0], position, rotation, still), rotation)
 
     return load
 

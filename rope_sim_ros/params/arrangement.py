@@ -184,6 +184,14 @@ class ArrangementParams:
                       else line for line in self.lines)
         return replace(self, lines=lines)
 
+    def with_shared(self, values: Mapping[str, Any]) -> 'ArrangementParams':
+        """Return a copy with SHARED values changed: its own and every line's (checked)."""
+        if not values:
+            return self
+        lines = tuple(LineSetup(line.name, line.params.with_values(values), line.pretension)
+                      for line in self.lines)
+        return replace(self, shared=self.shared.with_values(values), lines=lines)
+
 
 def flatten(values: Mapping[str, Any], prefix: str = '') -> Dict[str, Any]:
     """Return nested parameter maps as ROS names them: {'a': {'length': 40}} -> a.length."""

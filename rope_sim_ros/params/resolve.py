@@ -12,22 +12,32 @@
 # See the License for the specific language governing permissions and
 # limitations under the License.
 
-"""A line's parameters resolved into the model's numbers: its material's where it gives none."""
+"""
+Parameters resolved into the model's numbers: a line's and the environment of a mooring.
+
+A line's numbers take its material's where it gives none; the one environment of a mooring
+(its water, ground, current and wind) is its shared parameters and its ship's wind.
+"""
+
+from typing import Optional
 
 import numpy as np
 
+from .ship import ShipParams
 from .table import LineParams, ParameterError
 from ..model.materials import MaterialProperties
+from ..model.objects import Environment
 from ..model.rope import critical_axial_damping, RopeProperties
+from ..model.ship.wind import GustyWind, Wind
 
 
 def rope_properties(params: LineParams, material: MaterialProperties) -> RopeProperties:
     """
     Resolve the parameters into the physical numbers of the line.
 
-    A coefficient of -1 and a volume_diameter of 0 take the material's value; quay_normal
-    is made a unit vector (all zeros stay zeros: no quay). load_extension 'curve' gives the
-    line the material's strain-tension curve.
+    Its own numbers: environment() gives what it lives in. A coefficient of -1 and a
+    volume_diameter of 0 take the material's value; load_extension 'curve' gives the line
+    the material's strain-tension curve.
 
     :raises ParameterError: load_extension is 'curve' and the material has no curve.
     """
@@ -39,8 +49,6 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
     mass = params.mass_per_length or material.mass_per_length
     ea = params.axial_stiffness or material.axial_stiffness
     ba = params.axial_damping or critical_axial_damping(params.length, mass, ea)
-    normal = np.array(params.quay_normal, dtype=float)
-    size = float(np.linalg.norm(normal))
     return RopeProperties(
         segments=params.segments, length=params.length, mass_per_length=mass,
         axial_stiffness=ea, axial_damping=ba,
@@ -48,7 +56,7 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
         bending_damping_ratio=params.bending_damping_ratio,
         damping_model=params.damping_model,
         air_drag_coefficient=params.air_drag_coefficient,
-        gravity=tuple(params.gravity), max_strain=params.max_strain,
+        max_strain=params.max_strain,
         superelastic_adjustment=params.superelastic_adjustment,
         payload_mass=params.payload_mass,
         diameter=params.diameter,
@@ -61,16 +69,43 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
                                material.normal_added_mass_coefficient),
         tangential_added_mass=_own(params.tangential_added_mass_coefficient,
                                    material.tangential_added_mass_coefficient),
-        air_density=params.air_density, water_level=params.water_level,
-        water_density=params.water_density, current=tuple(params.current),
-        seabed_level=params.seabed_level, seabed_stiffness=params.seabed_stiffness,
-        seabed_damping=params.seabed_damping, seabed_friction=params.seabed_friction,
-        quay_edge=tuple(params.quay_edge),
-        quay_normal=tuple(normal / size if size > 0.0 else normal),
-        quay_depth=params.quay_depth, payload_volume=params.payload_volume,
+        payload_volume=params.payload_volume,
         payload_drag_area=params.payload_drag_area,
         payload_added_mass=params.payload_added_mass_coefficient,
         tension_curve=material.tension_curve if params.load_extension == 'curve' else ())
+
+
+def environment(shared: LineParams, ship: Optional[ShipParams] = None) -> Environment:
+    """
+    Return the one environment of a mooring: its shared parameters, and its ship's wind.
+
+    quay_normal is made a unit vector (all zeros stay zeros: no quay).
+
+    :param ship: the ship's parameters (wind_speed, wind_direction, wind_spectrum,
+        wind_seed); None: no wind (a line alone).
+    :raises ValueError: a number the model refuses (objects.Environment's message).
+    """
+    normal = np.array(shared.quay_normal, dtype=float)
+    size = float(np.linalg.norm(normal))
+    return Environment(
+        gravity=tuple(float(c) for c in shared.gravity), air_density=float(shared.air_density),
+        water_level=float(shared.water_level), water_density=float(shared.water_density),
+        current=tuple(float(c) for c in shared.current),
+        seabed_level=float(shared.seabed_level),
+        seabed_stiffness=float(shared.seabed_stiffness),
+        seabed_damping=float(shared.seabed_damping),
+        seabed_friction=float(shared.seabed_friction),
+        quay_edge=tuple(float(c) for c in shared.quay_edge),
+        quay_normal=tuple(float(c) for c in (normal / size if size > 0.0 else normal)),
+        quay_depth=float(shared.quay_depth), wind=Wind() if ship is None else wind(ship))
+
+
+def wind(ship: ShipParams) -> Wind:
+    """Return the wind of the ship's parameters: steady, or gusty about its mean."""
+    gusts = None
+    if ship.wind_spectrum != 'none' and ship.wind_speed > 0.0:
+        gusts = GustyWind(ship.wind_spectrum, ship.wind_speed, ship.wind_seed)
+    return Wind(ship.wind_speed, ship.wind_direction, gusts)
 
 
 def _own(value: float, material_value: float) -> float:

@@ -47,6 +47,8 @@ MAX_FENDERS = 32
 FENDERS_DESCRIPTION = 'names of the fenders on the quay; each has its settings under its name'
 # The ship's settings a run may change (as the lines' shared `current`): the wind.
 WIND_SETTINGS = ('wind_speed', 'wind_direction')
+# What of the mooring's one environment a run may change, on its topics or as parameters.
+ENVIRONMENT_SETTINGS = ('current',) + WIND_SETTINGS
 FENDER_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
 
 # The ship as a whole: what the arrangement's top level takes (`ship.mass`, ...).

@@ -18,7 +18,7 @@ import numpy as np
 
 from .rules import automatic_time_step, implicit_bending
 from .step import step
-from ..model.objects import System
+from ..model.objects import Environment, System
 from ..model.rope import RopeProperties
 from ..model.superelastic import MAX_ITERATIONS
 
@@ -75,10 +75,10 @@ def relax(props: RopeProperties, system: System) -> bool:
         x = system.lines[0].x
         if settled and not _folded(props, x):
             return True
-        x += FOLD_NUDGE * props.segment_length * _sideways(props, x)
+        x += FOLD_NUDGE * props.segment_length * _sideways(props, system.environment, x)
         system.v[:] = 0.0
         system.point_v[:] = 0.0
-        pseudo_step = automatic_time_step(props, 'implicit_euler')
+        pseudo_step = automatic_time_step(props, system.environment, 'implicit_euler')
         steps = int(min(np.ceil(FOLD_TIME / pseudo_step), FOLD_WORK / len(system.x)))
         return _settle(props, system, pseudo_step, steps, False)
     finally:
@@ -126,9 +126,9 @@ def _folded(props: RopeProperties, x: np.ndarray) -> bool:
                 < (FOLD_LENGTH * 2.0 * props.segment_length) ** 2)
 
 
-def _sideways(props: RopeProperties, x: np.ndarray) -> np.ndarray:
+def _sideways(props: RopeProperties, environment: Environment, x: np.ndarray) -> np.ndarray:
     """Return a smooth, lopsided sideways displacement of size 1 (0 at the ends), (N+1, 3)."""
-    gravity = np.asarray(props.gravity, dtype=float)
+    gravity = np.asarray(environment.gravity, dtype=float)
     up = -gravity / np.linalg.norm(gravity) if np.any(gravity) else np.array([0.0, 0.0, 1.0])
     chord = x[-1] - x[0]
     side = chord - (chord @ up) * up

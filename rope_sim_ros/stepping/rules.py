@@ -52,7 +52,7 @@ def _has_ground(environment: Environment) -> bool:
             or bool(np.any(np.asarray(quay, dtype=float))))
 
 
-def contact_rates(props: RopeProperties) -> tuple:
+def contact_rates(props: RopeProperties, environment: Environment) -> tuple:
     """
     Return the ground contact's (stiffness rate [1/s^2], damping rate [1/s]) on a particle.
 
@@ -64,7 +64,6 @@ def contact_rates(props: RopeProperties) -> tuple:
     1.1 ms for the 40 mm wire and 0.27 ms for the 64 mm polyester on MoorDyn's default
     c_b = 3e5 Pa s/m, where their axial modes alone allow 0.4 to 2 ms.
     """
-    environment = props.environment
     if not _has_ground(environment):
         return 0.0, 0.0
     d = getattr(props.line_type, 'diameter', 0.0)
@@ -73,7 +72,7 @@ def contact_rates(props: RopeProperties) -> tuple:
             getattr(environment, 'seabed_damping', 0.0) * d / m)
 
 
-def _payload_contact_rates(props: RopeProperties) -> tuple:
+def _payload_contact_rates(props: RopeProperties, environment: Environment) -> tuple:
     """
     Return the contact's (stiffness, damping) rates on a free payload, as contact_rates.
 
@@ -81,15 +80,14 @@ def _payload_contact_rates(props: RopeProperties) -> tuple:
     over its lumped mass (its own and half a segment). (0, 0) without ground or volume.
     """
     volume = getattr(props, 'payload_volume', 0.0)
-    if props.payload_mass <= 0.0 or volume <= 0.0 or not _has_ground(props.environment):
+    if props.payload_mass <= 0.0 or volume <= 0.0 or not _has_ground(environment):
         return 0.0, 0.0
     area = volume ** (2.0 / 3.0)
-    environment = props.environment
     return (environment.seabed_stiffness * area / props.end_mass,
             environment.seabed_damping * area / props.end_mass)
 
 
-def drag_rate(props: RopeProperties, speed: float) -> float:
+def drag_rate(props: RopeProperties, environment: Environment, speed: float) -> float:
     """
     Return how fast the drag takes a particle's velocity [1/s] at a relative speed [m/s].
 
@@ -101,7 +99,6 @@ def drag_rate(props: RopeProperties, speed: float) -> float:
     the motion's part is the simulator's to divide steps by.
     """
     t = props.line_type
-    environment = props.environment
     d = getattr(t, 'diameter', 0.0)
     per_speed = (max(getattr(t, 'normal_drag', 0.0), 0.0)
                  + math.pi * max(getattr(t, 'tangential_drag', 0.0), 0.0)) * d
@@ -112,15 +109,15 @@ def drag_rate(props: RopeProperties, speed: float) -> float:
         props.mass_per_length)
 
 
-def _current_speed(props: RopeProperties) -> float:
+def _current_speed(environment: Environment) -> float:
     """Return the current's speed [m/s] where there is water (0 without)."""
-    environment = props.environment
     if getattr(environment, 'water_level', -math.inf) == -math.inf:
         return 0.0
     return float(np.linalg.norm(getattr(environment, 'current', (0.0, 0.0, 0.0))))
 
 
-def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
+def _mode_eigenvalues(props: RopeProperties, environment: Environment,
+                      count: int = 400) -> np.ndarray:
     """
     Eigenvalues of the chain's axial modes, from the slowest to the fastest.
 
@@ -150,14 +147,14 @@ def _mode_eigenvalues(props: RopeProperties, count: int = 400) -> np.ndarray:
     # half the step the taut line does: a chain let fall blew up at 0.7 of that)
     base = [(w2, (c / k) * w2), ((props.bending_stiffness / k) * w2, (c / k) * w2)]
     families = list(base)
-    stiffness, damping = contact_rates(props)
-    drag = drag_rate(props, _current_speed(props))
+    stiffness, damping = contact_rates(props, environment)
+    drag = drag_rate(props, environment, _current_speed(environment))
     for stiff, damp in base:
         if stiffness > 0.0 or damping > 0.0:
             families.append((stiff + stiffness, damp + damping + drag))
         if drag > 0.0:
             families.append((stiff, damp + drag))
-    stiffness, damping = _payload_contact_rates(props)
+    stiffness, damping = _payload_contact_rates(props, environment)
     if stiffness > 0.0 or damping > 0.0:  # its own row: its springs only via the line end
         end = np.array([0.0, 2.0 * k / props.end_mass])
         families.append((end + stiffness, (c / k) * end + damping))
@@ -175,7 +172,7 @@ def _stiffest_structural(props: RopeProperties) -> float:
     return props.stiffest_axial_stiffness / props.segment_length
 
 
-def stability_limit(props: RopeProperties) -> float:
+def stability_limit(props: RopeProperties, environment: Environment) -> float:
     """
     Largest stable improved-Euler step [s] for the line's axial and contact modes.
 
@@ -183,7 +180,7 @@ def stability_limit(props: RopeProperties) -> float:
     """
     if props.structural_damping + props.bending_damping <= 0.0:
         return 0.0  # |G| > 1 for every mode: rounding would hide it at tiny steps
-    modes = _mode_eigenvalues(props)
+    modes = _mode_eigenvalues(props, environment)
     modes = modes[modes != 0.0]
     lo, hi = 0.0, 4.0 / np.abs(modes).max()
     if _heun_growth(1e-9 * hi * modes).max() > 1.0:
@@ -216,7 +213,8 @@ def first_axial_period(props: RopeProperties) -> float:
     return 2.0 * props.length * np.sqrt(props.mass_per_length / stiffness)
 
 
-def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler') -> float:
+def automatic_time_step(props: RopeProperties, environment: Environment,
+                        integrator: str = 'improved_euler') -> float:
     """
     Choose the step used when the user sets time_step 0 [s].
 
@@ -228,7 +226,7 @@ def automatic_time_step(props: RopeProperties, integrator: str = 'improved_euler
     """
     if integrator in ('implicit_euler', 'adaptive'):
         return min(IMPLICIT_MAX_STEP, first_axial_period(props) / IMPLICIT_STEPS_PER_AXIAL_PERIOD)
-    limit = min(stability_limit(props), wave_time_step(props))
+    limit = min(stability_limit(props, environment), wave_time_step(props))
     if limit <= 0.0:
         raise ValueError(
             'improved_euler is unstable on an undamped line: set axial_damping > 0')

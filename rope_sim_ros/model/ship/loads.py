@@ -40,27 +40,6 @@ import numpy as np
 
 from .coefficients import CoefficientTable, ocimf_loads
 from .passing import Hull, passing_loads
-from .wind import GustyWind
-
-
-@dataclass(frozen=True)
-class Wind:
-    """
-    The wind at 10 m above the water, steady or gusty.
-
-    :ivar speed: its mean speed [m/s].
-    :ivar direction: where it comes FROM in frame_id, counter-clockwise from +x [rad].
-    :ivar gusts: a GustyWind about the mean, or None (steady).
-    """
-
-    speed: float = 0.0
-    direction: float = 0.0
-    gusts: Optional[GustyWind] = None
-
-    def velocity(self, t: float) -> np.ndarray:
-        """Give the air's velocity at time t, where it goes TO, in frame_id axes (3,)."""
-        speed = self.gusts.speed(t) if self.gusts is not None else self.speed
-        return -speed * np.array([math.cos(self.direction), math.sin(self.direction), 0.0])
 
 
 @dataclass(frozen=True)
@@ -109,12 +88,13 @@ class ShipLoads:
     """
     What acts on the moored ship besides its lines and fenders (module docstring).
 
+    The wind, the current and the fluids' densities are the environment's, read at each call:
+    the mooring's one environment, which topics and parameters change.
+
     :ivar hull: the moored ship's hull (its length and block coefficient count).
     :ivar wind_table, current_table: its coefficients.
     :ivar wind_areas, current_areas: (A_T, A_L) of each table [m^2].
-    :ivar air_density, water_density: [kg/m^3].
-    :ivar wind: the wind; current: the water's velocity (where it goes TO), frame_id (3,).
-    :ivar passing: a passing ship, or None; it moves in `current` (the module docstring).
+    :ivar passing: a passing ship, or None; it moves in the current (module docstring).
     :ivar depth: the depth of the water [m] (math.inf: deep water), for the passing ship's
         loads (the current's table is the caller's, for this depth).
     :ivar image_pairs: passing.passing_loads's: 0 sums the images until converged.
@@ -125,62 +105,59 @@ class ShipLoads:
     current_table: CoefficientTable
     wind_areas: Tuple[float, float]
     current_areas: Tuple[float, float]
-    air_density: float
-    water_density: float
-    wind: Wind = Wind()
-    current: Tuple[float, float, float] = (0.0, 0.0, 0.0)
     passing: Optional[PassingShip] = None
     depth: float = math.inf
     image_pairs: int = 0
     # the current the passing ship's track was set for (at run time the current may change)
     _track_current: Optional[tuple] = field(default=None, init=False, repr=False)
 
-    def __post_init__(self) -> None:
-        """Set the passing ship moving in the current from its start time."""
-        self._follow_current(None)
-
-    def _follow_current(self, t: Optional[float]) -> None:
+    def _follow_current(self, t: Optional[float], current) -> None:
         """Give the passing ship the current's drift from time t on (None: its start)."""
-        current = tuple(float(c) for c in self.current)
+        current = tuple(float(c) for c in current)
         if self.passing is not None and current != self._track_current:
             when = self.passing.start_time if t is None else t
             self.passing = self.passing.in_current(when, current)
         self._track_current = current
 
-    @property
-    def acts(self) -> bool:
+    def acts(self, environment) -> bool:
         """Tell whether anything pushes a ship at rest: wind, a current, a passing ship."""
-        return (self.wind.speed > 0.0 or self.wind.gusts is not None or any(self.current)
+        wind = environment.wind
+        return (wind.speed > 0.0 or wind.gusts is not None or any(environment.current)
                 or self.passing is not None)
 
-    def at(self, t: float, position, rotation: np.ndarray, velocity) -> np.ndarray:
+    def at(self, t: float, environment, position, rotation: np.ndarray,
+           velocity) -> np.ndarray:
         """
         Return the wind's, the current's and the passing ship's loads at time t, (3, 3).
 
         Rows: wind, current, passing ship; columns F_x [N], F_y [N], M_z [N m], body axes,
         about the ship's origin.
 
+        :param environment: the objects.Environment: wind, current, air and water densities.
         :param position, rotation, velocity: the ship's origin [m], its orientation matrix
             (body to frame_id) and the origin's velocity [m/s] (frame_id).
         """
         loads = np.zeros((3, 3))
         ship = np.asarray(velocity, dtype=float)
-        if self.air_density > 0.0 and (self.wind.speed > 0.0 or self.wind.gusts is not None):
-            air = (self.wind.velocity(t) - ship) @ rotation
-            loads[0] = ocimf_loads(self.wind_table, self.air_density, air[:2],
+        wind = environment.wind
+        if environment.air_density > 0.0 and (wind.speed > 0.0 or wind.gusts is not None):
+            air = (wind.velocity(t) - ship) @ rotation
+            loads[0] = ocimf_loads(self.wind_table, environment.air_density, air[:2],
                                    *self.wind_areas, self.hull.length)
-        water = (np.asarray(self.current, dtype=float) - ship) @ rotation
+        water = (np.asarray(environment.current, dtype=float) - ship) @ rotation
         if water[:2].any():
-            loads[1] = ocimf_loads(self.current_table, self.water_density, water[:2],
+            loads[1] = ocimf_loads(self.current_table, environment.water_density, water[:2],
                                    *self.current_areas, self.hull.length)
         if self.passing is not None:
-            self._follow_current(t)
+            self._follow_current(self.passing.start_time if self._track_current is None
+                                 else t, environment.current)
             apart = (self.passing.midship(t) - np.asarray(position, dtype=float)) @ rotation
             separation = -apart[1]
             if abs(separation) >= 0.5 * (self.hull.beam + self.passing.hull.beam):
                 loads[2] = passing_loads(self.hull, self.passing.hull, self.passing.speed,
-                                         separation, apart[0], self.depth, self.water_density,
-                                         self.passing.direction, image_pairs=self.image_pairs)
+                                         separation, apart[0], self.depth,
+                                         environment.water_density, self.passing.direction,
+                                         image_pairs=self.image_pairs)
         return loads
 
 

@@ -82,8 +82,9 @@ the spectrum's variance at U = 20 m/s, z = 10 m, for both spectra; a higher f_ma
 proportionally more per call.
 """
 
+from dataclasses import dataclass
 import math
-from typing import Sequence, Union
+from typing import Optional, Sequence, Union
 
 import numpy as np
 
@@ -277,3 +278,23 @@ class GustyWind:
         if isinstance(gust, float):
             return max(self.mean_speed + gust, 0.0)
         return np.maximum(self.mean_speed + gust, 0.0)
+
+
+@dataclass(frozen=True)
+class Wind:
+    """
+    The wind at 10 m above the water, steady or gusty.
+
+    :ivar speed: its mean speed [m/s].
+    :ivar direction: where it comes FROM in frame_id, counter-clockwise from +x [rad].
+    :ivar gusts: a GustyWind about the mean, or None (steady).
+    """
+
+    speed: float = 0.0
+    direction: float = 0.0
+    gusts: Optional[GustyWind] = None
+
+    def velocity(self, t: float) -> np.ndarray:
+        """Give the air's velocity at time t, where it goes TO, in frame_id axes (3,)."""
+        speed = self.gusts.speed(t) if self.gusts is not None else self.speed
+        return -speed * np.array([math.cos(self.direction), math.sin(self.direction), 0.0])

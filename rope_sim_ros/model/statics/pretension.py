@@ -19,6 +19,7 @@ import math
 import numpy as np
 
 from .catenary import CatenaryError, solve_catenary
+from ..objects import Environment
 from ..rope import RopeProperties
 
 
@@ -30,11 +31,12 @@ class PretensionError(ValueError):
 LENGTH_BISECTIONS = 60
 
 
-def length_for_tension(props: RopeProperties, bollard, fairlead, tension: float) -> float:
+def length_for_tension(props: RopeProperties, environment: Environment, bollard, fairlead,
+                       tension: float) -> float:
     """
     Return the unstretched length whose elastic catenary pulls the fairlead with `tension`.
 
-    The catenary in air (the line's weight less the air's buoyancy, props.weight_per_length)
+    The catenary in air (the line's weight less the air's buoyancy, weight_per_length)
     between the bollard and the fairlead, stretched by the line's strain-tension curve where
     it has one (else EA); a weightless line is a straight elastic bar. The
     fairlead tension falls as the line grows, down to the least it can have hanging between
@@ -43,14 +45,14 @@ def length_for_tension(props: RopeProperties, bollard, fairlead, tension: float)
     :raises PretensionError: the tension is more than the line pulls at its reach (its
         limit_tension) or less than the least it can have between these ends.
     """
-    up = -np.asarray(props.gravity, dtype=float)
+    up = -np.asarray(environment.gravity, dtype=float)
     g = float(np.linalg.norm(up))
     up = up / g if g > 0.0 else np.array([0.0, 0.0, 1.0])
     chord = np.asarray(fairlead, dtype=float) - np.asarray(bollard, dtype=float)
     distance = float(np.linalg.norm(chord))
     rise = float(chord @ up)
     span = math.sqrt(max(distance * distance - rise * rise, 0.0))
-    ea, w = props.axial_stiffness, props.weight_per_length
+    ea, w = props.axial_stiffness, props.weight_per_length(environment)
     strongest = props.limit_tension
     if not distance > 0.0:
         raise PretensionError('pretension needs the fairlead away from the bollard: they are '

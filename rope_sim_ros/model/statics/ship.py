@@ -58,6 +58,7 @@ from ..frames import rotation_matrix
 from ..layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_POSITION,
                       BODY_QUATERNION, BODY_RESTORING, BODY_VELOCITY, FENDER_BODY,
                       FENDER_COLUMNS)
+from ..objects import Environment
 from ..rope import RopeProperties
 
 # The central-difference steps of the stiffness: the body origin moves TRANSLATION_STEP [m],
@@ -184,12 +185,14 @@ class StaticLine:
     One line as the statics see it.
 
     :ivar props: its properties at the unstretched length it has (props.length).
+    :ivar environment: what it hangs in (gravity, the air's buoyancy).
     :ivar bollard: its bollard in the world frame [m], (3,).
     :ivar fairlead: its fairlead in the ship's body frame, from the body origin [m], (3,).
     :ivar name: its name (for messages).
     """
 
     props: RopeProperties
+    environment: Environment
     bollard: np.ndarray
     fairlead: np.ndarray
     name: str = ''
@@ -217,9 +220,9 @@ class StaticLine:
         if distance > props.reach:
             tension = props.limit_tension
             return -tension * chord / distance, tension, tension, True
-        gravity = np.asarray(props.gravity, dtype=float)
+        gravity = np.asarray(self.environment.gravity, dtype=float)
         g = float(np.linalg.norm(gravity))
-        w = props.weight_per_length
+        w = props.weight_per_length(self.environment)
         if not (w > 0.0 and g > 0.0):  # a straight elastic bar
             strain = distance / props.length - 1.0
             if strain <= 0.0 or distance == 0.0:

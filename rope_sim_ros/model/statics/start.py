@@ -85,7 +85,8 @@ def wet_fraction(z, water_level: float, width) -> np.ndarray:
     return np.vectorize(fluid.point_fraction, otypes=[float])(z, float(water_level), width)
 
 
-def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
+def hanging_shape(props: RopeProperties, environment: Environment,
+                  top: np.ndarray) -> np.ndarray:
     """
     Particles (N+1, 3) of a line hanging straight down from `top` with its payload, at rest.
 
@@ -96,7 +97,7 @@ def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
     a net upward pull is left at its rest length). Which fluid depends on where the
     particles end up: a few passes settle it (each moves them by the stretch only).
     """
-    gravity = np.asarray(props.gravity, dtype=float)
+    gravity = np.asarray(environment.gravity, dtype=float)
     g = float(np.linalg.norm(gravity))
     down = gravity / g if g > 0.0 else np.array([0.0, 0.0, -1.0])
     n = props.segments
@@ -109,9 +110,9 @@ def hanging_shape(props: RopeProperties, top: np.ndarray) -> np.ndarray:
     volumes[0] += props.payload_volume
     widths[0] = props.payload_volume ** (1.0 / 3.0) if props.payload_volume > 0.0 else widths[0]
     shape = top + np.outer(props.segment_length * (n - np.arange(n + 1)), down)
-    for _ in range(4 if props.has_water else 1):
-        wet = wet_fraction(shape[:, 2], props.water_level, widths)
-        density = props.water_density * wet + props.air_density * (1.0 - wet)
+    for _ in range(4 if math.isfinite(environment.water_level) else 1):
+        wet = wet_fraction(shape[:, 2], environment.water_level, widths)
+        density = environment.water_density * wet + environment.air_density * (1.0 - wet)
         below = np.cumsum(masses - density * volumes)[:-1]  # net mass under segment j
         lengths = props.segment_length * (1.0 + props.strain_at(g * np.maximum(below, 0.0)))
         shape = np.empty((n + 1, 3))
