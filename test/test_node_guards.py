@@ -29,7 +29,7 @@ import subprocess
 from types import SimpleNamespace
 
 from geometry_msgs.msg import PoseStamped
-from node_harness import no_gc_pauses, node_summary, NodeProcess, SimClient
+from node_harness import Client, no_gc_pauses, node_summary, NodeProcess
 import numpy as np
 from one_line import OneLine
 import pytest
@@ -77,12 +77,12 @@ def sim_node(colcon_install, colcon_env, tmp_path):
     def start(namespace: str, *ros_args: str, **client_options):
         node = NodeProcess(colcon_install, colcon_env, tmp_path / f'{namespace[1:]}.log',
                            namespace, '-p', 'use_sim_time:=true', *ros_args)
-        client = SimClient(namespace, **client_options)
+        client = Client(namespace, **client_options)
         started.append((node, client))
         client.wait_for_node(node)
         # The node's clock: /clock for 0.5 s before START. Meanwhile the node's side of
         # discovery settles too (a pose sent at once after wait_for_node may be lost).
-        client.drive(START - 500_000_000, 0.5, fairlead=None)
+        client.drive_sim_time(START - 500_000_000, 0.5, fairlead=None)
         return node, client
 
     yield start
@@ -111,7 +111,7 @@ def test_poses_stamped_far_from_the_clock_are_dropped_and_the_stream_goes_on(sim
         if offset is not None:
             client.pose(motion(t) + [0.0, 0.0, 2.0], START + round((t + offset) * 1e9))
 
-    client.drive(START, 5.0, motion, at=send_stray)
+    client.drive_sim_time(START, 5.0, motion, at=send_stray)
     # the rope stays one sample behind the stream: outputs every 20 ms from 0 to 4.98 s
     client.wait_for(lambda: len(client.outputs()) >= 250, 30.0, '250 outputs')
     assert node.interrupt() == 0
@@ -164,8 +164,8 @@ def test_a_jump_of_either_end_restarts_the_rope_at_the_new_place(sim_node):
             return up
         return b1 + [0.0, smooth_step(t, 2.0, 1.0), 0.0]
 
-    client.drive(START, 7.0, lambda t: FAIRLEAD if t < 6.0 else f2,
-                 bollard=lambda t: bollard(t) if t >= 1.0 else None)
+    client.drive_sim_time(START, 7.0, lambda t: FAIRLEAD if t < 6.0 else f2,
+                          bollard=lambda t: bollard(t) if t >= 1.0 else None)
     client.wait_for(lambda: len(client.outputs()) >= 350, 30.0, '350 outputs')
     assert node.interrupt() == 0
     jumps = log_lines(node, ' jumped ')
@@ -266,14 +266,14 @@ def test_publish_rate_changes_take_effect_with_the_next_output(sim_node):
             raise AssertionError(f'{e}; the last is at {(last - START) * 1e-9:.4f} s, '
                                  f'{len(client.outputs())} outputs') from None
 
-    client.drive(START, 1.0, stay)
+    client.drive_sim_time(START, 1.0, stay)
     caught_up(START + SECOND, 50.0)
     phases = [(30.0, 1.0, 1.0), (1000.0, 0.5, 0.25), (137.0, 1.0, 1.0)]
     start = START + SECOND
     for rate, seconds, speed in phases:
         result = client.set_parameter('publish_rate', rate)
         assert result.successful, result.reason
-        client.drive(start + 20_000_000, seconds - 0.02, stay, speed=speed)
+        client.drive_sim_time(start + 20_000_000, seconds - 0.02, stay, speed=speed)
         start += round(seconds * 1e9)
         caught_up(start, rate)
     assert node.interrupt() == 0
@@ -314,15 +314,13 @@ def test_a_burst_of_poses_is_taken_whole_and_losses_on_the_way_are_counted(sim_n
         for k in range(10000):
             client.pose(FAIRLEAD, START + k * 50_000)
         for k in range(10000):
-            client.pose([0.0, 0.0, 0.0], START + k * 50_000, client.bollard_pub)
+            client.pose([0.0, 0.0, 0.0], START + k * 50_000, 'bollard')
     # Then each end jumps 6 m and back, which the node logs. A writer's poses come in order,
     # so the second jump is logged after every pose before it was taken or counted lost
     # (DDS tells of the losses at the end of a burst only with the writer's next message).
-    for end, (position, publisher) in {
-            'fairlead': (FAIRLEAD, client.fairlead_pub),
-            'bollard': (np.zeros(3), client.bollard_pub)}.items():
-        client.pose(position + [0.0, 6.0, 0.0], START + 600_000_000, publisher)
-        client.pose(position, START + 700_000_000, publisher)
+    for end, position in {'fairlead': FAIRLEAD, 'bollard': np.zeros(3)}.items():
+        client.pose(position + [0.0, 6.0, 0.0], START + 600_000_000, end)
+        client.pose(position, START + 700_000_000, end)
     client.wait_for(lambda: len(log_lines(node, 'fairlead jumped 6.00 m')) == 2
                     and len(log_lines(node, 'bollard jumped 6.00 m')) == 2, 60.0,
                     'the node to take both bursts')
