@@ -124,10 +124,26 @@ def mooring_client() -> Client:
 
 
 def drive(client: Client, start: float, seconds: float) -> None:
-    """Publish /clock and the ship pose of sim time [start, start + seconds) at RATE."""
-    client.drive_sim_time(SIM_START + round(start * 1e9), seconds - 1.0 / RATE,
-                          ship=lambda t: ship_pose(start + t), rate=RATE)
-    client.spin(0.5)  # the last outputs on their way
+    """
+    Publish /clock and the ship pose of sim time [start, start + seconds) at RATE.
+
+    Then wait for the outputs the poses let out: the node stays one pose behind, and holds
+    back outputs that one pose let through together (at publish_rate 100 Hz) up to a pose
+    period for their time on the clock, which stops here.
+    """
+    sent = client.drive_sim_time(SIM_START + round(start * 1e9), seconds - 1.0 / RATE,
+                                 ship=lambda t: ship_pose(start + t), rate=RATE)
+    due = sent[-3].stamp_ns
+
+    def out():
+        return client.wrenches and stamp_ns(client.wrenches[-1][1]) >= due
+
+    client.wait_for(out, 10.0, f'the outputs up to {(due - SIM_START) * 1e-9:.2f} s')
+    client.spin(0.1)  # the other topics of those outputs on their way
+
+
+def stamp_ns(msg) -> int:
+    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
 
 
 def statuses(array: DiagnosticArray) -> dict:
