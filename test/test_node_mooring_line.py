@@ -15,10 +15,10 @@
 """
 The mooring_line node over real DDS: started from the colcon install, as `ros2 run` would.
 
-One node process serves the topic, parameter, reset and bad-input tests (in that order, in
-namespace /line); the moving-fairlead comparison gets a fresh node (its start must be known
-exactly), and start-up / shutdown tests start short-lived ones. The domain is the test run's
-own (test/conftest.py), discovery is localhost only.
+One node process serves the topic, parameter, reset, bad-input, skip and Ctrl-C tests (in
+that order, in namespace /line); the moving-fairlead comparison gets a fresh node (its start
+must be known exactly), and the other start-up tests start short-lived ones. The domain is
+the test run's own (test/conftest.py), discovery is localhost only.
 """
 
 import math
@@ -100,8 +100,9 @@ def log_lines(node: NodeProcess, word: str) -> list:
 
 @pytest.fixture(scope='module')
 def line_node(colcon_install, colcon_env, tmp_path_factory):
+    # length:=40, the file's 40.0 as an integer: test_sigint_ends_the_node_cleanly
     node = NodeProcess(colcon_install, colcon_env,
-                       tmp_path_factory.mktemp('node') / 'line.log', '/line')
+                       tmp_path_factory.mktemp('node') / 'line.log', '/line', '-p', 'length:=40')
     client = Client('/line', sim_time=False)
     try:
         client.wait_for_node(node)
@@ -439,13 +440,12 @@ def test_best_effort_poses_need_pose_reliability_best_effort(
     assert 'bollard/pose' not in reliable.text()  # no publisher there
 
 
-def test_sigint_ends_the_node_cleanly(colcon_install, colcon_env, tmp_path):
-    # an integer for a double parameter (length) is accepted, as the offline runner does
-    node = NodeProcess(colcon_install, colcon_env, tmp_path / 'sigint.log', '/sigint',
-                       '-p', 'length:=40')
-    client = Client('/sigint', sim_time=False)
+def test_sigint_ends_the_node_cleanly(line_node):
+    # an integer for a double parameter (length) is accepted, as the offline runner does:
+    # the module's node was started with length:=40. The last test of that node.
+    node, client = line_node
+    client.clear()
     try:
-        client.wait_for_node(node)
         # a live node, not just a started one (a loaded machine may take a while to answer)
         for _ in range(30):
             client.drive(0.3, lambda t: FAIRLEAD)
@@ -453,7 +453,6 @@ def test_sigint_ends_the_node_cleanly(colcon_install, colcon_env, tmp_path):
                 break
         assert client.fairlead
     finally:
-        client.close()
         code = node.interrupt()
     assert code == 0, node.text()
     assert 'Traceback' not in node.text(), node.text()
