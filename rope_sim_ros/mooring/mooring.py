@@ -30,12 +30,12 @@ rest, advances every group to a time and applies run-time changes. The Driver (d
 is the one door to it from outside mooring/.
 """
 
-from dataclasses import replace
 import math
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
+from . import changes
 from .ends import Ends
 from .group import Group, group_lines
 from .line import MooringLine
@@ -48,7 +48,6 @@ from ..model.statics.pretension import length_for_tension, PretensionError
 from ..params.arrangement import ArrangementParams
 from ..params.materials import load_materials
 from ..params.resolve import environment
-from ..params.ship import ENVIRONMENT_SETTINGS, WIND_SETTINGS
 from ..params.table import ParameterError
 
 
@@ -86,7 +85,7 @@ class Mooring:
         self.time = math.nan
         self.ship = Ship(arrangement)
         self.ends = Ends(self.lines, self.ship, history, arrangement.shared.end_interpolation)
-        self._group()
+        self.make_groups()
 
     def _line(self, name: str, params) -> MooringLine:
         try:
@@ -156,16 +155,16 @@ class Mooring:
 
     # -- groups ---------------------------------------------------------------------------
 
-    def _group(self) -> None:
+    def make_groups(self) -> None:
         """Put the lines with equal steps and bending treatment in one group each."""
         self.groups = group_lines(self.lines, self.free)
         self._group_of = {k: group for group in self.groups for k in group.members}
 
-    def _regroup(self) -> None:
+    def regroup(self) -> None:
         """Group the lines again after a step changed; rebuild the Systems if started."""
         started = self.started
         systems = {k: self.where(k) for k in range(len(self.lines))} if started else {}
-        self._group()
+        self.make_groups()
         if started:  # new groups carry on from the state time (a new group has none)
             self._build({k: group.system for k, (group, _) in systems.items()},
                         {k: j for k, (_, j) in systems.items()})
@@ -266,7 +265,7 @@ class Mooring:
             group.system.take_peaks()
         self._set_time(t)
         for k in range(len(self.lines)):
-            self._apply_winch(k)
+            self.apply_winch(k)
         return lengths
 
     def resolve_pretensions(self, t: float) -> Dict[int, float]:
@@ -295,7 +294,7 @@ class Mooring:
             lengths[k] = length
             self.ends.changed()
         if lengths:
-            self._group()  # a new length can give a line another step
+            self.make_groups()  # a new length can give a line another step
         return lengths
 
     def _at_rest_or_parted(self, k: int, t: float) -> System:
@@ -318,7 +317,7 @@ class Mooring:
         group, j = self.where(k)
         group.system.load_line(j, self.lines[k].build(np.asarray(shape, dtype=float),
                                                       self.environment))
-        self._apply_winch(k)
+        self.apply_winch(k)
 
     def restart_line(self, k: int, t: Optional[float] = None) -> None:
         """Put line k back at rest between its ends, at its group's state time (or t)."""
@@ -327,11 +326,11 @@ class Mooring:
         group, j = self.where(k)
         t = group.time if t is None else t
         group.system.load_line(j, self._at_rest_or_parted(k, t))
-        self._apply_winch(k)
+        self.apply_winch(k)
         group.system.take_peaks(j)  # nor before the restart: the peaks start from its rest
         group.refresh(self.lines, self.environment)
 
-    def _apply_winch(self, k: int) -> None:
+    def apply_winch(self, k: int) -> None:
         """Give line k the winch and break load its parameters ask for now."""
         line = self.lines[k]
         group, j = self.where(k)
@@ -418,110 +417,18 @@ class Mooring:
 
     def check_update(self, k: Optional[int], values: dict) -> None:
         """Refuse run-time changes update() could not apply (k None: every line's)."""
-        changes, own = _split(values)
-        if changes:
-            self.check_environment(changes)
-        for i in self._indices(k) if own else ():
-            try:
-                self.lines[i].updated(own, self.environment)
-            except ParameterError as e:
-                if not self.names[i]:  # the single line of a line node: its own parameters
-                    raise
-                raise ParameterError(f'line {self.names[i]!r}: {e}') from None
+        changes.check_update(self, k, values)
 
     def update(self, k: Optional[int], values: dict) -> None:
-        """
-        Apply run-time changes of line k's parameters (None: every line's).
-
-        The environment's (current, wind_speed, wind_direction) change the mooring's one
-        environment (set_environment); the others line k's own. The ropes go on from where
-        they are (no restart).
-
-        :raises ParameterError: as check_update (nothing changed then).
-        """
-        self.check_update(k, values)
-        changes, own = _split(values)
-        if changes:
-            self.set_environment(changes)
-        for i in self._indices(k) if own else ():
-            self._update_line(i, own)
-
-    def _indices(self, k: Optional[int]) -> range:
-        return range(len(self.lines)) if k is None else range(k, k + 1)
-
-    def _update_line(self, k: int, values: dict) -> None:
-        """Apply checked run-time changes of line k's own parameters."""
-        line = self.lines[k]
-        dt = line.time_step
-        line.update(values, self.environment)
-        self.ends.changed()  # (a payload's, a bollard's place are its parameters)
-        self.arrangement = self.arrangement.with_line(self.names[k], line.params)
-        if not self.started:
-            if line.time_step != dt:
-                self._group()
-            return
-        group, j = self.where(k)
-        group.system.lines[j].line_type = line.props.line_type
-        self._apply_winch(k)  # also refreshes the tables
-        if line.time_step != dt:
-            self._regroup()
-        else:
-            group.refresh(self.lines, self.environment)
-
-    def check_environment(self, changes: dict) -> tuple:
-        """
-        Return (arrangement, environment) with run-time changes of the environment.
-
-        :param changes: ENVIRONMENT_SETTINGS: current [m/s] (3,), wind_speed [m/s],
-            wind_direction [rad] (where it comes FROM).
-        :raises ParameterError: a line cannot run in it (its step); nothing changed.
-        """
-        shared = {k: v for k, v in changes.items() if k not in WIND_SETTINGS}
-        wind = {k: float(v) for k, v in changes.items() if k in WIND_SETTINGS}
-        ship = replace(self.arrangement.ship, **wind)
-        setup = replace(self.arrangement.with_shared(shared), ship=ship)
-        changed = environment(setup.shared, setup.ship)
-        for k in range(len(self.lines)):
-            try:
-                self.lines[k].updated(shared, changed)
-            except ParameterError as e:
-                raise ParameterError(f'line {self.names[k]!r}: {e}' if self.names[k] else
-                                     str(e)) from None
-        return setup, changed
-
-    def set_environment(self, changes: dict) -> None:
-        """
-        Change the mooring's one environment from now on: its current, its wind.
-
-        Every line, its System and the ship's loads take it from the next step; a line
-        whose step changes with it (a current's drag) is grouped again. Gusty wind
-        (wind_spectrum) keeps its spectrum and seed about a new mean.
-
-        :raises ParameterError: as check_environment (nothing changed then).
-        """
-        self.arrangement, self.environment = self.check_environment(changes)
-        shared = {k: v for k, v in changes.items() if k not in WIND_SETTINGS}
-        steps = [line.time_step for line in self.lines]
-        for line in self.lines:
-            line.update(shared, self.environment)
-        if not self.started:
-            if steps != [line.time_step for line in self.lines]:
-                self._group()
-            return
-        for group in self.groups:
-            group.system.set_environment(self.environment)
-        if steps != [line.time_step for line in self.lines]:
-            self._regroup()
-        else:
-            for group in self.groups:
-                group.refresh(self.lines, self.environment)
+        """Apply run-time changes of line k's parameters, or every line's (changes.py)."""
+        changes.update(self, k, values)
 
     def set_output_interval(self, interval: float) -> None:
         """Choose the steps again so that each divides a new output interval [s]."""
         self._output_interval = interval
         for line in self.lines:
             line.set_output_interval(interval, self.environment)
-        self._regroup()
+        self.regroup()
 
     # -- outputs --------------------------------------------------------------------------
 
@@ -532,9 +439,3 @@ class Mooring:
         The peaks are those since the previous output (this call clears them).
         """
         return mooring_output(self)
-
-
-def _split(values: dict) -> Tuple[dict, dict]:
-    """Return run-time changes split: the environment's (ENVIRONMENT_SETTINGS), the lines'."""
-    changes = {k: v for k, v in values.items() if k in ENVIRONMENT_SETTINGS}
-    return changes, {k: v for k, v in values.items() if k not in ENVIRONMENT_SETTINGS}
