@@ -48,7 +48,7 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 import math
 import numbers
-from typing import List, Sequence
+from typing import List, Sequence, Tuple
 
 import numpy as np
 
@@ -799,7 +799,7 @@ class System:
                     line.rest[whole] = rest[whole]
                     line.rest[~whole] = real[UNSTRETCHED] - rest[whole].sum()
         # one look at the partings' column: looking line by line took 1 us a line an output
-        if self.line_real[:, PARTED].max() >= 0.0:
+        if len(self.lines) and self.line_real[:, PARTED].max() >= 0.0:
             for k in np.flatnonzero(self.line_real[:, PARTED] >= 0.0):
                 line, real = self.lines[k], self.line_real[k]
                 if line.parted is None:
@@ -852,21 +852,28 @@ class System:
         line started at rest in a System of its own (relaxed alone) takes its place in a
         System it shares with others.
         """
-        line, other = self.lines[k], source.lines[j]
-        if line.segments != other.segments:
-            raise ValueError(f'line {k} has {line.segments} segments, the source line '
-                             f'{other.segments}')
-        line.x[:] = other.x
-        line.v[:] = other.v
-        line.line_type = other.line_type
-        line.rest[:] = other.rest
-        line.winch, line.break_load, line.parted = other.winch, other.break_load, other.parted
-        for mine, theirs in zip(line.ends, other.ends):
-            self.point_x[mine] = source.point_x[theirs]
-            self.point_v[mine] = source.point_v[theirs]
+        self.load_lines([(k, source, j)])
+
+    def load_lines(self, loads: Sequence[Tuple[int, 'System', int]]) -> None:
+        """Load line k from line j of each (k, source, j) as load_line does, refreshed once."""
+        for k, source, j in loads:
+            line, other = self.lines[k], source.lines[j]
+            if line.segments != other.segments:
+                raise ValueError(f'line {k} has {line.segments} segments, the source line '
+                                 f'{other.segments}')
+            line.x[:] = other.x
+            line.v[:] = other.v
+            line.line_type = other.line_type
+            line.rest[:] = other.rest
+            line.winch, line.break_load, line.parted = (other.winch, other.break_load,
+                                                        other.parted)
+            for mine, theirs in zip(line.ends, other.ends):
+                self.point_x[mine] = source.point_x[theirs]
+                self.point_v[mine] = source.point_v[theirs]
         self.refresh()
-        self.line_real[k, [WINCH_SPEED, PEAK_A, PEAK_B]] = \
-            source.line_real[j, [WINCH_SPEED, PEAK_A, PEAK_B]]
+        for k, source, j in loads:
+            self.line_real[k, [WINCH_SPEED, PEAK_A, PEAK_B]] = \
+                source.line_real[j, [WINCH_SPEED, PEAK_A, PEAK_B]]
         if self.bodies:  # a carried end moves with its body, whatever the source's did
             place_points(self.body_table, self.points_table, self.point_x, self.point_v)
             assembly.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)

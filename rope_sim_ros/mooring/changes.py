@@ -17,15 +17,17 @@ Run-time changes of a mooring: a line's parameters, and its one environment.
 
 A change of the environment's (current, wind_speed, wind_direction: ENVIRONMENT_SETTINGS)
 replaces the mooring's one Environment everywhere at once: every line's step in it, its
-groups' Systems, the ship's loads. Any other change is a line's own (damping, drag,
-max_strain, a winch's), applied to that line. Either way the ropes go on from where they
-are; a line whose step changed is grouped again. Each function takes the Mooring it
+groups' Systems, the ship's loads. A line's `bollard` names the bollard it will be made
+fast to (set_bollard: while it is not fast). Any other change is a line's own (damping,
+drag, max_strain, a winch's), applied to that line. Either way the ropes go on from where
+they are; a line whose step changed is grouped again. Each function takes the Mooring it
 changes (mooring.py, whose update and check_update call them).
 """
 
 from dataclasses import replace
 from typing import Optional, Tuple
 
+from ..params.bollards import find_bollard
 from ..params.resolve import environment
 from ..params.ship import ENVIRONMENT_SETTINGS, WIND_SETTINGS
 from ..params.table import ParameterError
@@ -36,6 +38,8 @@ def check_update(mooring, k: Optional[int], values: dict) -> None:
     changes, own = _split(values)
     if changes:
         check_environment(mooring, changes)
+    if BOLLARD in own:
+        check_bollard(mooring, k, own.pop(BOLLARD))
     for i in _indices(mooring, k) if own else ():
         try:
             mooring.lines[i].updated(own, mooring.environment)
@@ -59,8 +63,41 @@ def update(mooring, k: Optional[int], values: dict) -> None:
     changes, own = _split(values)
     if changes:
         set_environment(mooring, changes)
+    if BOLLARD in own:
+        set_bollard(mooring, k, own.pop(BOLLARD))
     for i in _indices(mooring, k) if own else ():
         _update_line(mooring, i, own)
+
+
+def check_bollard(mooring, k: Optional[int], bollard: str) -> None:
+    """
+    Refuse a bollard line k cannot be given now: an unknown name, or the line is fast.
+
+    :raises ParameterError: the message names the nearest bollard, or the line's state.
+    """
+    if k is None:
+        raise ParameterError("parameter 'bollard' is a line's own: set <line>.bollard")
+    name = mooring.names[k]
+    if bollard:
+        find_bollard(mooring.arrangement.bollards, bollard, f"parameter '{name}.bollard'")
+    line = mooring.lines[k]
+    if line.state == 'fast' and mooring.arrangement.lines[k].bollard != bollard:
+        raise ParameterError(f"parameter '{name}.bollard' cannot change while line {name} is "
+                             'fast: let it go first (its bollard changes while it is stowed '
+                             'or free)')
+
+
+def set_bollard(mooring, k: int, bollard: str) -> None:
+    """
+    Name the bollard line k will be made fast to ('': it keeps the position it has).
+
+    :raises ParameterError: as check_bollard (nothing changed then).
+    """
+    check_bollard(mooring, k, bollard)
+    mooring.arrangement = mooring.arrangement.with_bollard(mooring.names[k], bollard)
+    line = mooring.lines[k]
+    line.params = mooring.arrangement.lines[k].params
+    mooring.ends.changed()
 
 
 def _indices(mooring, k: Optional[int]) -> range:
@@ -77,6 +114,10 @@ def _update_line(mooring, k: int, values: dict) -> None:
     if not mooring.started:
         if line.time_step != dt:
             mooring.make_groups()
+        return
+    if not line.stepped:  # aboard: its winch and step count once it is made fast
+        if line.time_step != dt:
+            mooring.regroup()
         return
     group, j = mooring.where(k)
     group.system.lines[j].line_type = line.props.line_type
@@ -135,6 +176,9 @@ def set_environment(mooring, changes: dict) -> None:
     else:
         for group in mooring.groups:
             group.refresh(mooring.lines, mooring.environment)
+
+
+BOLLARD = 'bollard'  # a line's own setting, not of its parameters: set_bollard
 
 
 def _split(values: dict) -> Tuple[dict, dict]:

@@ -23,7 +23,9 @@ of one line. A Mooring is made of parts, each a module of its own:
 - their ends (ends.py: the fairleads on the ship, the bollards, their trajectories);
 - its groups (group.py: lines with equal steps in one System, stepped by one kernel call,
   with the rules of every step);
-- its outputs (outputs.py) and their records (records.py).
+- its outputs (outputs.py) and their records (records.py);
+- its run-time changes: parameters and the environment (changes.py), and the lines made
+  fast, let go and stowed (handling.py).
 
 This module holds them together: it builds the groups, starts and restarts the lines at
 rest, advances every group to a time and applies run-time changes. The Driver (driver.py)
@@ -35,7 +37,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from . import changes
+from . import changes, handling
 from .ends import Ends
 from .group import Group, group_lines
 from .line import MooringLine
@@ -79,6 +81,7 @@ class Mooring:
         self._materials = materials or load_materials()
         self._output_interval = output_interval
         self.compiled = compiled
+        self.integrator = arrangement.shared.integrator  # every line's: one kernel call
         # the one environment of the mooring: its lines, their Systems and the ship read it
         self.environment = environment(arrangement.shared, arrangement.ship)
         self.lines = [self._line(setup.name, setup.params) for setup in arrangement.lines]
@@ -144,7 +147,7 @@ class Mooring:
         return self.ends.last_jumps
 
     def where(self, k: int) -> Tuple[Group, int]:
-        """Return line k's group and its index there."""
+        """Return line k's group and its index there (a line out: not stowed)."""
         group = self._group_of[k]
         return group, group.members.index(k)
 
@@ -160,14 +163,22 @@ class Mooring:
         self.groups = group_lines(self.lines, self.free)
         self._group_of = {k: group for group in self.groups for k in group.members}
 
-    def regroup(self) -> None:
-        """Group the lines again after a step changed; rebuild the Systems if started."""
+    def regroup(self, placed: Optional[Dict[int, System]] = None) -> None:
+        """
+        Group the lines again after a step or a state changed; rebuild the Systems if started.
+
+        :param placed: {line index: a System of that line alone} for lines put in anew (a
+            line made fast); the others carry on as they are.
+        """
         started = self.started
-        systems = {k: self.where(k) for k in range(len(self.lines))} if started else {}
+        systems = {k: self.where(k) for k in self._group_of} if started else {}
         self.make_groups()
         if started:  # new groups carry on from the state time (a new group has none)
-            self._build({k: group.system for k, (group, _) in systems.items()},
-                        {k: j for k, (_, j) in systems.items()})
+            sources = {k: group.system for k, (group, _) in systems.items()}
+            indices = {k: j for k, (_, j) in systems.items()}
+            for k, alone in (placed or {}).items():
+                sources[k], indices[k] = alone, 0
+            self._build(sources, indices)
             self._set_time(self.time)
 
     def _build(self, sources: Dict[int, System], indices: Dict[int, int]) -> None:
@@ -258,8 +269,8 @@ class Mooring:
             raise TrajectoryError('cannot start the lines before the first ship pose')
         lengths = self.resolve_pretensions(t)
         alone = {}
-        for k in range(len(self.lines)):
-            alone[k] = self._at_rest_or_parted(k, t)
+        for k in self._group_of:  # the lines out; a stowed line waits aboard
+            alone[k] = self.at_rest_or_parted(k, t)
         self._build(alone, {k: 0 for k in alone})
         for group in self.groups:  # what bringing them to rest pulled is no load of theirs
             group.system.take_peaks()
@@ -279,7 +290,7 @@ class Mooring:
         """
         lengths = {}
         for k, setup in enumerate(self.arrangement.lines):
-            if setup.pretension <= 0.0:
+            if setup.pretension <= 0.0 or self.lines[k].state != 'fast':
                 continue
             line = self.lines[k]
             try:
@@ -297,7 +308,7 @@ class Mooring:
             self.make_groups()  # a new length can give a line another step
         return lengths
 
-    def _at_rest_or_parted(self, k: int, t: float) -> System:
+    def at_rest_or_parted(self, k: int, t: float) -> System:
         """
         Return line k alone at rest between its ends at t (MooringLine.at_rest).
 
@@ -319,13 +330,21 @@ class Mooring:
                                                       self.environment))
         self.apply_winch(k)
 
+    def place_out(self, k: int, alone: System) -> None:
+        """Put line k in its group as it is in `alone` (a System of it at rest), made fast."""
+        self.regroup({k: alone})
+        self.apply_winch(k)
+        group, j = self.where(k)
+        group.system.take_peaks(j)  # what bringing it to rest pulled is no load of its
+        group.refresh(self.lines, self.environment)
+
     def restart_line(self, k: int, t: Optional[float] = None) -> None:
         """Put line k back at rest between its ends, at its group's state time (or t)."""
-        if not self.started:
+        if not self.started or not self.lines[k].stepped:
             return
         group, j = self.where(k)
         t = group.time if t is None else t
-        group.system.load_line(j, self._at_rest_or_parted(k, t))
+        group.system.load_line(j, self.at_rest_or_parted(k, t))
         self.apply_winch(k)
         group.system.take_peaks(j)  # nor before the restart: the peaks start from its rest
         group.refresh(self.lines, self.environment)
@@ -333,6 +352,8 @@ class Mooring:
     def apply_winch(self, k: int) -> None:
         """Give line k the winch and break load its parameters ask for now."""
         line = self.lines[k]
+        if not line.stepped:  # aboard: its winch is given when it is made fast
+            return
         group, j = self.where(k)
         system = group.system
         p = line.params
@@ -372,7 +393,7 @@ class Mooring:
         """
         line = self.lines[k]
         line.command_winch(speed)
-        if self.started:
+        if self.started and line.stepped:
             group, j = self.where(k)
             group.system.set_winch(j, command=line.winch().command)
 
@@ -393,6 +414,7 @@ class Mooring:
         groups = self.groups
         self.time = groups[0].time if len(groups) == 1 else min(g.time for g in groups)
         done.lag = t - self.time
+        done.released = handling.release_hooks(self)
         self.forget_ship()  # (else a run fed every pose first searches them all at each output)
         return done
 
@@ -429,6 +451,24 @@ class Mooring:
         for line in self.lines:
             line.set_output_interval(interval, self.environment)
         self.regroup()
+
+    # -- line handling --------------------------------------------------------------------
+
+    def command(self, k: int, name: str) -> str:
+        """
+        Take a line-handling command on line k now (handling.py); return what was done.
+
+        :raises CommandError: an unknown command, or one that does not fit (says why).
+        """
+        return handling.command(self, k, name)
+
+    def set_bollard(self, k: int, bollard: str) -> None:
+        """
+        Name the bollard line k will be made fast to ('': where it is now).
+
+        :raises ParameterError: no bollard of that name, or the line is fast.
+        """
+        changes.set_bollard(self, k, bollard)
 
     # -- outputs --------------------------------------------------------------------------
 
