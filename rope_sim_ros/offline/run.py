@@ -21,7 +21,7 @@ starts between both), each stream taken for finished after its last sample: the 
 one sample behind the streams, which moves the ends exactly as if the whole motion were
 known. The ropes start at the first ship pose and outputs follow every 1 / rate s up to the
 last one. Each output goes to the sinks (sinks.py: OUT.csv rows, a bag as the node records
-it).
+it, a study's summary).
 """
 
 from dataclasses import dataclass, field
@@ -292,23 +292,24 @@ def simulate_free(setup: ArrangementParams, duration: float, loads: Optional[Loa
 
 def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSchedule] = None,
              out_path=None, rate: float = DEFAULT_RATE, progress=None,
-             materials: Any = None) -> RunSummary:
+             materials: Any = None, sinks: Sequence[Sink] = ()) -> RunSummary:
     """
     Run a free ship (simulate_free) into OUT.csv with its motion and fenders (sinks.py).
 
+    :param sinks: more sinks every output goes to (a study's SummarySink).
     :raises ParameterError: as simulate_free, before any file exists.
     :raises OSError: OUT.csv cannot be written.
     """
     free_driver(setup, loads, rate, materials)  # refuses a bad rate, line or load first
     writer = None
-    sinks: List[Sink] = []
+    outputs: List[Sink] = list(sinks)
     if out_path is not None:
         writer = CsvSink(out_path, setup.names, ratings(setup), free=True,
                          fenders=[(fender.name, fender.normal) for fender in setup.fenders],
                          loads=True)
-        sinks.append(writer)
+        outputs.insert(0, writer)
     try:
-        summary = simulate_free(setup, duration, loads, rate, sinks, progress, materials)
+        summary = simulate_free(setup, duration, loads, rate, outputs, progress, materials)
     finally:
         if writer is not None:
             writer.close()
@@ -338,17 +339,18 @@ def input_messages(setup: ArrangementParams, streams: Streams) -> Tuple[list, di
 
 def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                rate: float = DEFAULT_RATE, bag_path=None, progress=None,
-               materials: Any = None) -> RunSummary:
+               materials: Any = None, sinks: Sequence[Sink] = ()) -> RunSummary:
     """
     Run a motion: OUT.csv rows and/or a bag (sinks.py).
 
+    :param sinks: more sinks every output goes to (a study's SummarySink).
     :raises ParameterError: a bad rate or line (before any file exists).
     :raises MotionError: a bag cannot hold negative times.
     :raises BagError: the bag directory exists and is not empty, or recording failed.
     :raises OSError: OUT.csv cannot be written.
     """
     driver = driver_for(setup, rate, materials)  # refuses a bad rate or line first
-    sinks: List[Sink] = []
+    outputs: List[Sink] = list(sinks)
     bag = writer = None
     if bag_path is not None:
         if int(streams.t_ns[0]) < 0:
@@ -358,7 +360,7 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
         inputs, types = input_messages(setup, streams)
         bag = BagSink(bag_path, encoder_for(setup), '', inputs, types,
                       stored(setup))
-        sinks.append(bag)
+        outputs.insert(0, bag)
     try:
         if out_path is not None:
             writer = CsvSink(out_path, driver.names, driver.ratings,
@@ -367,8 +369,8 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                              fenders=[(fender.name, fender.normal)
                                       for fender in setup.fenders],
                              loads=reports_ship_loads(setup))
-            sinks.insert(0, writer)
-        summary = simulate(setup, streams, rate, sinks, progress, materials)
+            outputs.insert(0, writer)
+        summary = simulate(setup, streams, rate, outputs, progress, materials)
     except BaseException:
         # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
         _close_quietly(writer, bag)
