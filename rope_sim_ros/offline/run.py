@@ -26,7 +26,6 @@ it, a study's summary).
 
 from dataclasses import dataclass, field
 import math
-import sys
 import time
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -110,62 +109,6 @@ class Tally:
             else:
                 self._held[k] = len(summary.beyond_reach)
                 summary.beyond_reach.append((t, self.names[k], distance))
-
-
-class Progress:
-    """
-    A text progress bar on a stream, shown only when the run is slow and stream a TTY.
-
-    Updates rewrite the line (carriage return) at most ten times a second, once ``delay``
-    seconds have passed; finish() ends the line with a newline if anything was drawn.
-    """
-
-    def __init__(self, stream=None, delay: float = 2.0, width: int = 30,
-                 enabled: Optional[bool] = None) -> None:
-        """
-        Prepare the bar.
-
-        :param stream: where to draw (default sys.stderr).
-        :param delay: seconds before the first drawing.
-        :param width: characters of the bar.
-        :param enabled: force on/off; None = only when the stream is a TTY.
-        """
-        self.stream = stream if stream is not None else sys.stderr
-        if enabled is None:
-            isatty = getattr(self.stream, 'isatty', None)
-            enabled = bool(isatty and isatty())
-        self.enabled = enabled
-        self.delay = delay
-        self.width = width
-        self._start = time.monotonic()
-        self._last = -math.inf
-        self._drawn = False
-
-    def __call__(self, done: int, total: int, t: float) -> None:
-        """Report done of total outputs, at simulated time t."""
-        if not self.enabled:
-            return
-        now = time.monotonic()
-        elapsed = now - self._start
-        if elapsed < self.delay or (now - self._last < 0.1 and done < total):
-            return
-        self._last = now
-        fraction = done / total if total else 1.0
-        filled = int(round(self.width * fraction))
-        remaining = elapsed * (1.0 - fraction) / fraction if fraction > 0 else math.inf
-        eta = f'{remaining:5.0f} s left' if math.isfinite(remaining) else ''
-        self.stream.write(
-            f'\r[{"#" * filled}{"." * (self.width - filled)}] {100 * fraction:5.1f} % '
-            f't = {t:.2f} s {eta}')
-        self.stream.flush()
-        self._drawn = True
-
-    def finish(self) -> None:
-        """End the line if the bar was drawn."""
-        if self._drawn:
-            self.stream.write('\n')
-            self.stream.flush()
-            self._drawn = False
 
 
 def driver_for(setup: ArrangementParams, rate: float, materials: Any = None) -> Driver:

@@ -46,9 +46,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 import importlib
 import logging
-import math
 import os
-import sys
 import tempfile
 import time
 from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
@@ -58,6 +56,7 @@ from distributed.diagnostics.plugin import WorkerPlugin
 from .file import PreparedCase, Study, StudyError
 from .results import OK
 from ..motion import MotionError, read_loads, Streams
+from ..progress import Progress
 from ..run import run_free, run_motion
 from ..sinks import SummarySink
 from ...bag import BagError
@@ -392,23 +391,16 @@ def warm_up_text(warm_ups: Dict[str, Dict[str, Any]]) -> str:
             f'{seconds:.0f} s')
 
 
-class StudyProgress:
-    """A one-line progress bar of the cases on a TTY: done of total, failed, time left."""
+class StudyProgress(Progress):
+    """The study's progress bar (progress.py): cases done of total, failed, time left."""
 
     def __init__(self, total: int, stream=None, width: int = 30,
                  enabled: Optional[bool] = None) -> None:
         """Prepare the bar for `total` cases to run (drawn only on a TTY unless enabled)."""
-        self.stream = stream if stream is not None else sys.stderr
-        if enabled is None:
-            isatty = getattr(self.stream, 'isatty', None)
-            enabled = bool(isatty and isatty())
-        self.enabled = enabled
+        super().__init__(stream, delay=0.0, width=width, enabled=enabled, interval=0.0)
         self.total = total
-        self.width = width
         self.done = 0
         self.failed = 0
-        self._start = time.monotonic()
-        self._drawn = False
 
     def update(self, failed: bool = False) -> None:
         """Count one more case done (failed or not) and redraw."""
@@ -416,36 +408,17 @@ class StudyProgress:
         self.failed += int(failed)
         self.draw()
 
+    def _what(self) -> str:
+        failed = f', {self.failed} failed' if self.failed else ''
+        return f'{self.done}/{self.total} cases{failed}'
+
     def text(self) -> str:
         """Return the bar's line."""
-        fraction = self.done / self.total if self.total else 1.0
-        filled = int(round(self.width * fraction))
-        elapsed = time.monotonic() - self._start
-        left = elapsed * (1.0 - fraction) / fraction if fraction > 0.0 else math.inf
-        failed = f', {self.failed} failed' if self.failed else ''
-        eta = f', ~{_clock(left)} left' if math.isfinite(left) and self.done < self.total else ''
-        return (f'[{"#" * filled}{"." * (self.width - filled)}] {self.done}/{self.total} cases'
-                f'{failed}, {_clock(elapsed)}{eta}')
+        return self.line(self.done, self.total, self._what())
 
     def draw(self) -> None:
         """Rewrite the line (on a TTY)."""
-        if self.enabled:
-            self.stream.write('\r' + self.text() + '\x1b[K')
-            self.stream.flush()
-            self._drawn = True
-
-    def finish(self) -> None:
-        """End the line if it was drawn."""
-        if self._drawn:
-            self.stream.write('\n')
-            self.stream.flush()
-            self._drawn = False
-
-
-def _clock(seconds: float) -> str:
-    seconds = int(round(seconds))
-    return f'{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}' if seconds >= 3600 \
-        else f'{seconds // 60}:{seconds % 60:02d}'
+        self.show(self.done, self.total, self._what())
 
 
 def run_on_cluster(cluster: Cluster, study: Study, todo: List[PreparedCase],
