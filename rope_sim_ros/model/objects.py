@@ -555,6 +555,9 @@ class System:
         self.point_accel = np.zeros_like(self.point_x)
         self._accel_at = -1
         self.fine_left = np.zeros(len(self.lines))
+        # the lines the adaptive integrator may take into improved Euler through a snap: its
+        # user's choice (the Mooring's: not a line let go once it has recoiled)
+        self.watched = np.ones(len(self.lines), dtype=bool)
         self._forces = np.zeros((len(self.lines), 2, 3))
         self._strains = np.zeros(len(self.lines))
         self._loads_at = -1  # the step count at which _forces and _strains were computed
@@ -655,6 +658,9 @@ class System:
         for q in range(len(self.points)):
             if self.points_table[q, KIND] == FREE and not self.points_table[q, TOTAL_MASS] > 0.0:
                 raise ValueError(f'free point {q} has no mass and no line')
+        ends = self.lines_table[:, [END_A, END_B]].reshape(-1)
+        free = ends[self.points_table[ends, KIND] == FREE] if len(ends) else ends
+        self.joins_lines = len(free) > len(set(free.tolist()))  # a free point of two lines
 
     def _line_changes(self, k: int, line: Line) -> None:
         """Fill line k's winch and parting columns; part it again if it had parted."""
@@ -1090,6 +1096,7 @@ class LineView:
         self.point_v = system.point_v[self.ends]
         self.point_accel = system.point_accel[self.ends]
         self.line_real = system.line_real[k:k + 1]
+        self.watched = system.watched[k:k + 1]
         lines_table = system.lines_table[k:k + 1].copy()
         lines_table[0, [FIRST, LAST]] -= first
         lines_table[0, [END_A, END_B]] = (0, 1)

@@ -48,6 +48,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .handling import recoiling
 from .line import MooringLine, Parting
 from .records import MooringAdvance
 from ..model.objects import Environment, Line, Point, System
@@ -145,6 +146,11 @@ class Group:
         self.plan = (None, None)  # how its ends are driven (Ends._plan)
         self.index = np.array(members, dtype=np.int64)  # members, to index arrays with
         self.winches = (None, [])  # (j, k) of its lines with a winch, and of when
+
+    @property
+    def key(self) -> tuple:
+        """Return what makes it the group it is: its lines, its step, its bending."""
+        return tuple(self.members), self.step, self.bending
 
     def refresh(self, lines: Sequence[MooringLine], environment: Environment) -> None:
         """Take again the rules of its lines (of the mooring's `lines`) that changed."""
@@ -274,6 +280,9 @@ class Group:
         integrator = mooring.integrator
         fine = 0.0
         if integrator == 'adaptive':  # each line's own improved Euler step
+            if mooring.has_free_lines:
+                self.system.watched[:] = [recoiling(mooring.lines[k], self.time)
+                                          for k in self.members]
             if speeds is None:
                 speeds = lines_motion_spreads(self.system.v, self.starts, drive_v)[:, 2]
             rules = self.rules

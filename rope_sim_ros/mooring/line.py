@@ -195,6 +195,7 @@ class MooringLine:
             raise ParameterError('start_state stowed is not allowed for a line with a '
                                  'payload: a payload hangs from the fairlead from the start')
         self.state = params.start_state
+        self.let_go_at = math.nan  # when it was last let go [s]
         self.winch_command = 0.0  # the speed last commanded [m/s]
         self.held_tension = math.nan  # constant_tension with winch_tension 0: the one held
         self._line_props = (None, None)  # (props, props at the length now)

@@ -405,6 +405,11 @@ def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],
     if pretension > 0.0 and values.get('payload_mass', 0.0) > 0.0:
         raise ParameterError(f'line {name!r} has a payload and a pretension: a payload hangs '
                              f'under its own weight; give {name}.length (m)')
+    if pretension > 0.0 and values.get('start_state') == 'stowed':
+        raise ParameterError(f'line {name!r} starts stowed and has a pretension: a pretension '
+                             f'chooses the length of a line that starts fast; give '
+                             f'{name}.length (m), and heave it to a tension once made fast '
+                             '(winch_mode constant_tension)')
     if 'length' not in values and pretension <= 0.0:
         missing.append(f'{name}.length (m) or {name}.pretension (N)')
     if missing:
