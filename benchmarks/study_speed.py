@@ -34,7 +34,11 @@ study, does not hide the cost per case). Printed per size:
   numba's cache) apart, a cost per study, not per case; the client's CPU seconds (the
   study's own process, with the local scheduler).
 
+Each case's summary comes from its run's outputs (offline/sinks.py SummarySink); --keep says
+what each case writes besides: csv (its OUT.csv, the default), none (nothing).
+
     python benchmarks/study_speed.py [--cases 48] [--duration 30] [--workers 1 2] [--repeat 1]
+        [--keep csv]
 """
 
 import argparse
@@ -51,7 +55,7 @@ MOTIONS = ('passing_075.csv', 'passing_100.csv', 'passing_125.csv', 'passing_150
 MATERIALS = ('hmpe', 'polyester', 'nylon', 'steel_wire')
 
 
-def write_study(folder: Path, cases: int, duration: float) -> Path:
+def write_study(folder: Path, cases: int, duration: float, keep: str = 'csv') -> Path:
     """Write a study of `cases` cases (motion x material, in order) into folder."""
     examples = REPO_ROOT / 'examples' / 'study'
     lines = []
@@ -62,7 +66,8 @@ def write_study(folder: Path, cases: int, duration: float) -> Path:
     path = folder / 'study.yaml'
     path.write_text(
         f'study:\n  arrangement: {REPO_ROOT / "config" / "berth.yaml"}\n'
-        f'  duration: {duration}\n  rate: 10.0\n  cases:\n' + '\n'.join(lines) + '\n')
+        f'  duration: {duration}\n  rate: 10.0\n  keep: {keep}\n  cases:\n'
+        + '\n'.join(lines) + '\n')
     return path
 
 
@@ -76,10 +81,12 @@ def main() -> None:
     parser.add_argument('--repeat', type=int, default=1,
                         help='rounds, each running every size once in turn (this machine '
                         'varies by 20 %% from run to run)')
+    parser.add_argument('--keep', choices=('csv', 'none'), default='csv',
+                        help="each case's files: its OUT.csv (csv) or none")
     args = parser.parse_args()
     rounds = []
     with tempfile.TemporaryDirectory(prefix='study_speed_') as folder:
-        study = write_study(Path(folder), args.cases, args.duration)
+        study = write_study(Path(folder), args.cases, args.duration, args.keep)
         for round_ in range(args.repeat):
             results = {}
             for workers in args.workers:
@@ -93,7 +100,7 @@ def main() -> None:
             rounds.append(results)
     load = os.getloadavg()[0]
     print(f'study: {args.cases} cases of {args.duration:g} s (config/berth.yaml, 8 lines), '
-          f'{os.cpu_count()} cores, load average {load:.2f} after the runs')
+          f'keep: {args.keep}, {os.cpu_count()} cores, load average {load:.2f} after the runs')
     header = ('workers', 'cases/min (run)', 'cases/min (study)', 'speed-up (run)',
               'speed-up (study)', 'case time [s]', 'on CPU', 'run [s]', 'overhead',
               'fixed', 'cluster start [s]', 'study [s]', 'client CPU [s]')

@@ -243,7 +243,7 @@ def test_console_entry_point_exit_codes(tmp_path):
 
 def test_progress_bar_redraws_one_line_and_ends_it():
     import io
-    from rope_sim_ros.offline.run import Progress
+    from rope_sim_ros.offline.progress import Progress
     stream = io.StringIO()
     bar = Progress(stream, delay=0.0, enabled=True)
     for k in range(1, 11):

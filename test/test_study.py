@@ -24,6 +24,7 @@ gives byte-identical results. Every case's maxima are those of `rope_sim run` of
 """
 
 import csv
+from dataclasses import replace
 import io
 import json
 import math
@@ -34,17 +35,20 @@ import socket
 import subprocess
 import sys
 import time
+from types import SimpleNamespace
 
+import numpy as np
 import pyarrow.parquet as pq
 import pytest
 from rope_sim_ros.mooring import scenario
 from rope_sim_ros.mooring.status import Rating, ratings
 from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.sinks import ship_excursions, SummarySink
 from rope_sim_ros.offline.study import run_study
-from rope_sim_ros.offline.study_file import prepare, read_study
-from rope_sim_ros.offline.study_plots import _heat_grid
-from rope_sim_ros.offline.study_results import OK, summarise
-from rope_sim_ros.offline.study_run import job_of, run_case, StudyProgress
+from rope_sim_ros.offline.study.cluster import job_of, run_case, StudyProgress
+from rope_sim_ros.offline.study.file import prepare, read_study
+from rope_sim_ros.offline.study.plots import _heat_grid
+from rope_sim_ros.offline.study.results import OK
 from rope_sim_ros.params.arrangement import read_setup
 import yaml
 
@@ -103,6 +107,36 @@ def read_results(path: Path):
     with open(path, newline='') as stream:
         rows = list(csv.reader(stream))
     return rows[0], rows[1:]
+
+
+def summarise(path, names, ratings_):
+    """
+    Return a case's summary worked out from its OUT.csv (the rules of sinks.py SummarySink).
+
+    The reference a study's summary, made from the run's outputs, is checked against.
+    """
+    with open(path, newline='') as stream:
+        rows = list(csv.DictReader(stream))
+
+    def column(name):
+        return np.array([float(row[name]) for row in rows])
+
+    t, summary = column('t'), {}
+    for name, rating in zip(names, ratings_):
+        sample = np.maximum(column(f'{name}_tension'), column(f'{name}_bollard_tension'))
+        peak = np.maximum(np.maximum(column(f'{name}_fairlead_peak_tension'),
+                                     column(f'{name}_bollard_peak_tension')), sample)
+        k = int(np.argmax(peak))
+        summary[f'{name}_max_tension'] = float(peak[k])
+        summary[f'{name}_max_utilisation'] = rating.utilisation(float(peak[k]))
+        summary[f'{name}_time_of_max'] = float(t[k])
+        summary[f'{name}_mean_tension'] = math.fsum(sample.tolist()) / len(sample)
+        summary[f'{name}_parted'] = int(bool(np.any(column(f'{name}_parted'))))
+    if 'qw' in rows[0]:  # a free ship's pose
+        summary.update(ship_excursions(np.column_stack([column(c) for c in ('x', 'y', 'z')]),
+                                       np.column_stack([column(c) for c in
+                                                        ('qx', 'qy', 'qz', 'qw')])))
+    return summary
 
 
 def test_results_have_a_row_per_case_and_the_failures_reason(local_run):
@@ -386,24 +420,25 @@ def test_cases_list_and_per_case_files(tmp_path):
     assert prepare(read_study(study))[0].key == prepared[0].key
 
 
-def test_ship_excursions_and_line_summary_of_a_synthetic_out_csv(tmp_path):
-    # a free ship's OUT.csv: heading +y (yaw 90 deg) at (10, 20, 0), then moving
-    yaw0, rows = math.pi / 2.0, []
+def test_ship_excursions_and_line_summary_of_synthetic_outputs():
+    # a free ship's outputs: heading +y (yaw 90 deg) at (10, 20, 0), then moving
+    yaw0 = math.pi / 2.0
+    sink = SummarySink(['a'], [Rating(20000.0, 10000.0)], free=True)
     motions = [(0.0, 0.0, 0.0), (-3.0, 0.5, 0.05), (1.0, -0.2, -0.02), (0.0, 0.0, 0.0)]
+    # fairlead and bollard tension, their peaks since the previous output, parted
     tensions = [(1000.0, 900.0, 1100.0, 950.0, 0.0), (5000.0, 5200.0, 5400.0, 5300.0, 0.0),
                 (0.0, 0.0, 6000.0, 0.0, 1.0), (0.0, 0.0, 0.0, 0.0, 1.0)]
     for k, ((dx, dy, dyaw), tension) in enumerate(zip(motions, tensions)):
         yaw = yaw0 + dyaw
-        rows.append([0.5 * k, 10.0 + dx, 20.0 + dy, 0.0, 0.0, 0.0, math.sin(yaw / 2.0),
-                     math.cos(yaw / 2.0), *tension])
-    path = tmp_path / 'out.csv'
-    header = ['t', 'x', 'y', 'z', 'qx', 'qy', 'qz', 'qw', 'a_tension', 'a_bollard_tension',
-              'a_fairlead_peak_tension', 'a_bollard_peak_tension', 'a_parted']
-    with open(path, 'w', newline='') as stream:
-        writer = csv.writer(stream)
-        writer.writerow(header)
-        writer.writerows([[repr(v) for v in row] for row in rows])
-    summary = summarise(path, ['a'], [Rating(20000.0, 10000.0)])
+        ship = SimpleNamespace(position=np.array([10.0 + dx, 20.0 + dy, 0.0]),
+                               orientation=np.array([0.0, 0.0, math.sin(yaw / 2.0),
+                                                     math.cos(yaw / 2.0)]))
+        fairlead, bollard, fairlead_peak, bollard_peak, parted = ([v] for v in tension)
+        sink(SimpleNamespace(output=SimpleNamespace(
+            t=0.5 * k, fairlead_tensions=np.array(fairlead), bollard_tensions=np.array(bollard),
+            fairlead_peaks=np.array(fairlead_peak), bollard_peaks=np.array(bollard_peak),
+            parted=np.array(parted, dtype=bool), ship=ship)))
+    summary = sink.summary()
     assert summary['a_max_tension'] == 6000.0  # a peak between rows, as the line parted
     assert summary['a_time_of_max'] == 1.0
     assert summary['a_max_utilisation'] == 0.3
@@ -452,6 +487,33 @@ def test_a_free_ships_case_runs_under_its_loads_and_reports_its_excursions(tmp_p
         assert 0.01 < outcome.summary['max_surge'] < 0.5, outcome.summary
         assert 0.01 < outcome.summary['max_sway'] < 0.5, outcome.summary
     assert outcomes[0].summary != outcomes[1].summary  # the spring's material counts
+
+
+def test_a_case_that_keeps_no_csv_writes_none_and_gives_the_same_summary(
+        tmp_path, monkeypatch):
+    # One case of the driven berth run twice: keeping its OUT.csv, then with keep: none
+    # while OUT.csv's writer refuses to start. Both summaries are the kept OUT.csv's.
+    from rope_sim_ros.offline import run as offline_run
+    path = write_study(tmp_path, '  cases: [{spring_fwd.material: polyester}]\n  keep: none\n')
+    study = read_study(path)
+    item = prepare(study)[0]
+    job = job_of(study, item)
+    assert not job.csv and not job.bag
+    kept = run_case(replace(job, csv=True), item.streams)
+    assert kept.status == OK, kept.status
+    out = tmp_path / 'kept.csv'
+    out.write_bytes(kept.csv)
+    assert kept.summary == summarise(out, LINES, ratings(item.setup))
+
+    def no_csv(*args, **kwargs):
+        raise AssertionError('OUT.csv written')
+
+    monkeypatch.setattr(offline_run, 'CsvSink', no_csv)
+    outcome = run_case(job, item.streams)
+    assert outcome.status == OK, outcome.status
+    assert outcome.csv is None and outcome.bag is None
+    assert outcome.summary == kept.summary
+    assert 0.02 < outcome.summary['spring_fwd_max_utilisation'] < 0.9
 
 
 def test_a_heat_map_cell_is_its_worst_case_and_says_what_parted_or_failed():

@@ -48,7 +48,7 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 import math
 import numbers
-from typing import List, Sequence
+from typing import List, Sequence, Tuple
 
 import numpy as np
 
@@ -531,15 +531,20 @@ class System:
         """
         Rebuild the tables from the lines and the points (their types, rest lengths, winches).
 
-        What the step keeps in the tables goes on: the winches' speeds and the held peaks.
+        What the step keeps in the tables goes on: the winches' speeds, the held peaks, and
+        the segments' tensions the adaptive integrator's snap watch compares the next step's
+        with (else the step after a refresh, a line let go, went unwatched: the let go's
+        recoil, taken in one implicit step, came 18 % fast).
         """
         kept = None
         if getattr(self, 'line_real', None) is not None and len(self.line_real) == len(
-                self.lines):
-            kept = self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]].copy()
+                self.lines) and len(self.particles) == len(self.x):
+            kept = (self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]].copy(),
+                    self.particles[:, [TENSION, TENSION_BEFORE]].copy())
         self._build_tables()
         if kept is not None:
-            self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]] = kept
+            self.line_real[:, [WINCH_SPEED, PEAK_A, PEAK_B]] = kept[0]
+            self.particles[:, [TENSION, TENSION_BEFORE]] = kept[1]
         # what every step passes after the state, built once: a step runs at kHz
         self.tables = (self.particles, self.lines_table, self.line_real, self.points_table,
                        self.env, self.body_table, self.fender_table)
@@ -550,6 +555,9 @@ class System:
         self.point_accel = np.zeros_like(self.point_x)
         self._accel_at = -1
         self.fine_left = np.zeros(len(self.lines))
+        # the lines the adaptive integrator may take into improved Euler through a snap: its
+        # user's choice (the Mooring's: not a line let go once it has recoiled)
+        self.watched = np.ones(len(self.lines), dtype=bool)
         self._forces = np.zeros((len(self.lines), 2, 3))
         self._strains = np.zeros(len(self.lines))
         self._loads_at = -1  # the step count at which _forces and _strains were computed
@@ -650,6 +658,9 @@ class System:
         for q in range(len(self.points)):
             if self.points_table[q, KIND] == FREE and not self.points_table[q, TOTAL_MASS] > 0.0:
                 raise ValueError(f'free point {q} has no mass and no line')
+        ends = self.lines_table[:, [END_A, END_B]].reshape(-1)
+        free = ends[self.points_table[ends, KIND] == FREE] if len(ends) else ends
+        self.joins_lines = len(free) > len(set(free.tolist()))  # a free point of two lines
 
     def _line_changes(self, k: int, line: Line) -> None:
         """Fill line k's winch and parting columns; part it again if it had parted."""
@@ -799,7 +810,7 @@ class System:
                     line.rest[whole] = rest[whole]
                     line.rest[~whole] = real[UNSTRETCHED] - rest[whole].sum()
         # one look at the partings' column: looking line by line took 1 us a line an output
-        if self.line_real[:, PARTED].max() >= 0.0:
+        if len(self.lines) and self.line_real[:, PARTED].max() >= 0.0:
             for k in np.flatnonzero(self.line_real[:, PARTED] >= 0.0):
                 line, real = self.lines[k], self.line_real[k]
                 if line.parted is None:
@@ -852,21 +863,28 @@ class System:
         line started at rest in a System of its own (relaxed alone) takes its place in a
         System it shares with others.
         """
-        line, other = self.lines[k], source.lines[j]
-        if line.segments != other.segments:
-            raise ValueError(f'line {k} has {line.segments} segments, the source line '
-                             f'{other.segments}')
-        line.x[:] = other.x
-        line.v[:] = other.v
-        line.line_type = other.line_type
-        line.rest[:] = other.rest
-        line.winch, line.break_load, line.parted = other.winch, other.break_load, other.parted
-        for mine, theirs in zip(line.ends, other.ends):
-            self.point_x[mine] = source.point_x[theirs]
-            self.point_v[mine] = source.point_v[theirs]
+        self.load_lines([(k, source, j)])
+
+    def load_lines(self, loads: Sequence[Tuple[int, 'System', int]]) -> None:
+        """Load line k from line j of each (k, source, j) as load_line does, refreshed once."""
+        for k, source, j in loads:
+            line, other = self.lines[k], source.lines[j]
+            if line.segments != other.segments:
+                raise ValueError(f'line {k} has {line.segments} segments, the source line '
+                                 f'{other.segments}')
+            line.x[:] = other.x
+            line.v[:] = other.v
+            line.line_type = other.line_type
+            line.rest[:] = other.rest
+            line.winch, line.break_load, line.parted = (other.winch, other.break_load,
+                                                        other.parted)
+            for mine, theirs in zip(line.ends, other.ends):
+                self.point_x[mine] = source.point_x[theirs]
+                self.point_v[mine] = source.point_v[theirs]
         self.refresh()
-        self.line_real[k, [WINCH_SPEED, PEAK_A, PEAK_B]] = \
-            source.line_real[j, [WINCH_SPEED, PEAK_A, PEAK_B]]
+        for k, source, j in loads:
+            self.line_real[k, [WINCH_SPEED, PEAK_A, PEAK_B]] = \
+                source.line_real[j, [WINCH_SPEED, PEAK_A, PEAK_B]]
         if self.bodies:  # a carried end moves with its body, whatever the source's did
             place_points(self.body_table, self.points_table, self.point_x, self.point_v)
             assembly.set_ends(self.x, self.v, self.lines_table, self.point_x, self.point_v)
@@ -1078,6 +1096,7 @@ class LineView:
         self.point_v = system.point_v[self.ends]
         self.point_accel = system.point_accel[self.ends]
         self.line_real = system.line_real[k:k + 1]
+        self.watched = system.watched[k:k + 1]
         lines_table = system.lines_table[k:k + 1].copy()
         lines_table[0, [FIRST, LAST]] -= first
         lines_table[0, [END_A, END_B]] = (0, 1)

@@ -57,7 +57,7 @@ import numpy as np
 
 from .line import Parting
 from .mooring import Mooring
-from .records import MooringAdvance, Published, Report
+from .records import Handled, MooringAdvance, Published, Report
 from .statics import stiffness_now
 from .status import Rating, ratings
 from ..params.arrangement import ArrangementParams
@@ -95,6 +95,9 @@ class Driver:
         # [m/s])}, each from its time on, applied before every output's steps (the nodes
         # command through command_winch instead)
         self.winch_schedules: Dict[int, Tuple[np.ndarray, np.ndarray]] = {}
+        # the line-handling commands offline, in time order, each taken before the first
+        # output's steps that start at or after its time (the nodes call command instead)
+        self.command_schedule: deque = deque()
         self._reset_inputs()
 
     def _reset_inputs(self) -> None:
@@ -357,6 +360,7 @@ class Driver:
             if mooring.time + (steps - PIN_TOLERANCE) * dt > target:
                 break  # the input does not reach the next output time yet
             self._command_scheduled_winches()
+            self._take_scheduled_commands(report)
             advance = mooring.advance_to(due)
             self._count += 1
             done += 1
@@ -374,6 +378,21 @@ class Driver:
         for k, (times, speeds) in self.winch_schedules.items():
             row = max(int(np.searchsorted(times, middle, 'right')) - 1, 0)
             mooring.command_winch(k, float(speeds[row]))
+
+    def _take_scheduled_commands(self, report: Report) -> None:
+        """Take every scheduled command due before the coming steps' middle (report.handled)."""
+        schedule = self.command_schedule
+        middle = self.mooring.time + 0.5 * self.mooring.time_step
+        while schedule and schedule[0].t < middle:
+            scheduled = schedule.popleft()
+            try:
+                if scheduled.bollard:
+                    self.update(scheduled.line, {'bollard': scheduled.bollard})
+                text = self.command(scheduled.line or None, scheduled.command)
+                refused = False
+            except ValueError as e:  # CommandError, ParameterError: said, and the run goes on
+                text, refused = str(e), True
+            report.handled.append(Handled(self.mooring.time, scheduled, text, refused))
 
     def _emit(self, advance: Optional[MooringAdvance], report: Report) -> None:
         mooring = self.mooring
@@ -430,6 +449,19 @@ class Driver:
         :raises ParameterError: speed is not a finite number.
         """
         self.mooring.command_winch(self.mooring.names.index(name), speed)
+
+    def command(self, name: Optional[str], command: str) -> str:
+        """
+        Take a line-handling command now, at the state time (mooring/handling.py).
+
+        :param name: the line ('' for a line node's); None for let_go_all.
+        :returns: one line saying what was done.
+        :raises ValueError: no line of that name.
+        :raises CommandError: an unknown command, or one that does not fit the line's state
+            (the message names the state or the numbers); nothing changed then.
+        """
+        k = 0 if name is None else self.mooring.names.index(name)
+        return self.mooring.command(k, command)
 
     def clear(self) -> None:
         """Start from scratch (a clock jump back): new lines waiting for a ship pose."""

@@ -21,7 +21,8 @@ one call; a line whose fairlead jumped past its teleport_distance restarts at re
 new place and follows its own samples from there (its trajectory holds only those), until a
 jump of the whole ship starts everything over. A free ship carries its fairleads (the Ship
 says where). Bollards stand at bollard_position or follow their own samples (ship-to-ship
-mooring); a payload line's bollard end is a free point, a payload hanging from the fairlead.
+mooring); a line with a free end (a payload's, a line let go) has a free point there, which
+follows no track.
 
 Two rules of every step live here:
 
@@ -173,9 +174,9 @@ class Ends:
         Take a bollard sample of line k; return whether it jumped past teleport_distance.
 
         Before the first sample the bollard is at bollard_position: a first sample farther
-        than teleport_distance from there is a jump too. A payload line's bollard end is
-        free: its samples are kept but move nothing, and jump nothing. A jump starts the
-        bollard's track over at it (the Mooring restarts the line).
+        than teleport_distance from there is a jump too. A line whose bollard end is free (a
+        payload, a line let go): its samples are kept but move nothing, and jump nothing. A
+        jump starts the bollard's track over at it (the Mooring restarts the line).
 
         :param time: the state time (NaN before the lines start).
         :raises TrajectoryError: non-finite, or not after that bollard's newest sample.
@@ -192,7 +193,7 @@ class Ends:
         started = not math.isnan(time)
         self._off_track[k] |= started and _past(time, settled)
         self.last_jumps[k] = math.dist(point, last)
-        if line.payload or not (started and self.last_jumps[k] > line.params.teleport_distance):
+        if line.free_end or not (started and self.last_jumps[k] > line.params.teleport_distance):
             return False
         track.clear()
         track.push(t, point)
@@ -210,19 +211,25 @@ class Ends:
     # -- where they are -------------------------------------------------------------------
 
     def fixed_bollard(self, k: int) -> Optional[Sequence[float]]:
-        """Return where line k's bollard stands while it has no samples (no payload), or None."""
+        """Return where line k's bollard stands while it has no samples and the line is on it."""
         line = self.lines[k]
-        if line.payload or self.has_bollard_samples(k):
+        if line.free_end or self.has_bollard_samples(k):
             return None
         return line.params.bollard_position
+
+    def bollard(self, k: int, t: float) -> np.ndarray:
+        """Return where line k's bollard is at t [m], whether the line is on it or not."""
+        if self.has_bollard_samples(k):
+            return self._bollards[k].sample(np.array([t]))[0][0]
+        return np.array(self.lines[k].params.bollard_position, dtype=float)
 
     def free_ends(self, k: int, times: np.ndarray) -> tuple:
         """
         Return line k's ends where their samples put them at `times`: (n, 2, 3) twice.
 
-        The bollard is at bollard_position before its first sample; with a payload the
-        bollard's columns repeat the fairlead (a free end follows no track); a free ship's
-        fairlead is where the ship carries it now.
+        The bollard is at bollard_position before its first sample; with a free end (a
+        payload, a line let go) the bollard's columns repeat the fairlead (a free end follows
+        no track); a free ship's fairlead is where the ship carries it now.
         """
         times = np.atleast_1d(np.asarray(times, dtype=float))
         ends = np.empty((len(times), 2, 3))
@@ -236,7 +243,7 @@ class Ends:
             shared_x, shared_v = self._fairleads.sample(times)
             ends[:, 1], velocities[:, 1] = shared_x[:, k], shared_v[:, k]
         fixed = self.fixed_bollard(k)
-        if self.lines[k].payload:
+        if self.lines[k].free_end:
             ends[:, 0], velocities[:, 0] = ends[:, 1], velocities[:, 1]
         elif fixed is None:
             ends[:, 0], velocities[:, 0] = self._bollards[k].sample(times)
@@ -249,11 +256,11 @@ class Ends:
         Return what drives line k's ends at `times`.
 
         :returns: ends, velocities (n, 2, 3), bollard first, the fairlead held within reach;
-            and the end distances [m] before holding, (n,) (zeros with a payload or on a
+            and the end distances [m] before holding, (n,) (zeros with a free end or on a
             free ship: nothing to hold, a ship is not held).
         """
         ends, velocities = self.free_ends(k, times)
-        if self.lines[k].payload or self.ship.free:
+        if self.lines[k].free_end or self.ship.free:
             return ends, velocities, np.zeros(len(ends))
         distances = end_distances(ends)
         hold_beyond_reach(ends, velocities, distances, self.lines[k].reach)
@@ -332,7 +339,7 @@ class Ends:
             here, here_velocities = self.drive(k, [group.time])[:2]
             rope = group.system.lines[j]
             for e, particle in ((0, 0), (1, -1)):
-                if e == 0 and self.lines[k].payload:  # a free end follows no track
+                if e == 0 and self.lines[k].free_end:  # a free end follows no track
                     continue
                 offset = rope.x[particle] - here[0, e]
                 blend = blends[e]

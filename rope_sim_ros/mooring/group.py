@@ -48,6 +48,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .handling import recoiling
 from .line import MooringLine, Parting
 from .records import MooringAdvance
 from ..model.objects import Environment, Line, Point, System
@@ -65,17 +66,21 @@ def divide_run(start: float, times: Sequence[float], parts: int) -> np.ndarray:
 
 def group_lines(lines: Sequence[MooringLine], free: bool) -> List['Group']:
     """
-    Return the lines with equal steps and bending treatment in one group each.
+    Return the lines out (not stowed) with equal steps and bending treatment in one group each.
 
     A free ship's lines are one group (one System holds the body): at the smallest of their
-    steps, with the bending springs in the implicit step if any line needs them.
+    steps, with the bending springs in the implicit step if any line needs them. With every
+    line stowed there is still one group, of no line, that keeps the time (and a free
+    ship's body).
     """
-    if free:
-        dt = min(line.time_step for line in lines)
-        bending = any(implicit_bending(line.props, dt) for line in lines)
-        return [Group(list(range(len(lines))), dt, bending)]
+    out = [k for k, line in enumerate(lines) if line.stepped]
+    if free or not out:
+        dt = min(lines[k].time_step for k in out or range(len(lines)))
+        bending = any(implicit_bending(lines[k].props, dt) for k in out)
+        return [Group(out, dt, bending)]
     keys: Dict[tuple, List[int]] = {}
-    for k, line in enumerate(lines):
+    for k in out:
+        line = lines[k]
         key = (line.time_step, implicit_bending(line.props, line.time_step))
         keys.setdefault(key, []).append(k)
     return [Group(members, dt, bending) for (dt, bending), members in sorted(keys.items())]
@@ -103,21 +108,18 @@ class GroupRules:
         self.current = np.empty(count)
         self.bound_at_rest = np.empty(count)
         self.bound_per_speed = np.empty(count)
-        # what each row was taken from: (props, length, parted, step, environment)
-        self._of = [None] * count
+        self._of = [None] * count  # the line's rules each row was taken from
         self.refresh(lines, environment)
 
     def refresh(self, lines: Sequence[MooringLine], environment: Environment) -> None:
         """Take again the rules of the lines whose numbers (or environment) changed since."""
         for j, line in enumerate(lines):
-            key = (line.props, line.length, line.parting, line.time_step, environment)
-            if self._of[j] == key:
+            rules = line.rules(environment)
+            if self._of[j] is rules:
                 continue
-            self._of[j] = key
-            self.reach[j] = line.reach
-            self.segment_length[j] = line.line_props.segment_length
-            self.stable[j], self.rate[j], self.current[j] = line.fine_step(environment)
-            self.bound_at_rest[j], self.bound_per_speed[j] = line.load_bound(environment)
+            self._of[j] = rules
+            (self.reach[j], self.segment_length[j], self.stable[j], self.rate[j],
+             self.current[j], self.bound_at_rest[j], self.bound_per_speed[j]) = rules
 
 
 class Group:
@@ -144,6 +146,11 @@ class Group:
         self.plan = (None, None)  # how its ends are driven (Ends._plan)
         self.index = np.array(members, dtype=np.int64)  # members, to index arrays with
         self.winches = (None, [])  # (j, k) of its lines with a winch, and of when
+
+    @property
+    def key(self) -> tuple:
+        """Return what makes it the group it is: its lines, its step, its bending."""
+        return tuple(self.members), self.step, self.bending
 
     def refresh(self, lines: Sequence[MooringLine], environment: Environment) -> None:
         """Take again the rules of its lines (of the mooring's `lines`) that changed."""
@@ -181,8 +188,7 @@ class Group:
             system.add_line(Line(rope.line_type, rope.rest.copy(), rope.x.copy(),
                                  (2 * j, 2 * j + 1)))
         system.pack()
-        for j, (source, i) in enumerate(members):
-            system.load_line(j, source, i)
+        system.load_lines([(j, source, i) for j, (source, i) in enumerate(members)])
         self.system = system
         self.starts = np.array([0] + [len(line.x) for line in system.lines]).cumsum()
         self.rules = GroupRules([mooring.lines[k] for k in self.members], mooring.environment)
@@ -201,6 +207,9 @@ class Group:
             self._check_ship(mooring, done)
             mooring.ship.set_body_loads(self.system, self.time, float(times[-1]),
                                         mooring.environment)
+        elif not self.members:  # every line stowed: time passes, nothing moves
+            self.time = float(times[-1])
+            return
         drive_x, drive_v, distances, far = ends.drive_group(self, times)
         if not (far or ends.held.any()):  # the common case
             self._step(mooring, times, drive_x, drive_v, done)
@@ -250,7 +259,7 @@ class Group:
     def _divisions(self, mooring, spreads: np.ndarray) -> Tuple[int, bool]:
         """Return the parts every step is divided in, and whether to look again."""
         rules = self.rules
-        explicit = mooring.lines[self.members[0]].params.integrator == 'improved_euler'
+        explicit = mooring.integrator == 'improved_euler'
         return step_divisions(spreads, self.step, rules.segment_length, explicit,
                               rules.stable, rules.rate, rules.current)
 
@@ -268,9 +277,12 @@ class Group:
         :param speeds: the lines' speed bounds for these steps (lines_motion_spreads' last
             column), if the caller has them.
         """
-        integrator = mooring.lines[self.members[0]].params.integrator
+        integrator = mooring.integrator
         fine = 0.0
         if integrator == 'adaptive':  # each line's own improved Euler step
+            if mooring.has_free_lines:
+                self.system.watched[:] = [recoiling(mooring.lines[k], self.time)
+                                          for k in self.members]
             if speeds is None:
                 speeds = lines_motion_spreads(self.system.v, self.starts, drive_v)[:, 2]
             rules = self.rules

@@ -170,6 +170,8 @@ class MooringLine:
     :ivar time_step: its step [s].
     :ivar length: its unstretched length now [m] (the winch changes it).
     :ivar parting: how it parted, None while whole (until restore()).
+    :ivar state: 'fast' (its eye on its bollard), 'free' (let go: its bollard end a free
+        end) or 'stowed' (aboard: no force, not stepped): handling.py changes it.
     """
 
     def __init__(self, name: str, params: LineParams, materials: MaterialLibrary,
@@ -189,9 +191,15 @@ class MooringLine:
         check_pace(params, self.props, self.material, environment)
         self.length = params.length
         self.parting: Optional[Parting] = None
+        if params.start_state == 'stowed' and params.has_payload:
+            raise ParameterError('start_state stowed is not allowed for a line with a '
+                                 'payload: a payload hangs from the fairlead from the start')
+        self.state = params.start_state
+        self.let_go_at = math.nan  # when it was last let go [s]
         self.winch_command = 0.0  # the speed last commanded [m/s]
         self.held_tension = math.nan  # constant_tension with winch_tension 0: the one held
         self._line_props = (None, None)  # (props, props at the length now)
+        self._rules = (None, ())  # (what they were worked out from, rules())
 
     # -- what the line is now -------------------------------------------------------------
 
@@ -199,6 +207,16 @@ class MooringLine:
     def payload(self) -> bool:
         """Tell whether the bollard end is a free payload: payload_mass > 0."""
         return self.params.has_payload
+
+    @property
+    def free_end(self) -> bool:
+        """Tell whether the bollard end is a free end: a payload's, or a line let go."""
+        return self.state == 'free' or self.params.has_payload
+
+    @property
+    def stepped(self) -> bool:
+        """Tell whether the line is out (fast or free), stepped in a group; not stowed."""
+        return self.state != 'stowed'
 
     @property
     def line_props(self) -> RopeProperties:
@@ -258,6 +276,20 @@ class MooringLine:
         current = math.hypot(*environment.current) if water else 0.0
         return stable, drag_rate(props, environment, 1.0), current
 
+    def rules(self, environment: Environment) -> tuple:
+        """
+        Return the rules of its every step in the environment, kept while its numbers hold.
+
+        (reach, segment length now, fine_step's three numbers, load_bound's two): what a
+        group holds as arrays (group.py's GroupRules); worked out again only when the
+        line's properties, length, parting, step or environment change.
+        """
+        key = (self.props, self.length, self.parting, self.time_step, environment)
+        if self._rules[0] != key:
+            self._rules = (key, (self.reach, self.line_props.segment_length,
+                                 *self.fine_step(environment), *self.load_bound(environment)))
+        return self._rules[1]
+
     def winch(self) -> Winch:
         """Return the fairlead's winch as the parameters and the last command set it."""
         p = self.params
@@ -281,11 +313,11 @@ class MooringLine:
         The catenary in the environment (start_shape: submerged weight below the surface,
         laid on the seabed where it reaches it), brought to rest under the bending springs,
         the fluids and the ground too (relax); the start shape itself wherever that fails
-        or the ends are held at the reach. With a payload: hanging straight down from the
-        fairlead (hanging_shape), likewise brought to rest.
+        or the ends are held at the reach. With a free end (a payload, a line let go):
+        hanging straight down from the fairlead (hanging_shape), likewise brought to rest.
         """
         p = self.line_props
-        if self.payload:
+        if self.free_end:
             shape = hanging_shape(p, environment, ends[1])
         else:
             shape = start_shape(p.line_type, environment, ends[0], ends[1], p.length,
@@ -307,7 +339,7 @@ class MooringLine:
 
         :param alone: the line alone at rest (at_rest).
         """
-        if self.parting is not None or self.payload or not self.params.parting:
+        if self.parting is not None or self.free_end or not self.params.parting:
             return alone
         finite, largest = alone.largest_load()
         if finite and largest <= self.break_load:
@@ -340,7 +372,7 @@ class MooringLine:
         if shape.shape != (p.segments + 1, 3):
             raise ValueError(f'shape must have shape ({p.segments + 1}, 3), got {shape.shape}')
         system = System(environment)
-        if self.payload:
+        if self.free_end:  # a line let go has no payload: its end is its own last particle
             system.add_point(Point('free', shape[0], mass=p.payload_mass,
                                    volume=p.payload_volume, drag_area=p.payload_drag_area,
                                    added_mass=p.payload_added_mass))
@@ -368,7 +400,7 @@ class MooringLine:
         self.winch_command = float(speed)
 
     def restore(self) -> None:
-        """Give the line back its length and, if it parted, its whole rope."""
+        """Give the line back its length and, if it parted, its whole rope (in its state)."""
         self.length = self.params.length
         self.parting = None
         self.held_tension = math.nan

@@ -16,9 +16,10 @@
 A mooring's state at an output: every line's particles, end forces and peaks, and the ship.
 
 One MooringOutput from every group's System: its lines' loads and tensions taken once (the
-peaks since the previous output cleared), their lengths and partings, and the ship's state,
-fenders and loads, read from its one body whatever its mode. Whether every number is
-finite is worked out from one sum of them: an overflow anywhere makes it so.
+peaks since the previous output cleared), their lengths, partings and states, and the
+ship's state, fenders and loads, read from its one body whatever its mode. A stowed line,
+in no group, is all at its fairlead and pulls nothing. Whether every number is finite is
+worked out from one sum of them: an overflow anywhere makes it so.
 """
 
 import math
@@ -34,13 +35,13 @@ def mooring_output(mooring) -> MooringOutput:
     """Return the Mooring's state now (its peaks are cleared: they count from here)."""
     count = len(mooring.lines)
     groups = mooring.groups
-    single = len(groups) == 1
+    single = len(groups) == 1 and len(groups[0].members) == count
     positions: List[Optional[np.ndarray]] = [None] * count
     payloads: List[Optional[np.ndarray]] = [None] * count
-    if not single:
-        forces, strains = np.empty((count, 2, 3)), np.empty(count)
-        tensions, peaks = np.empty((count, 2)), np.empty((count, 2))
-        winch_speeds = np.empty(count)
+    if not single:  # (a stowed line's stay zero)
+        forces, strains = np.zeros((count, 2, 3)), np.zeros(count)
+        tensions, peaks = np.zeros((count, 2)), np.zeros((count, 2))
+        winch_speeds = np.zeros(count)
     total = 0.0
     for group in groups:
         system = group.system
@@ -63,6 +64,10 @@ def mooring_output(mooring) -> MooringOutput:
             if mooring.lines[k].payload:
                 payloads[k] = system.point_x[system.lines[j].ends[0]].copy()
                 total += float(payloads[k].sum())
+    for k, line in enumerate(mooring.lines):
+        if not line.stepped:  # aboard, coiled at its fairlead
+            fairlead = mooring.free_ends(k, [mooring.time])[0][0, 1]
+            positions[k] = np.repeat(fairlead[None], line.params.segments + 1, axis=0)
     parted = np.array([line.parting is not None for line in mooring.lines])
     lengths = np.array([line.length for line in mooring.lines])
     total += float(lengths.sum())
@@ -78,4 +83,5 @@ def mooring_output(mooring) -> MooringOutput:
         winch_speeds=winch_speeds, finite=math.isfinite(total), ship=state,
         fender_compressions=compressions, fender_forces=fender_forces, fender_points=points,
         ship_loads=ship.loads_at(mooring.time, state, mooring.arrangement,
-                                 mooring.environment))
+                                 mooring.environment),
+        states=tuple(line.state for line in mooring.lines))

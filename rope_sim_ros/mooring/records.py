@@ -74,6 +74,8 @@ class MooringOutput:
     :ivar ship_loads: the wind's, the current's and a passing ship's load on the ship, rows
         in that order, each F_x, F_y [N], M_z [N m] in its body axes about its origin (a
         driven ship's at its pose, taken at rest: applied to a free ship only).
+    :ivar states: each line's state: 'fast', 'free' or 'stowed' (mooring/handling.py); a
+        stowed line's particles are all at its fairlead, its forces zero.
     """
 
     t: float
@@ -95,6 +97,7 @@ class MooringOutput:
     fender_forces: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     fender_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     ship_loads: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
+    states: Tuple[str, ...] = ()
 
     @property
     def peaks(self) -> np.ndarray:
@@ -117,6 +120,8 @@ class MooringAdvance:
     :ivar ship_restarted: how a free ship left the bounds of a moored ship (model.body
         out_of_bounds), restarting it at its start pose at rest and every line with it
         ('ship restarted' in restarted); '' if it did not.
+    :ivar released: {line index: the bollard tension [N] past its release_load} for every
+        line its quick-release hook let go at the end of these steps.
     """
 
     steps: int
@@ -125,6 +130,7 @@ class MooringAdvance:
     beyond_reach: Dict[int, float] = field(default_factory=dict)
     parted: Dict[int, Parting] = field(default_factory=dict)
     ship_restarted: str = ''
+    released: Dict[int, float] = field(default_factory=dict)
 
 
 def mooring_wrench(fairlead_forces: np.ndarray, offsets: np.ndarray,
@@ -212,6 +218,37 @@ class Published:
         return rotation @ force, rotation @ moment
 
 
+@dataclass(frozen=True)
+class ScheduledCommand:
+    """
+    A line-handling command at a time, as a commands file gives it (offline).
+
+    :ivar t: when [s of simulated time]; line: its line ('' with let_go_all);
+        command: one of handling.COMMANDS; bollard: for make_fast, the bollard to make it
+        fast to ('': its own).
+    """
+
+    t: float
+    line: str
+    command: str
+    bollard: str = ''
+
+
+@dataclass(frozen=True)
+class Handled:
+    """
+    A scheduled command as it was taken.
+
+    :ivar t: the state time it was taken at [s]; scheduled: the command; text: what was
+        done, or why it was refused; refused: whether it was.
+    """
+
+    t: float
+    scheduled: ScheduledCommand
+    text: str
+    refused: bool
+
+
 @dataclass
 class Report:
     """
@@ -224,6 +261,7 @@ class Report:
         mooring was cleared and waits for the next ship pose).
     :ivar faults: simulated times of states not output because a number was not finite
         (the ropes were restarted at rest).
+    :ivar handled: the scheduled commands taken (offline), in order.
     """
 
     outputs: List[Published] = field(default_factory=list)
@@ -231,3 +269,4 @@ class Report:
     skip_to: float = math.nan
     clock_back: float = 0.0
     faults: List[float] = field(default_factory=list)
+    handled: List[Handled] = field(default_factory=list)

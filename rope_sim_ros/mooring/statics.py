@@ -40,10 +40,10 @@ def mooring_statics(mooring: Mooring, load: Optional[Sequence[float]] = None,
     Return a Mooring's ship, lines and fenders at rest (ShipStatics), its lines as they are.
 
     Each line at its length now (the winch's), its bollard where it stands (where its
-    samples put it at the state time, if it has samples); a parted line pulls nothing and
-    is left out (the statics' lines keep their names). The ship is the Mooring's body: a
-    free ship's pose now is the statics' start pose (a driven ship's body stands at its last
-    output's pose).
+    samples put it at the state time, if it has samples); a line that parted, was let go or
+    is stowed holds the ship to nothing and is left out (the statics' lines keep their
+    names). The ship is the Mooring's body: a free ship's pose now is the statics' start
+    pose (a driven ship's body stands at its last output's pose).
 
     :param load: external force [N] and moment [N m] about the ship's origin, frame_id axes.
     :param load_function: a load that changes with the pose (model/statics/ship.py's
@@ -56,7 +56,7 @@ def mooring_statics(mooring: Mooring, load: Optional[Sequence[float]] = None,
             who = f'line {line.name!r}' if line.name else 'the line'
             raise ParameterError(f'{who} has a payload (payload_mass > 0): the statics take '
                                  'lines between a bollard and a fairlead only')
-        if line.parting is not None:
+        if line.parting is not None or line.state != 'fast':  # it pulls on no bollard
             continue
         bollard = np.array(line.params.bollard_position, dtype=float)
         if mooring.started and mooring.has_bollard_samples(k):

@@ -25,12 +25,17 @@ which the markers colour and the diagnostics grade:
 - NEAR_BREAK: at or past NEAR_BREAK of the MBL;
 - PARTED: the line has parted (whatever its tension).
 
+A bollard's load is the sum of the forces of the lines fast on it (bollard_loads), graded
+against its safe working load.
+
 No ROS here: the mooring node and the offline plots take the same bands.
 """
 
 from dataclasses import dataclass
 import math
-from typing import Any, List
+from typing import Any, List, Sequence
+
+import numpy as np
 
 from ..params.arrangement import ArrangementParams
 from ..params.materials import load_materials
@@ -96,3 +101,50 @@ def ratings(setup: ArrangementParams, materials: Any = None) -> List[Rating]:
     library = materials or load_materials()
     return [Rating.of(library.properties(line.params.material, line.params.diameter))
             for line in setup.lines]
+
+
+@dataclass(frozen=True)
+class BollardLoad:
+    """
+    One bollard's load at an output.
+
+    :ivar name: the bollard's name; position: where it stands [m] (frame_id).
+    :ivar force: the sum of the forces of the lines fast on it (3,) [N], frame_id axes.
+    :ivar lines: the names of those lines.
+    :ivar safe_working_load: its safe working load [N] (0: no limit).
+    """
+
+    name: str
+    position: tuple
+    force: np.ndarray
+    lines: tuple
+    safe_working_load: float
+
+    @property
+    def load(self) -> float:
+        """Return the magnitude of its load [N]."""
+        return float(np.linalg.norm(self.force))
+
+    @property
+    def over(self) -> bool:
+        """Tell whether its load is past its safe working load (never without one)."""
+        return self.safe_working_load > 0.0 and self.load > self.safe_working_load
+
+
+def bollard_loads(setup: ArrangementParams, states: Sequence[str],
+                  bollard_forces: np.ndarray) -> List[BollardLoad]:
+    """
+    Return each named bollard's load: the sum of the forces of the lines fast on it.
+
+    :param states: each line's state at the output; bollard_forces: each line's force on
+        its bollard (L, 3) [N].
+    """
+    loads = []
+    for bollard in setup.bollards:
+        on = [k for k, line in enumerate(setup.lines)
+              if line.bollard == bollard.name and states[k] == 'fast']
+        force = np.asarray(bollard_forces, dtype=float)[on].sum(axis=0) if on else np.zeros(3)
+        loads.append(BollardLoad(bollard.name, bollard.position, force,
+                                 tuple(setup.lines[k].name for k in on),
+                                 bollard.safe_working_load))
+    return loads

@@ -191,7 +191,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _progress(quiet: bool):
-    from .run import Progress
+    from .progress import Progress
     return None if quiet else Progress()
 
 

@@ -21,12 +21,11 @@ starts between both), each stream taken for finished after its last sample: the 
 one sample behind the streams, which moves the ends exactly as if the whole motion were
 known. The ropes start at the first ship pose and outputs follow every 1 / rate s up to the
 last one. Each output goes to the sinks (sinks.py: OUT.csv rows, a bag as the node records
-it).
+it, a study's summary).
 """
 
 from dataclasses import dataclass, field
 import math
-import sys
 import time
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -110,62 +109,6 @@ class Tally:
             else:
                 self._held[k] = len(summary.beyond_reach)
                 summary.beyond_reach.append((t, self.names[k], distance))
-
-
-class Progress:
-    """
-    A text progress bar on a stream, shown only when the run is slow and stream a TTY.
-
-    Updates rewrite the line (carriage return) at most ten times a second, once ``delay``
-    seconds have passed; finish() ends the line with a newline if anything was drawn.
-    """
-
-    def __init__(self, stream=None, delay: float = 2.0, width: int = 30,
-                 enabled: Optional[bool] = None) -> None:
-        """
-        Prepare the bar.
-
-        :param stream: where to draw (default sys.stderr).
-        :param delay: seconds before the first drawing.
-        :param width: characters of the bar.
-        :param enabled: force on/off; None = only when the stream is a TTY.
-        """
-        self.stream = stream if stream is not None else sys.stderr
-        if enabled is None:
-            isatty = getattr(self.stream, 'isatty', None)
-            enabled = bool(isatty and isatty())
-        self.enabled = enabled
-        self.delay = delay
-        self.width = width
-        self._start = time.monotonic()
-        self._last = -math.inf
-        self._drawn = False
-
-    def __call__(self, done: int, total: int, t: float) -> None:
-        """Report done of total outputs, at simulated time t."""
-        if not self.enabled:
-            return
-        now = time.monotonic()
-        elapsed = now - self._start
-        if elapsed < self.delay or (now - self._last < 0.1 and done < total):
-            return
-        self._last = now
-        fraction = done / total if total else 1.0
-        filled = int(round(self.width * fraction))
-        remaining = elapsed * (1.0 - fraction) / fraction if fraction > 0 else math.inf
-        eta = f'{remaining:5.0f} s left' if math.isfinite(remaining) else ''
-        self.stream.write(
-            f'\r[{"#" * filled}{"." * (self.width - filled)}] {100 * fraction:5.1f} % '
-            f't = {t:.2f} s {eta}')
-        self.stream.flush()
-        self._drawn = True
-
-    def finish(self) -> None:
-        """End the line if the bar was drawn."""
-        if self._drawn:
-            self.stream.write('\n')
-            self.stream.flush()
-            self._drawn = False
 
 
 def driver_for(setup: ArrangementParams, rate: float, materials: Any = None) -> Driver:
@@ -292,23 +235,24 @@ def simulate_free(setup: ArrangementParams, duration: float, loads: Optional[Loa
 
 def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSchedule] = None,
              out_path=None, rate: float = DEFAULT_RATE, progress=None,
-             materials: Any = None) -> RunSummary:
+             materials: Any = None, sinks: Sequence[Sink] = ()) -> RunSummary:
     """
     Run a free ship (simulate_free) into OUT.csv with its motion and fenders (sinks.py).
 
+    :param sinks: more sinks every output goes to (a study's SummarySink).
     :raises ParameterError: as simulate_free, before any file exists.
     :raises OSError: OUT.csv cannot be written.
     """
     free_driver(setup, loads, rate, materials)  # refuses a bad rate, line or load first
     writer = None
-    sinks: List[Sink] = []
+    outputs: List[Sink] = list(sinks)
     if out_path is not None:
         writer = CsvSink(out_path, setup.names, ratings(setup), free=True,
                          fenders=[(fender.name, fender.normal) for fender in setup.fenders],
                          loads=True)
-        sinks.append(writer)
+        outputs.insert(0, writer)
     try:
-        summary = simulate_free(setup, duration, loads, rate, sinks, progress, materials)
+        summary = simulate_free(setup, duration, loads, rate, outputs, progress, materials)
     finally:
         if writer is not None:
             writer.close()
@@ -338,17 +282,18 @@ def input_messages(setup: ArrangementParams, streams: Streams) -> Tuple[list, di
 
 def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                rate: float = DEFAULT_RATE, bag_path=None, progress=None,
-               materials: Any = None) -> RunSummary:
+               materials: Any = None, sinks: Sequence[Sink] = ()) -> RunSummary:
     """
     Run a motion: OUT.csv rows and/or a bag (sinks.py).
 
+    :param sinks: more sinks every output goes to (a study's SummarySink).
     :raises ParameterError: a bad rate or line (before any file exists).
     :raises MotionError: a bag cannot hold negative times.
     :raises BagError: the bag directory exists and is not empty, or recording failed.
     :raises OSError: OUT.csv cannot be written.
     """
     driver = driver_for(setup, rate, materials)  # refuses a bad rate or line first
-    sinks: List[Sink] = []
+    outputs: List[Sink] = list(sinks)
     bag = writer = None
     if bag_path is not None:
         if int(streams.t_ns[0]) < 0:
@@ -358,7 +303,7 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
         inputs, types = input_messages(setup, streams)
         bag = BagSink(bag_path, encoder_for(setup), '', inputs, types,
                       stored(setup))
-        sinks.append(bag)
+        outputs.insert(0, bag)
     try:
         if out_path is not None:
             writer = CsvSink(out_path, driver.names, driver.ratings,
@@ -367,8 +312,8 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                              fenders=[(fender.name, fender.normal)
                                       for fender in setup.fenders],
                              loads=reports_ship_loads(setup))
-            sinks.insert(0, writer)
-        summary = simulate(setup, streams, rate, sinks, progress, materials)
+            outputs.insert(0, writer)
+        summary = simulate(setup, streams, rate, outputs, progress, materials)
     except BaseException:
         # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
         _close_quietly(writer, bag)

@@ -40,6 +40,8 @@ from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 import yaml
 
+from .bollards import (bollard_setup, BOLLARDS, BollardSetup, check_bollard_names,
+                       check_bollard_value, find_bollard)
 from .files import read_params_file
 from .ship import (check_current_tables, check_fender_names, check_passing_clear,
                    CURRENT_TABLES, fender_setup, FENDER_SPECS, FENDERS, FenderSetup, field_name,
@@ -66,6 +68,10 @@ OWN_SPECS: Mapping[str, Spec] = {
         0.0, 'N', 'fairlead tension the line starts with: > 0 chooses its unstretched length '
         'at the first ship pose (on the elastic catenary in air between its ends; give no '
         'length then); 0 = the line has its length', 0.0, 1.0e9),
+    'bollard': Spec(
+        '', '', 'the bollard (one of bollards) the line is, or will be, made fast to: its '
+        'position is then the bollard_position; settable while the line is not fast; empty = '
+        'the line has its own bollard_position', read_only=False),
 }
 LINE_SPECS: Mapping[str, Spec] = {
     **{name: spec for name, spec in SPECS.items() if name not in SHARED}, **OWN_SPECS}
@@ -103,11 +109,14 @@ class LineSetup:
     :ivar params: its parameters: the shared ones and its own.
     :ivar pretension: > 0: the fairlead tension its length is chosen for [N]; 0: it has
         params.length.
+    :ivar bollard: the bollard it is made fast to, by name (params.bollard_position is its
+        position); '': its own bollard_position.
     """
 
     name: str
     params: LineParams
     pretension: float = 0.0
+    bollard: str = ''
 
 
 @dataclass(frozen=True)
@@ -122,6 +131,7 @@ class ArrangementParams:
     :ivar ship: the ship (driven or free) and its body.
     :ivar fenders: the fenders on the quay, in the order of `fenders`.
     :ivar passing: the ship passing the moored one (passing_ship.*; speed 0: none).
+    :ivar bollards: the bollards on the quay, in the order of `bollards`.
     """
 
     lines: Tuple[LineSetup, ...]
@@ -131,6 +141,7 @@ class ArrangementParams:
     ship: ShipParams = ShipParams()
     fenders: Tuple[FenderSetup, ...] = ()
     passing: PassingShipParams = PassingShipParams()
+    bollards: Tuple[BollardSetup, ...] = ()
 
     @property
     def single(self) -> bool:
@@ -165,22 +176,41 @@ class ArrangementParams:
                 values.setdefault(prefix, {})[own] = value
             else:
                 values[name] = value
-        if self.fenders:
-            values[FENDERS] = [fender.name for fender in self.fenders]
-            for fender in self.fenders:
-                values[fender.name] = fender.values()
+        for key, parts in ((FENDERS, self.fenders), (BOLLARDS, self.bollards)):
+            if parts:
+                values[key] = [part.name for part in parts]
+                for part in parts:
+                    values[part.name] = part.values()
         for line in self.lines:
             own = {name: value for name, value in line.params.as_dict().items()
                    if name not in SHARED}
             if line.pretension > 0.0:  # the length it is given at the start
                 del own['length']
                 own['pretension'] = line.pretension
+            if line.bollard:  # its position is the bollard's
+                del own['bollard_position']
+                own['bollard'] = line.bollard
             values[line.name] = own
         return values
 
     def with_line(self, name: str, params: LineParams) -> 'ArrangementParams':
         """Return a copy with one line's parameters replaced."""
-        lines = tuple(LineSetup(line.name, params, line.pretension) if line.name == name
+        lines = tuple(replace(line, params=params) if line.name == name else line
+                      for line in self.lines)
+        return replace(self, lines=lines)
+
+    def with_bollard(self, name: str, bollard: str) -> 'ArrangementParams':
+        """
+        Return a copy with line `name` made fast to another bollard ('': its own position).
+
+        :raises ParameterError: no bollard has that name (the nearest one is named).
+        """
+        line = self.line(name)
+        params = line.params
+        if bollard:
+            position = find_bollard(self.bollards, bollard, f"parameter '{name}.bollard'")
+            params = replace(params, bollard_position=list(position.position))
+        lines = tuple(replace(line, params=params, bollard=bollard) if line.name == name
                       else line for line in self.lines)
         return replace(self, lines=lines)
 
@@ -188,7 +218,7 @@ class ArrangementParams:
         """Return a copy with SHARED values changed: its own and every line's (checked)."""
         if not values:
             return self
-        lines = tuple(LineSetup(line.name, line.params.with_values(values), line.pretension)
+        lines = tuple(replace(line, params=line.params.with_values(values))
                       for line in self.lines)
         return replace(self, shared=self.shared.with_values(values), lines=lines)
 
@@ -228,7 +258,7 @@ def check_line_names(value: Any) -> List[str]:
         if name in names:
             raise ParameterError(f'line name {name!r} appears twice in {LINES!r}')
         if name in LINE_SPECS or name in SPECS or name in ARRANGEMENT_SPECS or \
-                name in SHIP_SPECS or name in RESERVED or name == FENDERS:
+                name in SHIP_SPECS or name in RESERVED or name in (FENDERS, BOLLARDS):
             raise ParameterError(f'line name {name!r} in {LINES!r} is not allowed: it is the '
                                  'name of a parameter')
         names.append(name)
@@ -312,11 +342,13 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
     flat = flatten(values)
     names = check_line_names(flat.get(LINES))
     fender_names = check_fender_names(flat.get(FENDERS), names)
+    bollard_names = check_bollard_names(flat.get(BOLLARDS), names + fender_names)
     top: Dict[str, Any] = {}
     own: Dict[str, Dict[str, Any]] = {name: {} for name in names}
     fenders: Dict[str, Dict[str, Any]] = {name: {} for name in fender_names}
+    bollard_values: Dict[str, Dict[str, Any]] = {name: {} for name in bollard_names}
     for key, value in flat.items():
-        if key in (LINES, FENDERS):
+        if key in (LINES, FENDERS, BOLLARDS):
             continue
         line, dot, name = key.partition('.')
         if not dot or line in (SHIP, PASSING_SHIP):
@@ -325,14 +357,18 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
             own[line][name] = check_line_value(line, name, value)
         elif line in fenders:
             fenders[line][name] = check_fender_value(line, name, value)
+        elif line in bollard_values:
+            bollard_values[line][name] = check_bollard_value(line, name, value)
         else:
             raise ParameterError(f'parameter {key!r} is for no line: {LINES} are '
                                  f'{", ".join(names)}; {FENDERS}: '
-                                 f'{", ".join(fender_names) or "none"}')
+                                 f'{", ".join(fender_names) or "none"}; {BOLLARDS}: '
+                                 f'{", ".join(bollard_names) or "none"}')
     shared_values = {k: v for k, v in top.items() if k in SHARED}
     shared = LineParams().with_values(shared_values)
+    bollards = tuple(bollard_setup(name, bollard_values[name]) for name in bollard_names)
     setups = tuple(_line_setup(name, {k: v for k, v in top.items() if k in LINE_SPECS},
-                               own[name], shared_values) for name in names)
+                               own[name], shared_values, bollards) for name in names)
     ship = ShipParams(**{field_name(k): v for k, v in top.items() if k in SHIP_SPECS})
     passing = passing_ship({k: v for k, v in top.items() if k in PASSING_SPECS})
     check_passing_clear(ship, passing)
@@ -340,13 +376,24 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
         setups, shared,
         top.get('ship_frame_id', ARRANGEMENT_SPECS['ship_frame_id'].default),
         top.get('marker_rate', ARRANGEMENT_SPECS['marker_rate'].default), ship,
-        tuple(fender_setup(name, fenders[name]) for name in fender_names), passing)
+        tuple(fender_setup(name, fenders[name]) for name in fender_names), passing, bollards)
 
 
 def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],
-                shared: Dict[str, Any]) -> LineSetup:
-    """Return one line's setup: shared values, then the defaults, then its own values."""
+                shared: Dict[str, Any], bollards: Tuple[BollardSetup, ...]) -> LineSetup:
+    """
+    Return one line's setup: shared values, then the defaults, then its own values.
+
+    A line's bollard, by name, gives its bollard_position (its own or the default one).
+    """
     values = {**defaults, **own}
+    bollard = values.pop('bollard', '')
+    if bollard:
+        if 'bollard_position' in own and 'bollard' in own:
+            raise ParameterError(f'line {name!r} sets both bollard and bollard_position: give '
+                                 f'one ({name}.bollard names a bollard, which has a position)')
+        values['bollard_position'] = list(
+            find_bollard(bollards, bollard, f"parameter '{name}.bollard'").position)
     missing = [f'{name}.{key} ({unit})' for key, unit in REQUIRED.items()
                if key not in values
                and not (key == 'bollard_position' and values.get('payload_mass', 0.0) > 0.0)]
@@ -358,13 +405,19 @@ def _line_setup(name: str, defaults: Dict[str, Any], own: Dict[str, Any],
     if pretension > 0.0 and values.get('payload_mass', 0.0) > 0.0:
         raise ParameterError(f'line {name!r} has a payload and a pretension: a payload hangs '
                              f'under its own weight; give {name}.length (m)')
+    if pretension > 0.0 and values.get('start_state') == 'stowed':
+        raise ParameterError(f'line {name!r} starts stowed and has a pretension: a pretension '
+                             f'chooses the length of a line that starts fast; give '
+                             f'{name}.length (m), and heave it to a tension once made fast '
+                             '(winch_mode constant_tension)')
     if 'length' not in values and pretension <= 0.0:
         missing.append(f'{name}.length (m) or {name}.pretension (N)')
     if missing:
         raise ParameterError(f'line {name!r} is missing settings: set {"; ".join(missing)}')
     if pretension > 0.0:
         values.pop('length', None)  # a top-level default length gives way to the pretension
-    return LineSetup(name, LineParams().with_values({**shared, **values}), float(pretension))
+    return LineSetup(name, LineParams().with_values({**shared, **values}), float(pretension),
+                     bollard)
 
 
 def single_line(params: LineParams) -> ArrangementParams:

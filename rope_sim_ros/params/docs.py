@@ -33,6 +33,8 @@ from typing import Any, Iterable, List, Mapping, Optional, Tuple
 
 from .arrangement import (ARRANGEMENT_SPECS, LINE_NAME_RULE, LINE_SPECS, LINES, LINES_DESCRIPTION,
                           MAX_LINES, NODE_NAME, OWN_SPECS, REQUIRED, SHARED)
+from .bollards import (BOLLARD_REQUIRED, BOLLARD_SPECS, BOLLARDS, BOLLARDS_DESCRIPTION,
+                       MAX_BOLLARDS)
 from .ship import (FENDER_REQUIRED, FENDER_SPECS, FENDERS, FENDERS_DESCRIPTION, MAX_FENDERS,
                    PASSING_SPECS, SHIP_SPECS)
 from .table import allowed, NODE_NAME as LINE_NODE_NAME, Spec, SPECS
@@ -132,7 +134,8 @@ def sections() -> List[Tuple[str, List[str]]]:
             f'`{LINE_NODE_NAME}` node. Set at the top level (`segments: 30`), a setting is '
             'the default of every line that does not set its own; such a top-level default '
             f'is read-only. Every line must set, itself or by a default, {required_text()} '
-            '(`bollard_position` is not needed when `payload_mass` > 0).',
+            '(`bollard_position` is not needed when `payload_mass` > 0 or `bollard` names '
+            'a bollard, whose position it takes).',
             '',
             *table([*spec_rows(LINE_SPECS, own), *spec_rows(OWN_SPECS)]),
         ]),
@@ -152,6 +155,16 @@ def sections() -> List[Tuple[str, List[str]]]:
             '',
             *table(spec_rows(FENDER_SPECS)),
         ]),
+        ('### The bollards', [
+            *table([bollards_row()]),
+            '',
+            f'Each bollard takes these under its name, `<bollard>.<parameter>`; it must set '
+            f'{", ".join(f"`{name}`" for name in BOLLARD_REQUIRED)}. A line names the one it '
+            'is, or will be, made fast to with `<line>.bollard`; several lines may share one. '
+            '[line_handling.md](line_handling.md) says how lines are made fast and let go.',
+            '',
+            *table(spec_rows(BOLLARD_SPECS)),
+        ]),
         ('### A passing ship', [
             *table(spec_rows(PASSING_SPECS)),
         ]),
@@ -160,11 +173,20 @@ def sections() -> List[Tuple[str, List[str]]]:
 
 def fenders_row() -> str:
     """Return the row of `fenders`, a list of names without a Spec."""
-    return '| ' + ' | '.join((
-        f'`{FENDERS}`', '`[]`', '-',
-        cell(f"a list of at most {MAX_FENDERS} distinct names, none a line's"), 'read-only',
-        cell(FENDERS_DESCRIPTION))) + \
-        ' |'
+    return names_row(FENDERS, f"a list of at most {MAX_FENDERS} distinct names, none a line's",
+                     FENDERS_DESCRIPTION)
+
+
+def bollards_row() -> str:
+    """Return the row of `bollards`, a list of names without a Spec."""
+    return names_row(BOLLARDS, f'a list of at most {MAX_BOLLARDS} distinct names, none a '
+                     "line's or a fender's", BOLLARDS_DESCRIPTION)
+
+
+def names_row(name: str, allowed_text: str, description: str) -> str:
+    """Return the row of a list of names without a Spec (read-only)."""
+    return '| ' + ' | '.join((f'`{name}`', '`[]`', '-', cell(allowed_text), 'read-only',
+                              cell(description))) + ' |'
 
 
 def markdown() -> str:

@@ -35,6 +35,7 @@ RELIABILITIES = ('reliable', 'best_effort')
 MIN_PAIRS = 2
 MAX_PAIRS = 15
 WINCH_MODES = ('none', 'speed', 'brake', 'constant_tension')
+LINE_STATES = ('fast', 'stowed')  # how a line may start (it may also be free, let go)
 
 
 class ParameterError(ValueError):
@@ -210,6 +211,17 @@ SPECS: Mapping[str, Spec] = {
     'parting': Spec(
         True, '', 'the line parts at break_load (false: it holds any tension, for studies '
         'that want it past the MBL)', read_only=False),
+    # Line handling at run time (mooring/handling.py)
+    'start_state': Spec(
+        'fast', '', 'how the line starts: fast (its eye on its bollard) or stowed (aboard: no '
+        'force, not stepped, until make_fast puts it on its bollard)', choices=LINE_STATES),
+    'make_fast_slack': Spec(
+        0.05, '', 'a stowed line made fast comes out lying slack from its fairlead to its '
+        'bollard, this fraction longer than the distance between them', 0.0, 1.0,
+        read_only=False),
+    'release_load': Spec(
+        0.0, 'N', 'a quick-release hook: a fast line whose tension at its bollard passes this '
+        'lets go by itself; 0 = no hook', 0.0, 1.0e10, read_only=False),
     'max_strain': Spec(
         0.25, '', 'super-elasticity threshold: no structural spring is left stretched beyond '
         'this strain', 0.0, 10.0, low_open=True, read_only=False),
@@ -422,6 +434,9 @@ class LineParams:
     winch_max_length: float = SPECS['winch_max_length'].default
     break_load: float = SPECS['break_load'].default
     parting: bool = SPECS['parting'].default
+    start_state: str = SPECS['start_state'].default
+    make_fast_slack: float = SPECS['make_fast_slack'].default
+    release_load: float = SPECS['release_load'].default
     max_strain: float = SPECS['max_strain'].default
     superelastic_adjustment: bool = SPECS['superelastic_adjustment'].default
     integrator: str = SPECS['integrator'].default

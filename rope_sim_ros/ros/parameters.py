@@ -39,6 +39,7 @@ from ..messages.topics import Layout, LINE_NODE
 from ..params import arrangement
 from ..params.arrangement import (ARRANGEMENT_SPECS, ArrangementParams, LINE_SPECS, LINES,
                                   LINES_DESCRIPTION, OWN_SPECS, SHARED, single_line)
+from ..params.bollards import BOLLARD_SPECS, BOLLARDS, BOLLARDS_DESCRIPTION
 from ..params.ship import (FENDER_SPECS, FENDERS, FENDERS_DESCRIPTION, PASSING_SHIP, PASSING_SPECS,
                            SHIP, SHIP_SPECS, WIND_SETTINGS)
 from ..params.table import allowed, check, LineParams, ParameterError, Spec, SPECS
@@ -138,7 +139,9 @@ class NodeParameters:
         specs = {**ARRANGEMENT_SPECS, **SPECS, **OWN_SPECS, **SHIP_SPECS, **PASSING_SPECS}
         line, dot, base = name.partition('.')
         if dot and line not in (SHIP, PASSING_SHIP):
-            return LINE_SPECS.get(base) if line in self.line_names else FENDER_SPECS.get(base)
+            if line in self.line_names:
+                return LINE_SPECS.get(base)
+            return FENDER_SPECS.get(base) or BOLLARD_SPECS.get(base)
         return specs.get(name)
 
     # -- start ----------------------------------------------------------------------------
@@ -177,20 +180,22 @@ class NodeParameters:
 
     def _declare_arrangement(self, node, given: Dict[str, Any], warn) -> ArrangementParams:
         names = arrangement.check_line_names(given.get(LINES))
-        fenders = given.get(FENDERS) or []
-        fenders = fenders if isinstance(fenders, list) else []  # (from_values says why)
+        parts = []  # the fenders' and the bollards' names
+        for key in (FENDERS, BOLLARDS):
+            listed = given.get(key) or []
+            parts += listed if isinstance(listed, list) else []  # (from_values says why)
         ours = {}
         for name, value in given.items():
             line, dot, _ = name.partition('.')
-            if name in (LINES, FENDERS) or (dot and line in (*names, *fenders, SHIP,
-                                                             PASSING_SHIP)) or \
+            if name in (LINES, FENDERS, BOLLARDS) or (dot and line in (*names, *parts, SHIP,
+                                                                       PASSING_SHIP)) or \
                     name in ARRANGEMENT_SPECS or name in SPECS or name in OWN_SPECS or \
                     name in SHIP_SPECS:
                 ours[name] = value
             else:
-                known = [LINES, FENDERS, *SHARED, *ARRANGEMENT_SPECS, *LINE_SPECS, *SHIP_SPECS,
-                         *PASSING_SPECS, *(f'{line}.{setting}' for line in names
-                                           for setting in LINE_SPECS)]
+                lined = [f'{line}.{setting}' for line in names for setting in LINE_SPECS]
+                known = [LINES, FENDERS, BOLLARDS, *SHARED, *ARRANGEMENT_SPECS, *LINE_SPECS,
+                         *SHIP_SPECS, *PASSING_SPECS, *lined]
                 refuse_or_warn(name, known, warn, f' (a line takes its settings under its '
                                f'name: {names[0]}.length)')
         setup = arrangement.from_values(ours)
@@ -213,18 +218,21 @@ class NodeParameters:
         ship = {**setup.ship.values(), **setup.passing.values()}
         declared += [(name, ship[name], describe(name, spec))
                      for name, spec in [*SHIP_SPECS.items(), *PASSING_SPECS.items()]]
-        if setup.fenders:
-            declared.append((FENDERS, [fender.name for fender in setup.fenders],
-                             ParameterDescriptor(
-                                 name=FENDERS, type=ParameterType.PARAMETER_STRING_ARRAY,
-                                 description=FENDERS_DESCRIPTION, read_only=True)))
-        for fender in setup.fenders:
-            values = fender.values()
-            declared += [(f'{fender.name}.{name}', values[name],
-                          describe(f'{fender.name}.{name}', spec))
-                         for name, spec in FENDER_SPECS.items()]
+        for key, parts, specs, description in (
+                (FENDERS, setup.fenders, FENDER_SPECS, FENDERS_DESCRIPTION),
+                (BOLLARDS, setup.bollards, BOLLARD_SPECS, BOLLARDS_DESCRIPTION)):
+            if parts:
+                declared.append((key, [part.name for part in parts], ParameterDescriptor(
+                    name=key, type=ParameterType.PARAMETER_STRING_ARRAY,
+                    description=description, read_only=True)))
+            for part in parts:
+                values = part.values()
+                declared += [(f'{part.name}.{name}', values[name],
+                              describe(f'{part.name}.{name}', spec))
+                             for name, spec in specs.items()]
         for line in setup.lines:
-            values = {**line.params.as_dict(), 'pretension': line.pretension}
+            values = {**line.params.as_dict(), 'pretension': line.pretension,
+                      'bollard': line.bollard}
             for name, spec in LINE_SPECS.items():
                 if name == 'length' and line.pretension > 0.0:
                     continue  # chosen at the start (declare_length)

@@ -36,7 +36,7 @@ A factor (or a key of a case) is any parameter `--set` takes (top-level, `head_1
 factor varies fastest; case k is the k-th combination (0-based). Every case's parameters are
 validated here, before anything runs: a study with a bad value refuses at once, in one line
 naming the case; what only a run can find (a pretension no length gives, a blow-up) is the
-case's failure, recorded in the results (study_run.py).
+case's failure, recorded in the results (cluster.py).
 
 Each case has a key: a hash of everything its results depend on (its validated parameters,
 the motion it runs, its duration, rate, seed and kept files). A study started again skips
@@ -54,11 +54,11 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 import yaml
 
-from .motion import read_ship_motion, Streams
-from ..params.arrangement import (ArrangementParams, flatten, from_values,
-                                  is_arrangement_file, NODE_NAME)
-from ..params.files import load_yaml, read_params_file
-from ..params.table import ParameterError
+from ..motion import read_ship_motion, Streams
+from ...params.arrangement import (ArrangementParams, flatten, from_values,
+                                   is_arrangement_file, NODE_NAME)
+from ...params.files import load_yaml, read_params_file
+from ...params.table import ParameterError
 
 STUDY = 'study'
 ARRANGEMENT = 'arrangement'

@@ -17,10 +17,11 @@ The cases of a study on Dask: a local cluster of processes by default, a schedul
 
 Each case is one task (run_case) on a worker of one thread: the worker gets the case's
 validated parameters and its motion (sent once per motion file, shared by its cases), runs
-it in a temporary directory as ``rope_sim run`` does (run.py run_motion), summarises its
-OUT.csv (study_results.py) and sends back the summary and the files the study keeps. The
-workers need the package, not the study's files: a cluster of other machines needs no
-shared file system. The client writes every file, each case's record last.
+it as ``rope_sim run`` does (offline/run.py run_motion, run_free), its outputs summarised
+as they come (sinks.py SummarySink) and written to OUT.csv or a bag only where the study
+keeps them, and sends back the summary and the files kept. The workers need the package,
+not the study's files: a cluster of other machines needs no shared file system. The client
+writes every file, each case's record last.
 
 Threads: concurrent cases with threaded kernels slow each other down (each run's threads
 fight for the same cores), so every worker runs one case at a time with one thread for numba
@@ -45,27 +46,27 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 import importlib
 import logging
-import math
 import os
-import sys
 import tempfile
 import time
 from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
 
 from distributed.diagnostics.plugin import WorkerPlugin
 
-from .motion import MotionError, read_loads, Streams
-from .run import run_free, run_motion
-from .study_file import PreparedCase, Study, StudyError
-from .study_results import OK, summarise
-from ..bag import BagError
-from ..model.materials import MaterialError
-from ..model.statics.pretension import PretensionError
-from ..mooring.status import ratings
-from ..mooring.trajectory import TrajectoryError
-from ..params.arrangement import ArrangementParams
-from ..params.ship import SHIP_SPECS
-from ..params.table import ParameterError
+from .file import PreparedCase, Study, StudyError
+from .results import OK
+from ..motion import MotionError, read_loads, Streams
+from ..progress import Progress
+from ..run import run_free, run_motion
+from ..sinks import SummarySink
+from ...bag import BagError
+from ...model.materials import MaterialError
+from ...model.statics.pretension import PretensionError
+from ...mooring.status import ratings
+from ...mooring.trajectory import TrajectoryError
+from ...params.arrangement import ArrangementParams
+from ...params.ship import SHIP_SPECS
+from ...params.table import ParameterError
 
 WORKER_ENV = {'NUMBA_NUM_THREADS': '1', 'OMP_NUM_THREADS': '1', 'OPENBLAS_NUM_THREADS': '1',
               'MKL_NUM_THREADS': '1'}
@@ -84,7 +85,7 @@ class Job:
     """
     What a worker needs to run one case (its motion comes separately, shared).
 
-    :ivar index: the case's number; key: its key (study_file.py).
+    :ivar index: the case's number; key: its key (file.py).
     :ivar setup: its validated parameters.
     :ivar duration: [s]; rate: outputs per simulated second [Hz].
     :ivar loads: the free ship's loads file (None: none).
@@ -110,7 +111,7 @@ class Outcome:
 
     :ivar index, key: the case's.
     :ivar status: OK or the one-line reason it failed.
-    :ivar summary: its results (study_results.summarise), empty if it failed.
+    :ivar summary: its results (sinks.py SummarySink), empty if it failed.
     :ivar csv: its OUT.csv bytes (if kept); bag: {file name: bytes} of its bag (if kept).
     :ivar wall: seconds the case took on its worker (the run and its summary).
     :ivar cpu: CPU seconds its thread used meanwhile (below wall: the core was shared).
@@ -180,7 +181,7 @@ def warm_up() -> Dict[str, Any]:
     """
     start = time.monotonic()
     limit_threads()
-    from ..mooring import precompile
+    from ...mooring import precompile
     with counting_compilations() as compiled:
         for values in precompile.CONFIGURATIONS:
             precompile.exercise(values)
@@ -232,20 +233,24 @@ def run_case(job: Job, streams: Optional[Streams]) -> Outcome:
     except ValueError:  # not on a worker (run in the client: tests, a sequential run)
         outcome.worker = ''
     with tempfile.TemporaryDirectory(prefix='rope_sim_case_') as folder:
-        out_path = os.path.join(folder, 'out.csv')
+        out_path = os.path.join(folder, 'out.csv') if job.csv else None
         bag_path = os.path.join(folder, 'bag') if job.bag else None
         with counting_compilations() as compiled:
             try:
+                summary = SummarySink(job.setup.names, ratings(job.setup),
+                                      origin=streams.origin if streams is not None else 0.0,
+                                      free=streams is None)
                 if streams is not None:
-                    run_motion(job.setup, streams, out_path, job.rate, bag_path)
+                    run_motion(job.setup, streams, out_path, job.rate, bag_path,
+                               sinks=[summary])
                 else:
-                    _free_ship(job, out_path)
-                outcome.summary = summarise(out_path, job.setup.names, ratings(job.setup))
+                    _free_ship(job, out_path, summary)
+                outcome.summary = summary.summary()
             except Exception as e:  # noqa: B902 (every failure of a case is its result)
                 outcome.status = reason(e)
                 outcome.summary = {}
         outcome.compiled = compiled[0]
-        if job.csv and os.path.exists(out_path):
+        if out_path is not None and os.path.exists(out_path):
             with open(out_path, 'rb') as stream:
                 outcome.csv = stream.read()
         if bag_path is not None and os.path.isdir(bag_path):
@@ -258,9 +263,9 @@ def run_case(job: Job, streams: Optional[Streams]) -> Outcome:
     return outcome
 
 
-def _free_ship(job: Job, out_path: str) -> None:
+def _free_ship(job: Job, out_path: Optional[str], summary: SummarySink) -> None:
     """
-    Run a free ship's case from rest under its loads file (if any) into OUT.csv.
+    Run a free ship's case from rest under its loads file (if any): its summary, OUT.csv.
 
     The case's seed is its gusts' (wind_seed), unless the case sets wind_seed itself.
     """
@@ -268,7 +273,7 @@ def _free_ship(job: Job, out_path: str) -> None:
     if setup.ship.wind_seed == SHIP_SPECS['wind_seed'].default:
         setup = replace(setup, ship=replace(setup.ship, wind_seed=job.seed))
     loads = read_loads(job.loads) if job.loads else None
-    run_free(setup, job.duration, loads, out_path, job.rate)
+    run_free(setup, job.duration, loads, out_path, job.rate, sinks=[summary])
 
 
 def check_runnable(study: Study, prepared: List[PreparedCase]) -> None:
@@ -386,23 +391,16 @@ def warm_up_text(warm_ups: Dict[str, Dict[str, Any]]) -> str:
             f'{seconds:.0f} s')
 
 
-class StudyProgress:
-    """A one-line progress bar of the cases on a TTY: done of total, failed, time left."""
+class StudyProgress(Progress):
+    """The study's progress bar (progress.py): cases done of total, failed, time left."""
 
     def __init__(self, total: int, stream=None, width: int = 30,
                  enabled: Optional[bool] = None) -> None:
         """Prepare the bar for `total` cases to run (drawn only on a TTY unless enabled)."""
-        self.stream = stream if stream is not None else sys.stderr
-        if enabled is None:
-            isatty = getattr(self.stream, 'isatty', None)
-            enabled = bool(isatty and isatty())
-        self.enabled = enabled
+        super().__init__(stream, delay=0.0, width=width, enabled=enabled, interval=0.0)
         self.total = total
-        self.width = width
         self.done = 0
         self.failed = 0
-        self._start = time.monotonic()
-        self._drawn = False
 
     def update(self, failed: bool = False) -> None:
         """Count one more case done (failed or not) and redraw."""
@@ -410,36 +408,17 @@ class StudyProgress:
         self.failed += int(failed)
         self.draw()
 
+    def _what(self) -> str:
+        failed = f', {self.failed} failed' if self.failed else ''
+        return f'{self.done}/{self.total} cases{failed}'
+
     def text(self) -> str:
         """Return the bar's line."""
-        fraction = self.done / self.total if self.total else 1.0
-        filled = int(round(self.width * fraction))
-        elapsed = time.monotonic() - self._start
-        left = elapsed * (1.0 - fraction) / fraction if fraction > 0.0 else math.inf
-        failed = f', {self.failed} failed' if self.failed else ''
-        eta = f', ~{_clock(left)} left' if math.isfinite(left) and self.done < self.total else ''
-        return (f'[{"#" * filled}{"." * (self.width - filled)}] {self.done}/{self.total} cases'
-                f'{failed}, {_clock(elapsed)}{eta}')
+        return self.line(self.done, self.total, self._what())
 
     def draw(self) -> None:
         """Rewrite the line (on a TTY)."""
-        if self.enabled:
-            self.stream.write('\r' + self.text() + '\x1b[K')
-            self.stream.flush()
-            self._drawn = True
-
-    def finish(self) -> None:
-        """End the line if it was drawn."""
-        if self._drawn:
-            self.stream.write('\n')
-            self.stream.flush()
-            self._drawn = False
-
-
-def _clock(seconds: float) -> str:
-    seconds = int(round(seconds))
-    return f'{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}' if seconds >= 3600 \
-        else f'{seconds // 60}:{seconds % 60:02d}'
+        self.show(self.done, self.total, self._what())
 
 
 def run_on_cluster(cluster: Cluster, study: Study, todo: List[PreparedCase],

@@ -13,22 +13,10 @@
 # limitations under the License.
 
 """
-A study's results: each case's summary of its OUT.csv, the case records, results.csv/.parquet.
+A study's results: the case records, results.csv and results.parquet.
 
-A case's summary comes from its OUT.csv (sinks.py: an arrangement's columns), per line:
-
-- ``<line>_max_tension`` [N]: the line's largest tension over the whole run: the larger of
-  its two end tensions (as status.py's utilisation), taken from the peaks of every row (the
-  largest since the previous row, over every integration step: a snap between rows counts);
-- ``<line>_max_utilisation``: that over the line's MBL (its material at its diameter);
-- ``<line>_time_of_max`` [s]: the time of the row that holds it (the first, if it repeats),
-  in the time base of OUT.csv (the motion file's);
-- ``<line>_mean_tension`` [N]: the mean over the rows of the larger end tension;
-- ``<line>_parted``: 1 if the line parted during the run, else 0.
-
-When OUT.csv holds the ship's pose (SHIP_POSE_COLUMNS: a free ship), ``max_surge``,
-``max_sway`` [m] and ``max_yaw`` [rad]: the largest absolute excursion from the first row's
-pose, along and across the ship's start heading (its start body axes) and about z.
+A case's summary is its run's (sinks.py SummarySink: per line LINE_RESULTS, a free ship's
+SHIP_RESULTS), computed on its worker from the outputs the run publishes.
 
 Each finished case is recorded in DIR/cases/NNNN.json (its key, values, status, summary and
 how its run went), written last and atomically: a case is done when its record is there with
@@ -37,120 +25,23 @@ case in case order; a failed case has its reason in `status` and empty cells. Nu
 written with Python's shortest exact repr (JSON too): the same runs give the same bytes.
 """
 
-import csv
 import json
 import math
 import os
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
-import numpy as np
-
-from .study_file import format_value, Study
-from ..mooring.status import Rating
+from .file import format_value, Study
+from ..sinks import LINE_RESULTS, SHIP_RESULTS
 
 OK = 'ok'
-LINE_RESULTS = ('max_tension', 'max_utilisation', 'time_of_max', 'mean_tension', 'parted')
-SHIP_POSE_COLUMNS = ('x', 'y', 'z', 'qx', 'qy', 'qz', 'qw')
-SHIP_RESULTS = ('max_surge', 'max_sway', 'max_yaw')
 CASES_DIR = 'cases'
 RESULTS_CSV = 'results.csv'
 RESULTS_PARQUET = 'results.parquet'
 
 
-class SummaryError(ValueError):
-    """An OUT.csv cannot be summarised (a column missing, a cell not a number)."""
-
-
-def _column(table: Dict[str, np.ndarray], name: str, path: str) -> np.ndarray:
-    try:
-        return table[name]
-    except KeyError:
-        raise SummaryError(f'{path}: no column {name!r}') from None
-
-
-def read_out(path) -> Dict[str, np.ndarray]:
-    """Return an OUT.csv's columns as float arrays."""
-    path = os.fspath(path)
-    with open(path, newline='', encoding='utf-8') as stream:
-        reader = csv.reader(stream)
-        header = next(reader, None)
-        if not header:
-            raise SummaryError(f'{path}: empty file')
-        rows = [row for row in reader if row]
-    if not rows:
-        raise SummaryError(f'{path}: no rows')
-    try:
-        table = np.array(rows, dtype=float)
-    except ValueError:
-        raise SummaryError(f'{path}: not a table of numbers') from None
-    if table.shape != (len(rows), len(header)):
-        raise SummaryError(f'{path}: rows of different lengths')
-    return {name: table[:, k] for k, name in enumerate(header)}
-
-
 def line_columns(names: Sequence[str]) -> List[str]:
     """Return the per-line result columns of these lines, in order."""
     return [f'{name}_{what}' for name in names for what in LINE_RESULTS]
-
-
-def summarise(path, names: Sequence[str], ratings: Sequence[Rating]) -> Dict[str, Any]:
-    """
-    Return a case's summary from its OUT.csv (see the module docstring).
-
-    :param names: the lines, as OUT.csv names them; ratings: their MBLs, in the same order.
-    :raises SummaryError: a column is missing or a cell is not a number.
-    """
-    path = os.fspath(path)
-    table = read_out(path)
-    t = _column(table, 't', path)
-    summary: Dict[str, Any] = {}
-    for name, rating in zip(names, ratings):
-        sample = np.maximum(_column(table, f'{name}_tension', path),
-                            _column(table, f'{name}_bollard_tension', path))
-        peak = np.maximum(_column(table, f'{name}_fairlead_peak_tension', path),
-                          _column(table, f'{name}_bollard_peak_tension', path))
-        peak = np.maximum(peak, sample)
-        k = int(np.argmax(peak))
-        largest = float(peak[k])
-        summary[f'{name}_max_tension'] = largest
-        summary[f'{name}_max_utilisation'] = float(rating.utilisation(largest))
-        summary[f'{name}_time_of_max'] = float(t[k])
-        summary[f'{name}_mean_tension'] = math.fsum(sample.tolist()) / len(sample)
-        summary[f'{name}_parted'] = int(bool(np.any(_column(table, f'{name}_parted', path))))
-    if all(column in table for column in SHIP_POSE_COLUMNS):
-        summary.update(ship_excursions(table))
-    for column, value in summary.items():
-        if not math.isfinite(value):
-            raise SummaryError(f'{path}: {column} is {value!r}, not a finite number')
-    return summary
-
-
-def ship_excursions(table: Mapping[str, np.ndarray]) -> Dict[str, float]:
-    """
-    Return max_surge, max_sway [m] and max_yaw [rad] of the ship's poses in a table.
-
-    Excursions from the first row's pose: the position change in the first row's body axes
-    (x forward, y to port) and the yaw of the rotation from the first orientation.
-    """
-    p = np.column_stack([table[c] for c in SHIP_POSE_COLUMNS[:3]])
-    q = np.column_stack([table[c] for c in SHIP_POSE_COLUMNS[3:]])
-    q = q / np.linalg.norm(q, axis=1)[:, None]
-    x0, y0, z0, w0 = q[0]
-    start = np.array([
-        [1.0 - 2.0 * (y0 * y0 + z0 * z0), 2.0 * (x0 * y0 - z0 * w0), 2.0 * (x0 * z0 + y0 * w0)],
-        [2.0 * (x0 * y0 + z0 * w0), 1.0 - 2.0 * (x0 * x0 + z0 * z0), 2.0 * (y0 * z0 - x0 * w0)],
-        [2.0 * (x0 * z0 - y0 * w0), 2.0 * (y0 * z0 + x0 * w0), 1.0 - 2.0 * (x0 * x0 + y0 * y0)]])
-    body = (p - p[0]) @ start  # R0^T (p - p0), row by row
-    # the relative rotation conj(q0) q, then its yaw (z-y-x angles)
-    x, y, z, w = q.T
-    rw = w0 * w + x0 * x + y0 * y + z0 * z
-    rx = w0 * x - x0 * w - y0 * z + z0 * y
-    ry = w0 * y + x0 * z - y0 * w - z0 * x
-    rz = w0 * z - x0 * y + y0 * x - z0 * w
-    yaw = np.arctan2(2.0 * (rw * rz + rx * ry), 1.0 - 2.0 * (ry * ry + rz * rz))
-    return {'max_surge': float(np.max(np.abs(body[:, 0]))),
-            'max_sway': float(np.max(np.abs(body[:, 1]))),
-            'max_yaw': float(np.max(np.abs(yaw)))}
 
 
 def case_name(index: int, count: int) -> str:

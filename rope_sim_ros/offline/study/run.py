@@ -13,11 +13,7 @@
 # limitations under the License.
 
 """
-``rope_sim study STUDY.yaml --out DIR``: many cases of a berth, on Dask.
-
-The study file and its cases: study_file.py; running them on a local cluster or a
-scheduler's workers: study_run.py; the summaries and results.csv / results.parquet:
-study_results.py; the plots: study_plots.py. This module ties them together:
+run_study: a study from its file to its results, the parts of study/ tied together.
 
 1. read the study and validate every case (a bad value refuses the study at once);
 2. find the cases already done in DIR (their record holds the current key): a study
@@ -39,11 +35,11 @@ import threading
 import time
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from .study_file import prepare, PreparedCase, read_study, Study, StudyError
-from .study_plots import load_matplotlib, plot_study
-from .study_results import (case_name, CASES_DIR, OK, read_record, result_rows, write_atomic,
-                            write_record, write_results)
-from ..mooring.status import ratings
+from .file import prepare, PreparedCase, read_study, Study, StudyError
+from .plots import load_matplotlib, plot_study
+from .results import (case_name, CASES_DIR, OK, read_record, result_rows, write_atomic,
+                      write_record, write_results)
+from ...mooring.status import ratings
 
 Say = Callable[[str], None]
 
@@ -197,7 +193,7 @@ def run_study(path, out, workers: Optional[int] = None, scheduler: Optional[str]
         workers below 1.
     :raises StudyInterrupted: Ctrl-C; the results of the cases done are written.
     """
-    from .study_run import check_runnable
+    from .cluster import check_runnable
     start = time.monotonic()
     if workers is not None and workers < 1:
         raise StudyError(f'--workers {workers}: must be >= 1')
@@ -251,7 +247,7 @@ def run_study(path, out, workers: Optional[int] = None, scheduler: Optional[str]
 def _run(study: Study, prepared: List[PreparedCase], todo: List[PreparedCase], folder: str,
          records: Dict[int, Dict[str, Any]], report: StudyReport, workers: Optional[int],
          scheduler: Optional[str], say: Say, progress: bool, lines: List[str]) -> None:
-    from .study_run import open_cluster, run_on_cluster, StudyProgress, warm_up_text
+    from .cluster import open_cluster, run_on_cluster, StudyProgress, warm_up_text
     by_index = {item.case.index: item for item in prepared}
     store = _store(folder, len(prepared), by_index, records, report)
     bar = StudyProgress(len(todo), enabled=None if progress else False)

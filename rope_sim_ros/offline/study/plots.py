@@ -32,8 +32,8 @@ import math
 import os
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
-from .study_file import CASE_FILES, format_value, Study
-from .study_results import OK
+from .file import CASE_FILES, format_value, Study
+from .results import OK
 
 UTILISATION_PNG = 'utilisation.png'
 HEATMAP_PNG = 'heatmap.png'
@@ -89,7 +89,7 @@ def plot_study(folder, study: Study, rows: Sequence[Mapping[str, Any]], lines: S
     """
     Draw utilisation.png and (with two factors or more) heatmap.png into the folder.
 
-    :param rows: the result rows (study_results.result_rows).
+    :param rows: the result rows (results.py result_rows).
     :param wll_fraction: the smallest WLL / MBL of the lines (drawn across), or None.
     :returns: the files written.
     """
