@@ -19,8 +19,8 @@ A Session plays what a node meets: poses that arrive at given clock readings (th
 may differ: transport delays, stalls) and timer ticks, merged in time order, each handed to
 the Pacer as the node hands them; it keeps what the Pacer decided and when. The node tests'
 scenarios are played here with their numbers; over DDS a test of each rule shows the
-wiring end to end: silence, even outputs and no clock (test_node_timing.py), stamps and
-outputs per call (test_node_guards.py), skips (test_node_mooring_line.py).
+wiring end to end: silence, even outputs and no clock (test_node_timing.py), stamps and a
+publish_rate change (test_node_guards.py), skips (test_node_mooring_line.py).
 """
 
 import heapq
@@ -344,6 +344,42 @@ def test_poses_stamped_hours_or_seconds_off_the_clock_are_dropped_and_the_stream
     assert 'ahead of the node clock by 3600.020 s' in why[1]
     assert 'ahead of the node clock by 15.020 s' in why[2]
     assert 'behind the node clock by 3599.980 s, more than 10 s' in why[3]
+
+
+def test_publish_rate_changes_take_effect_with_the_next_output():
+    # test_node_guards.py's rate changes: 50 Hz poses, the fairlead still; publish_rate 50
+    # -> 30 -> 1000 -> 137 Hz, each set once the outputs up to the newest pose but one are
+    # out (40 ms of the clock after it), the ticks at the new rate from then (at most
+    # MAX_TICK_RATE). 30 and 137 Hz divide neither the pose period nor the step.
+    session = Session(motion=lambda t: FAIRLEAD)
+    clock = EPOCH
+    for rate, start, end in ((50.0, 0.0, 1.0), (30.0, 1.0, 2.0), (1000.0, 2.0, 2.5),
+                             (137.0, 2.5, 3.5)):
+        session.driver.update(None, {'publish_rate': rate})
+        first = round(start * 50) + (start > 0)  # the stamps 0, 20 ms, ... `end` s
+        poses = [(at(k / 50), at(k / 50) + MS) for k in range(first, round(end * 50) + 1)]
+        tick = round(session.pacer.tick_period() * 1e9)
+        ticks = list(range(clock + tick, at(end) + 40 * MS + 1, tick))
+        session.run(poses, ticks)
+        clock = ticks[-1]
+        # every output up to the newest pose but one is out: the change lands after it
+        assert at(end - 0.02) - 1e9 / rate < session.published[-1][1] <= at(end - 0.02)
+    stamps = np.array([stamp for _, stamp in session.published])
+    # runs of equal periods, in order: every output 1 / rate after the one before it, the
+    # rate of the time it was published at (no gap, no burst at a change)
+    runs = []
+    for period in np.diff(stamps) * 1e-9:
+        if runs and abs(period - runs[-1][0]) < 5e-9:
+            runs[-1][1] += 1
+        else:
+            runs.append([period, 1])
+    assert [round(1.0 / p, 3) for p, _ in runs] == [50.0, 30.0, 1000.0, 137.0], runs
+    # from 0 to 0.98 s, to 1.98 s, to 2.48 s (1000 Hz: every ms), to 3.48 s
+    assert [n for _, n in runs] == [49, 30, 500, 137], runs
+    assert session.events == [] and session.skipped == []
+    # the step changed under a rope at rest: nothing moved
+    tensions = np.array([p.output.fairlead_tensions[0] for p in session.outputs])
+    assert np.ptp(tensions) < 1e-6 * tensions.mean(), (tensions.min(), tensions.max())
 
 
 def test_poses_late_past_the_silence_limit_rejoin_without_a_jerk(repo_root):
