@@ -15,7 +15,7 @@
 """
 bag_replay + the installed mooring_line node (use_sim_time) re-run a recording.
 
-The recording is made offline with ``rope_sim run --bag`` on a smooth 9 s surge after 1 s
+The recording is made offline with ``rope_sim run --bag`` on a smooth 5 s surge after 1 s
 at rest; the replayed fairlead tension, taken at the stamps of the node's rope/particles
 published with it, must match the recorded one within 2 % NRMSE (RMS difference / RMS of
 the recorded series minus its mean). Both sides use the same fixed time step.
@@ -40,7 +40,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
 
 NAMESPACE = '/replay_test'
-SECONDS = 10.0
+SECONDS = 6.0
 REST = 1.0  # seconds at rest before the surge
 TIME_STEP = 1.0 / 3200.0  # divides 10 ms: the runner's and the node's steps coincide
 TIMEOUT = 60.0
