@@ -88,6 +88,7 @@ from ..messages.topics import Layout, LINE_NODE, MOORING_NODE
 from ..model.statics.ship import StaticsError
 from ..mooring.driver import Driver, SHIP
 from ..mooring.events import encode_event
+from ..mooring.handling import LINE_COMMANDS
 from ..mooring.pacing import Pace, Pacer
 from ..mooring.records import Published
 from ..mooring.trajectory import TrajectoryError
@@ -236,6 +237,7 @@ class MooringNode(Node):
             self._stiffness_pub = self._publisher(Float64MultiArray, topics.STIFFNESS, 10)
             self._set_stiffness_rate(setup.ship.stiffness_rate)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
+        self._command_srvs = self._command_services()
         if driver.free and self.get_parameter('use_sim_time').value:
             # a free ship starts at the first tick of a running clock: say what it waits for
             # (on the steady clock: without /clock no timer of the node clock runs)
@@ -736,6 +738,14 @@ class MooringNode(Node):
                 f'{parting.segment} of {segments} (0 at the bollard): its tension passed the '
                 f'break load of {parting.break_load / 1e3:.0f} kN. Both pieces go on; '
                 '~/reset restores every line')
+        for k, tension in advance.released.items():
+            name = self.names[k]
+            load = driver.arrangement.lines[k].params.release_load
+            self._line_event('released', name, tension=tension, t=published.output.t)
+            self.get_logger().warning(
+                f'{name or "the line"}: its quick-release hook let go at t = '
+                f'{published.output.t:.3f} s: {tension / 1e3:.1f} kN at the bollard, past its '
+                f'release_load of {load / 1e3:.1f} kN')
         for k, distance in advance.beyond_reach.items():
             if driver.partings[k] is not None:
                 continue  # it parted in these steps: its error says what became of it
@@ -774,6 +784,43 @@ class MooringNode(Node):
                 else 'every line restarted at rest')
         response.message = f'{what} at t = {self.driver.time:.3f} s'
         self.get_logger().info(response.message)
+        return response
+
+    def _command_services(self) -> list:
+        """
+        Create the line-handling services (std_srvs/Trigger, the services' default QoS).
+
+        Each line's make_fast, let_go and stow in its namespace, as its topics are (the single
+        line's at the root), and the mooring node's mooring/let_go_all.
+        """
+        services = [self.create_service(Trigger, self.layout.line_topic(name, command),
+                                        functools.partial(self._on_command, name, command))
+                    for name in self.names for command in LINE_COMMANDS]
+        if self.layout.ship_outputs:
+            services.append(self.create_service(
+                Trigger, topics.LET_GO_ALL,
+                functools.partial(self._on_command, None, 'let_go_all')))
+        return services
+
+    def _on_command(self, name: Optional[str], command: str, request: Trigger.Request,
+                    response: Trigger.Response) -> Trigger.Response:
+        """
+        Take a line-handling command at the present simulated time (the state time).
+
+        Between two advances of the ropes, as ~/reset and winch commands are: the outputs
+        reached before it are of the lines before it. One taken is logged, published and
+        recorded as a 'command' event (resim takes it again there); one refused changed
+        nothing and is logged only.
+        """
+        try:
+            text = self.driver.command(name, command)
+        except ValueError as e:  # CommandError: the line's state or the numbers say why
+            response.success, response.message = False, str(e)
+            self.get_logger().warning(f'{command} refused: {e}')
+            return response
+        self._line_event('command', name, command=command, t=self.driver.time, text=text)
+        self.get_logger().info(text)
+        response.success, response.message = True, text
         return response
 
     # -- outputs --------------------------------------------------------------------------
@@ -857,7 +904,19 @@ class MooringNode(Node):
             fields.update(self.layout.event_stream(stream))
         if line != ():
             fields.update(self.layout.line_field(line))
-        msg = String(data=encode_event(kind, **fields))
+        self._send_event(encode_event(kind, **fields))
+
+    def _line_event(self, kind: str, line: Optional[str], **fields: Any) -> None:
+        """
+        Publish and record a line-handling event ('command', 'released').
+
+        Its line is always named: '' for let_go_all and for the single line (the fields
+        mooring/events.py gives them).
+        """
+        self._send_event(encode_event(kind, line=line or '', **fields))
+
+    def _send_event(self, text: str) -> None:
+        msg = String(data=text)
         self._events_pub.publish(msg)
         self.record(self.layout.events, msg)
 
