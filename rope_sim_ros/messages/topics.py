@@ -80,6 +80,7 @@ CURRENT = 'environment/current'  # in: the water's velocity, where it goes TO
 STIFFNESS = 'ship/stiffness'  # the 6x6 stiffness of the lines and fenders, row-major
 STIFFNESS_DIMENSIONS = ('rows', 'cols')
 FENDER_REACTION = 'reaction'  # a fender's force on the ship, in its namespace
+BOLLARD_LOAD = 'load'  # a named bollard's load (its lines' forces on it), in its namespace
 MARKERS = 'mooring/markers'
 DIAGNOSTICS = '/diagnostics'
 # Services (std_srvs/Trigger): each line's commands (mooring/handling.py LINE_COMMANDS) are

@@ -76,7 +76,7 @@ from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
 from . import conversions
-from .mooring_display import Fenders, line_diagnostics, LineMarkers
+from .mooring_display import bollard_statuses, Fenders, line_diagnostics, LineMarkers
 from .outputs import OutputPublishers
 from .parameters import NodeParameters, plain, ROS_PARAMETERS, StartupError
 from .recorder import Recorder
@@ -184,6 +184,7 @@ class MooringNode(Node):
         # the newest output and what the diagnostics gather between reports
         self._latest: Optional[Published] = None
         self._peaks = np.zeros(len(self.names))
+        self._bollard_peaks = np.zeros(len(setup.bollards))  # each bollard's, at the outputs
         self._restarted: List[Optional[str]] = [None] * len(self.names)
         self._line_markers = LineMarkers()
 
@@ -844,6 +845,9 @@ class MooringNode(Node):
         self._publish_parted(published.output.parted)
         self._latest = published
         self._peaks = np.maximum(self._peaks, published.output.peaks)  # every step's
+        if published.bollard_loads:
+            self._bollard_peaks = np.maximum(self._bollard_peaks,
+                                             [load.load for load in published.bollard_loads])
 
     def _publish_parted(self, parted) -> None:
         """Publish (and record) on each line's parted topic whether it has parted, if new."""
@@ -862,11 +866,12 @@ class MooringNode(Node):
             self.driver.arrangement.shared.frame_id, published.stamp_ns, self.names,
             out.positions, np.maximum(out.fairlead_tensions, out.bollard_tensions),
             self.ratings, out.parted, np.array([p[-1] for p in out.positions]),
-            np.array([p[0] for p in out.positions]), self._fenders(published))
+            np.array([p[0] for p in out.positions]), self._fenders(published), out.states,
+            published.bollard_loads)
         self._markers_pub.publish(msg)
 
     def _on_diagnostics(self) -> None:
-        """Publish one status per line; its peak and restarts count from the last report."""
+        """Publish one status per line, fender and bollard; peaks count from the last report."""
         published = self._latest
         prefix = self.get_fully_qualified_name().lstrip('/')
         if published is None:
@@ -880,12 +885,14 @@ class MooringNode(Node):
             msg = line_diagnostics(
                 published.stamp_ns, self.names,
                 np.maximum(out.fairlead_tensions, out.bollard_tensions), self._peaks,
-                out.max_strains, self.ratings, out.parted, self._restarted, prefix)
+                out.max_strains, self.ratings, out.parted, self._restarted, prefix, out.states)
             self._peaks = np.zeros(len(self.names))
             self._restarted = [None] * len(self.names)
             fenders = self._fenders(published)
             if fenders is not None:
                 msg.status += fenders.statuses(prefix)
+            msg.status += bollard_statuses(published.bollard_loads, self._bollard_peaks, prefix)
+            self._bollard_peaks = np.zeros(len(self._bollard_peaks))
         self._diagnostics_pub.publish(msg)
 
     def _fenders(self, published: Published) -> Optional[Fenders]:
