@@ -15,11 +15,12 @@
 """rope_sim run of a free ship: --loads LOADS.csv --duration T, its motion in OUT.csv."""
 
 import csv
+import math
 
 import pytest
 
 from rope_sim_ros.offline import cli
-from rope_sim_ros.offline.sinks import FENDER_COLUMNS, LOAD_COLUMNS, SHIP_COLUMNS
+from rope_sim_ros.offline.sinks import FENDER_COLUMNS, LOAD_COLUMNS, SHIP_COLUMNS, STATE_COLUMN
 
 FREE_BERTH = """/**/mooring:
   ros__parameters:
@@ -58,7 +59,12 @@ def test_a_free_ship_runs_under_its_loads_into_out_csv(files):
                      '--rate', '10', '--out', str(out), '--quiet']) == 0
     with open(out, newline='') as stream:
         rows = list(csv.reader(stream))
-    header, data = rows[0], [[float(v) for v in row] for row in rows[1:]]
+    header = rows[0]
+    states = [i for i, name in enumerate(header) if name.endswith(f'_{STATE_COLUMN}')]
+    assert [header[i] for i in states] == [f'{line}_{STATE_COLUMN}' for line in ('head', 'stern')]
+    assert {row[i] for row in rows[1:] for i in states} == {'fast'}
+    data = [[math.nan if i in states else float(v) for i, v in enumerate(row)]
+            for row in rows[1:]]
     ship = header.index('x')
     assert header[ship:ship + len(SHIP_COLUMNS)] == list(SHIP_COLUMNS)
     fender = ship + len(SHIP_COLUMNS)
