@@ -19,13 +19,14 @@ A ship standing still for 10 s, two lines: head fast to bollard_1 at 50 kN, ster
 The commands: head let go at 2 s, stern made fast to bollard_3 at 4 s, stern stowed at 5 s
 (refused: it is fast), let go all at 8 s, head made fast at 20 s (after the run's end). The
 outputs (each line's tension and state), the printed lines, the bag's events, resim of the
-bag; then every bad commands file, a single line and a free ship.
+bag, the plot's marks; then every bad commands file, a single line and a free ship.
 """
 
 import csv
 import io
 import sys
 
+import matplotlib
 import numpy as np
 import pytest
 from rope_sim_ros.bag import read_messages
@@ -34,8 +35,10 @@ from rope_sim_ros.model.statics.catenary import solve_catenary
 from rope_sim_ros.mooring.driver import Driver
 from rope_sim_ros.mooring.events import decode_event
 from rope_sim_ros.offline import cli
-from rope_sim_ros.offline.plot import read_tensions
+from rope_sim_ros.offline.plot import draw_marks, read_record, read_tensions
 from rope_sim_ros.params.arrangement import read_setup
+
+matplotlib.use('Agg')
 
 RATE = 10.0
 SECONDS = 10.0
@@ -220,6 +223,25 @@ def test_resim_of_the_bag_takes_the_commands_again_to_round_off(handled, berth):
         np.testing.assert_allclose(again.tension, recorded.tension, rtol=1e-9, atol=1e-6)
 
 
+def test_the_plot_marks_every_command_on_the_time_axis(handled, berth, tmp_path):
+    record = read_record(berth / 'bag')
+    assert [(pytest.approx(t, abs=1e-9), label) for t, label in record.marks] == [
+        (2.0, 'head let go'), (4.0, 'stern make fast'), (5.0, 'stern stow (refused)'),
+        (8.0, 'let go all')]
+    assert cli.main(['plot', str(berth / 'bag'), '-o', str(tmp_path / 'plot.png')]) == 0
+    assert (tmp_path / 'plot.png').stat().st_size > 10000
+    from matplotlib.figure import Figure
+    figure = Figure()
+    axes = [figure.add_subplot(2, 1, 1), figure.add_subplot(2, 1, 2)]
+    draw_marks(record.marks, axes, axes[0])
+    for axis in axes:  # one dotted vertical line per mark, at its time
+        assert [line.get_xdata()[0] for line in axis.get_lines()] == [
+            t for t, _ in record.marks]
+        assert {line.get_linestyle() for line in axis.get_lines()} == {':'}
+    assert [text.get_text() for text in axes[0].texts] == [label for _, label in record.marks]
+    assert len(axes[1].texts) == 0
+
+
 @pytest.mark.parametrize('rows, message', [
     ('1.0,haed,let_go,\n', "data row 1 (file line 2), column 'line': 'haed' is not a line: "
      "the lines are head, stern; did you mean 'head'?"),
@@ -336,3 +358,4 @@ def test_a_quick_release_hook_lets_go_by_itself_and_is_recorded(berth, tmp_path,
     err = capsys.readouterr().err
     assert (f'rope_sim: warning: t = {stamp:.3f} s: line head let go by its quick-release '
             f'hook at {released["tension"] / 1e3:.1f} kN (release_load 60 kN)\n') in err
+    assert read_record(bag).marks == ((pytest.approx(stamp, abs=1e-9), 'head released'),)
