@@ -244,7 +244,7 @@ def test_the_plot_marks_every_command_on_the_time_axis(handled, berth, tmp_path)
 
 @pytest.mark.parametrize('rows, message', [
     ('1.0,haed,let_go,\n', "data row 1 (file line 2), column 'line': 'haed' is not a line: "
-     "the lines are head, stern; did you mean 'head'?"),
+     "one of head, stern; did you mean 'head'?"),
     ('1.0,head,let_goo,\n', "data row 1 (file line 2), column 'command': 'let_goo' is not a "
      "command: one of make_fast, let_go, stow, let_go_all; did you mean 'let_go'?"),
     ('1.0,head,,\n', "column 'command': an empty cell is not a command"),
@@ -255,13 +255,12 @@ def test_the_plot_marks_every_command_on_the_time_axis(handled, berth, tmp_path)
     ('inf,head,let_go,\n', "data row 1 (file line 2), column 't': 'inf' is not a finite"),
     ('soon,head,let_go,\n', "data row 1 (file line 2), column 't': 'soon' is not a number"),
     ('-1.0,head,let_go,\n', "column 't': -1.0 is before the run's start"),
-    ('1.0,stern,make_fast,bolard_3\n', "column 'bollard': 'bolard_3' is not a bollard: the "
-     "bollards are bollard_1, bollard_2, bollard_3; did you mean 'bollard_3'?"),
+    ('1.0,stern,make_fast,bolard_3\n', "column 'bollard': 'bolard_3' is not a bollard: one "
+     "of bollard_1, bollard_2, bollard_3; did you mean 'bollard_3'?"),
     ('1.0,head,let_go,bollard_1\n', "column 'bollard': 'bollard_1' with let_go: a bollard "
      'is named for make_fast only'),
     ('1.0,head,let_go_all,\n', "column 'line': 'head' with let_go_all"),
-    ('1.0,,make_fast,\n', "column 'line': an empty cell with make_fast: name the line, one of "
-     'head, stern'),
+    ('1.0,,make_fast,\n', "column 'line': an empty cell is not a line: one of head, stern"),
     ('1.0,head,let_go\n', 'data row 1 (file line 2): 3 cells, but the header has 4 columns'),
 ])
 def test_a_bad_commands_file_is_one_line_and_exit_2(berth, tmp_path, capsys, rows, message):

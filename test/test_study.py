@@ -576,8 +576,8 @@ def test_a_case_takes_its_commands_file_as_rope_sim_run_does(tmp_path, capsys):
 
 
 @pytest.mark.parametrize('rows, message', [
-    ('1.0,head_9,let_go\n', "'head_9' is not a line: the lines are head_1, spring_fwd, "
-     "spring_aft, stern_1; did you mean 'head_1'?"),
+    ('1.0,head_9,let_go\n', "'head_9' is not a line: one of head_1, spring_fwd, spring_aft, "
+     "stern_1; did you mean 'head_1'?"),
     ('4.0,head_1,let_go\n', "data row 1, column 't': 4 s is not before the study's duration "
      'of 4 s: the command would never be taken'),
 ])

@@ -358,11 +358,12 @@ def read_commands(path, lines: Sequence[str], bollards: Sequence[str]) -> Comman
                     f'{_where(name, row, line, TIME)}: {cell(TIME)} is before the previous '
                     f"row's {commands[-1].t:g}; the commands are taken in time order: sort "
                     'the rows by t')
-            command = _command(name, row, line, cell(COMMAND), COMMANDS)
-            target = _line(name, row, line, cell(LINE), command, lines)
+            command = _one_of(_where(name, row, line, COMMAND), cell(COMMAND), COMMAND,
+                              COMMANDS)
+            target = _line(_where(name, row, line, LINE), cell(LINE), command, lines)
             bollard = cell(BOLLARD)
             if bollard:
-                _bollard(name, row, line, bollard, command, bollards)
+                _bollard(_where(name, row, line, BOLLARD), bollard, command, bollards)
             commands.append(ScheduledCommand(t, target, command, bollard))
             rows.append(row)
         if not commands:
@@ -372,22 +373,17 @@ def read_commands(path, lines: Sequence[str], bollards: Sequence[str]) -> Comman
     return _read_csv(path, 'commands file', parse)
 
 
-def _nearest(name: str, names: Sequence[str]) -> str:
+def _one_of(where: str, name: str, what: str, names: Sequence[str]) -> str:
+    """Return name if it is one of names; else refuse it, naming the nearest one."""
+    if name in names:
+        return name
+    shown = repr(name) if name else 'an empty cell'
     found = difflib.get_close_matches(name, list(names), n=1, cutoff=0.6)
-    return f'; did you mean {found[0]!r}?' if found else ''
+    near = f'; did you mean {found[0]!r}?' if found else ''
+    raise MotionError(f'{where}: {shown} is not a {what}: one of {", ".join(names)}{near}')
 
 
-def _command(path: str, row: int, line: int, command: str, commands: Sequence[str]) -> str:
-    if command not in commands:
-        shown = repr(command) if command else 'an empty cell'
-        raise MotionError(f'{_where(path, row, line, COMMAND)}: {shown} is not a command: one '
-                          f'of {", ".join(commands)}{_nearest(command, commands)}')
-    return command
-
-
-def _line(path: str, row: int, line: int, name: str, command: str,
-          lines: Sequence[str]) -> str:
-    where = _where(path, row, line, LINE)
+def _line(where: str, name: str, command: str, lines: Sequence[str]) -> str:
     if command == 'let_go_all':
         if name:
             raise MotionError(f'{where}: {name!r} with let_go_all, which lets every fast line '
@@ -398,24 +394,14 @@ def _line(path: str, row: int, line: int, name: str, command: str,
             raise MotionError(f'{where}: {name!r}, but the single line has no name: leave the '
                               'line empty')
         return ''
-    if not name:
-        raise MotionError(f'{where}: an empty cell with {command}: name the line, one of '
-                          f'{", ".join(lines)}')
-    if name not in lines:
-        raise MotionError(f'{where}: {name!r} is not a line: the lines are '
-                          f'{", ".join(lines)}{_nearest(name, lines)}')
-    return name
+    return _one_of(where, name, 'line', lines)
 
 
-def _bollard(path: str, row: int, line: int, name: str, command: str,
-             bollards: Sequence[str]) -> None:
-    where = _where(path, row, line, BOLLARD)
+def _bollard(where: str, name: str, command: str, bollards: Sequence[str]) -> None:
     if command != 'make_fast':
         raise MotionError(f'{where}: {name!r} with {command}: a bollard is named for make_fast '
                           'only; leave it empty')
     if not bollards:
         raise MotionError(f'{where}: {name!r}, but the arrangement has no bollards; list them '
                           f'in {BOLLARDS!r}, each with its position')
-    if name not in bollards:
-        raise MotionError(f'{where}: {name!r} is not a bollard: the bollards are '
-                          f'{", ".join(bollards)}{_nearest(name, bollards)}')
+    _one_of(where, name, 'bollard', bollards)
