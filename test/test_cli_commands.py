@@ -19,7 +19,8 @@ A ship standing still for 10 s, two lines: head fast to bollard_1 at 50 kN, ster
 The commands: head let go at 2 s, stern made fast to bollard_3 at 4 s, stern stowed at 5 s
 (refused: it is fast), let go all at 8 s, head made fast at 20 s (after the run's end). The
 outputs (each line's tension and state), the printed lines, the bag's events, resim of the
-bag, the plot's marks; then every bad commands file, a single line and a free ship.
+bag, the plot's marks; then every bad commands file, a single line, a quick-release hook,
+and the commands of a node's bag read back. (A free ship's: test_cli_free.py.)
 """
 
 import csv
@@ -29,12 +30,14 @@ import sys
 import matplotlib
 import numpy as np
 import pytest
-from rope_sim_ros.bag import read_messages
+from rope_sim_ros.bag import BagWriter, cdr, read_messages
 from rope_sim_ros.bag.cdr import decode_string
 from rope_sim_ros.model.statics.catenary import solve_catenary
 from rope_sim_ros.mooring.driver import Driver
-from rope_sim_ros.mooring.events import decode_event
+from rope_sim_ros.mooring.events import decode_event, encode_event
+from rope_sim_ros.mooring.records import ScheduledCommand
 from rope_sim_ros.offline import cli
+from rope_sim_ros.offline.line_events import recorded_commands
 from rope_sim_ros.offline.plot import draw_marks, read_record, read_tensions
 from rope_sim_ros.params.arrangement import read_setup
 
@@ -358,3 +361,24 @@ def test_a_quick_release_hook_lets_go_by_itself_and_is_recorded(berth, tmp_path,
     assert (f'rope_sim: warning: t = {stamp:.3f} s: line head let go by its quick-release '
             f'hook at {released["tension"] / 1e3:.1f} kN (release_load 60 kN)\n') in err
     assert read_record(bag).marks == ((pytest.approx(stamp, abs=1e-9), 'head released'),)
+
+
+def test_the_commands_a_node_recorded_are_read_back_as_it_took_them(tmp_path):
+    # a mooring node's events, as it records them: the line left out of let_go_all, a
+    # bollard set before a make fast; the other events are not commands
+    events = [encode_event('winch', line='head', speed=-0.5, t=1.0),
+              encode_event('set', line='stern', values={'bollard': 'bollard_3'}),
+              encode_event('set', line='head', values={'winch_tension': 5.0e4}),
+              encode_event('command', line='stern', command='make_fast', t=4.0, text='...'),
+              encode_event('command', line='head', command='stow', t=5.0, text='...',
+                           refused=True),
+              encode_event('released', line='head', tension=7.0e4, t=6.0),
+              encode_event('command', command='let_go_all', t=8.0, text='...')]
+    with BagWriter(tmp_path / 'node') as writer:
+        writer.add_topic('/mooring/events', 'std_msgs/msg/String')
+        for k, text in enumerate(events):
+            writer.write('/mooring/events', cdr.string(text), k * 1_000_000_000)
+    assert recorded_commands(tmp_path / 'node', '/mooring/events') == [
+        ScheduledCommand(4.0, 'stern', 'make_fast', 'bollard_3'),
+        ScheduledCommand(5.0, 'head', 'stow', ''),
+        ScheduledCommand(8.0, '', 'let_go_all', '')]
