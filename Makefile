@@ -51,6 +51,7 @@ study-demo: venv
 bench: venv
 	$(BIN)/python benchmarks/physics_vs_moordyn.py
 	$(BIN)/python benchmarks/water_vs_moordyn.py
+	$(BIN)/python benchmarks/line_handling.py
 
 clean:
 	rm -rf build install log

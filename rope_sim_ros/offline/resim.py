@@ -305,6 +305,7 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
     skipped: List[str] = []
     dropped: Dict[str, deque] = {stream: deque() for stream in driver.streams}
     restamped: Dict[str, deque] = {stream: deque() for stream in driver.streams}
+    ahead = Ahead(driver)
     first_ns = None
     try:
         for message in read_messages(path, list(resolved)):
@@ -313,8 +314,7 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
                 if not driver.started:
                     continue
                 output_ns = stamp_ns(*decode_pose_array(message.data)[:2])
-                report = driver.outputs_until(driver.seconds(output_ns))
-                for published in report.outputs:
+                for published in ahead.until(output_ns):
                     tally.add(published)
                     sink.write_output(published, message.log_time_ns)
                     first_ns = published.stamp_ns if first_ns is None else first_ns
@@ -323,7 +323,8 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
                 continue
             sink.write(topic, message.data, message.log_time_ns)
             if topic == layout.events:
-                _apply_event(driver, setup, decode_string(message.data), dropped, restamped)
+                _apply_event(driver, setup, decode_string(message.data), dropped, restamped,
+                             ahead)
                 continue
             stream = streams[topic]
             sec, nanosec, _, position, orientation = decode_pose_stamped(message.data)
@@ -353,6 +354,39 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
     return ResimSummary(summary, namespace, driver.rate, skipped)
 
 
+class Ahead:
+    """
+    The outputs the node reached before it published them, as the replay reaches them.
+
+    A live node reaches outputs ahead of the clock and holds them for their time
+    (mooring/pacing.py); a decision taken meanwhile (a command, a winch, a reset) is taken
+    at its state time, after the outputs it holds, which are recorded after it. The replay
+    steps to that time first (catch_up) and writes those outputs as their own recorded
+    messages come (until).
+    """
+
+    def __init__(self, driver: Driver):
+        """Start with nothing reached ahead."""
+        self.driver = driver
+        self.reached: deque = deque()
+
+    def catch_up(self, t: float) -> None:
+        """Step to the state time t [s] at which the node took a decision."""
+        self.reached.extend(self.driver.outputs_until(t).outputs)
+
+    def until(self, output_ns: int) -> list:
+        """Return the outputs up to a recorded one (stamp [ns]), reaching it if need be."""
+        self.reached.extend(self.driver.outputs_until(self.driver.seconds(output_ns)).outputs)
+        done = []
+        while self.reached and self.reached[0].stamp_ns <= output_ns:
+            done.append(self.reached.popleft())
+        return done
+
+    def drop(self) -> None:
+        """Forget the outputs reached ahead: the node never published them (a reset)."""
+        self.reached.clear()
+
+
 def _push(driver: Driver, setup: ArrangementParams, stream: str, ns: int, position,
           orientation) -> None:
     """Push one recorded pose as the node pushes it."""
@@ -364,8 +398,8 @@ def _push(driver: Driver, setup: ArrangementParams, stream: str, ns: int, positi
 
 
 def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: Dict[str, deque],
-                 restamped: Dict[str, deque]) -> None:
-    """Take one of the node's decisions, as the node took it."""
+                 restamped: Dict[str, deque], ahead: Ahead) -> None:
+    """Take one of the node's decisions, as the node took it (at its state time)."""
     try:
         event = decode_event(text)
         kind = event['event']
@@ -384,8 +418,11 @@ def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: D
                 driver.skip(float(event['t']))
         elif kind == 'reset':
             if driver.started:
+                ahead.catch_up(float(event['t']))
+                ahead.drop()  # the node's held outputs, of the lines before the reset
                 driver.reset()
         elif kind == 'clock_back':
+            ahead.drop()
             driver.clear()
         elif kind == 'start':  # a free ship's, at the node's first tick
             if not driver.started:
@@ -395,8 +432,14 @@ def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: D
         elif kind == 'set':
             driver.update(event.get('line'), dict(event['values']))  # None: every line
         elif kind == 'winch':
+            ahead.catch_up(float(event['t']))
             driver.command_winch(event.get('line', setup.names[0] if setup.single else None),
                                  float(event['speed']))
-        # 'parted' and 'ship_restart' say what the model did: replayed, it does it again
+        elif kind == 'command':  # taken by the node, so taken again (a refusal is an error)
+            ahead.catch_up(float(event['t']))
+            command = str(event['command'])
+            driver.command(None if command == 'let_go_all' else str(event['line']), command)
+        # 'parted', 'ship_restart' and 'released' say what the model did: replayed, it does
+        # it again
     except (ValueError, KeyError, TypeError, ParameterError) as e:
         raise BagError(f'{layout_of(setup).events}: cannot replay {text!r}: {e}') from None

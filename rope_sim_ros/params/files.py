@@ -51,6 +51,22 @@ def load_yaml(text: str) -> Any:
     return yaml.load(text, Loader=RosLoader)  # noqa: S506 (a safe loader)
 
 
+def read_yaml_file(path, kind: str, error: type = ParameterError) -> Any:
+    """
+    Read a YAML file as load_yaml does.
+
+    :param kind: what the file is, for the errors ('parameter file', 'study file').
+    :raises error: unreadable or not YAML, in one line naming the file.
+    """
+    try:
+        with open(path, encoding='utf-8') as stream:
+            return load_yaml(stream.read())
+    except OSError as e:
+        raise error(f'cannot read {kind} {path}: {e.strerror or e}') from None
+    except yaml.YAMLError as e:
+        raise error(f'{kind} {path} is not valid YAML: {" ".join(str(e).split())}') from None
+
+
 def read_params_file(path, node_name: str = NODE_NAME) -> dict:
     """
     Read the `ros__parameters` of `node_name` from a ROS 2 parameter YAML file.
@@ -60,13 +76,7 @@ def read_params_file(path, node_name: str = NODE_NAME) -> dict:
 
     :raises ParameterError: unreadable file or no parameters for the node.
     """
-    try:
-        with open(path, encoding='utf-8') as f:
-            data = load_yaml(f.read())
-    except OSError as e:
-        raise ParameterError(f'cannot read parameter file {path}: {e.strerror}') from None
-    except yaml.YAMLError as e:
-        raise ParameterError(f'parameter file {path} is not valid YAML: {e}') from None
+    data = read_yaml_file(path, 'parameter file')
     if not isinstance(data, dict):
         raise ParameterError(f'parameter file {path} has no "{node_name}:" section')
     values = {}

@@ -16,7 +16,7 @@
 
 import signal
 import time
-from typing import List
+from typing import Callable, List, Tuple, Type
 
 import rclpy
 from rclpy.executors import Executor, ExternalShutdownException, SingleThreadedExecutor
@@ -70,6 +70,39 @@ def spin_until_shutdown(node: Node) -> None:
             raise
     finally:
         executor.remove_node(node)
+
+
+def run_node(start: Callable[[], Node], name: str, errors: Tuple[Type[Exception], ...],
+             args=None) -> int:
+    """
+    Start a node, spin it until Ctrl-C or SIGTERM, tear it down: an executable's main.
+
+    Ctrl-C or SIGTERM during the start ends it cleanly too (exit code 0).
+
+    :param start: makes the node (after rclpy.init).
+    :param name: the logger's name for a start-up error.
+    :param errors: what start raises for a user's mistake: logged as one line, exit code 2.
+    """
+    rclpy.init(args=args)
+    try:
+        node = start()
+    except errors as e:
+        rclpy.logging.get_logger(name).error(str(e))
+        rclpy.try_shutdown()
+        return 2
+    except KeyboardInterrupt:
+        rclpy.try_shutdown()
+        return 0
+    except Exception:
+        if rclpy.ok():
+            raise
+        return 0  # SIGTERM during start-up: rclpy shut the context down under us
+    try:
+        spin_until_shutdown(node)
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
 
 
 def take_stopping_signals() -> List[int]:

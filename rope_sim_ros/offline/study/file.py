@@ -55,12 +55,11 @@ import os
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
-import yaml
 
 from ..motion import MotionError, read_commands, read_ship_motion, Streams
 from ...params.arrangement import (ArrangementParams, flatten, from_values,
                                    is_arrangement_file, NODE_NAME)
-from ...params.files import load_yaml, read_params_file
+from ...params.files import read_params_file, read_yaml_file
 from ...params.table import ParameterError
 
 STUDY = 'study'
@@ -226,14 +225,7 @@ def read_study(path) -> Study:
         or bad arrangement, duration, rate, seed, keep, set, factors or cases (one line).
     """
     path = os.fspath(path)
-    try:
-        with open(path, encoding='utf-8') as stream:
-            data = load_yaml(stream.read())
-    except OSError as e:
-        raise StudyError(f'cannot read study file {path}: {e.strerror or e}') from None
-    except yaml.YAMLError as e:
-        raise StudyError(f'study file {path} is not valid YAML: '
-                         f'{" ".join(str(e).split())}') from None
+    data = read_yaml_file(path, 'study file', StudyError)
     if not isinstance(data, dict) or not isinstance(data.get(STUDY), dict):
         raise StudyError(f'{path}: expected a mapping `{STUDY}:` with {ARRANGEMENT}, duration '
                          'and factors or cases')
