@@ -204,7 +204,7 @@ def test_the_bag_records_every_command_and_its_answer(handled, berth):
         (4.0, 'set', 'stern', None),
         (4.0, 'command', 'stern', 'make_fast'),
         (5.0, 'command', 'stern', 'stow'),
-        (8.0, 'command', None, 'let_go_all')]  # no line: the mooring's, as the node's
+        (8.0, 'command', '', 'let_go_all')]  # the mooring's: line '', as the node's
     for stamp, event in events:
         if event['event'] == 'command':
             assert event['t'] == pytest.approx(stamp, abs=1e-9)
@@ -364,8 +364,8 @@ def test_a_quick_release_hook_lets_go_by_itself_and_is_recorded(berth, tmp_path,
 
 
 def test_the_commands_a_node_recorded_are_read_back_as_it_took_them(tmp_path):
-    # a mooring node's events, as it records them: the line left out of let_go_all, a
-    # bollard set before a make fast; the other events are not commands
+    # a mooring node's events, as it records them: let_go_all's line '', a bollard set
+    # before a make fast; the other events are not commands
     events = [encode_event('winch', line='head', speed=-0.5, t=1.0),
               encode_event('set', line='stern', values={'bollard': 'bollard_3'}),
               encode_event('set', line='head', values={'winch_tension': 5.0e4}),
@@ -373,7 +373,7 @@ def test_the_commands_a_node_recorded_are_read_back_as_it_took_them(tmp_path):
               encode_event('command', line='head', command='stow', t=5.0, text='...',
                            refused=True),
               encode_event('released', line='head', tension=7.0e4, t=6.0),
-              encode_event('command', command='let_go_all', t=8.0, text='...')]
+              encode_event('command', line='', command='let_go_all', t=8.0, text='...')]
     with BagWriter(tmp_path / 'node') as writer:
         writer.add_topic('/mooring/events', 'std_msgs/msg/String')
         for k, text in enumerate(events):

@@ -18,8 +18,8 @@ What an offline run did to its lines' states: the line events, and how a bag hol
 A line event is a line-handling command the run took at its time (COMMANDS.csv), or
 refused, or a line that its quick-release hook let go. A bag records them on the node's
 events topic as the node's events (mooring/events.py): 'command' (line, command, t, text)
-and 'released' (line, tension, t), the line field left out for the single line and for
-let_go_all as the node leaves it out. A node records only the commands it took; a run also
+and 'released' (line, tension, t), the line '' for let_go_all and for the single line,
+as the node names them. A node records only the commands it took; a run also
 records the ones it refused, with ``refused: true`` and the text saying why, so that its
 bag says what became of every row of its commands file. A command that named a bollard is
 preceded by the parameter set of the line's bollard ('set'), as a node records both.
@@ -87,14 +87,14 @@ def event_label(kind: str, line: str, command: str = '', refused: bool = False) 
 
 def event_texts(event: LineEvent, layout: Layout) -> List[str]:
     """Return a line event as the node's events (JSON texts, mooring/events.py), in order."""
-    line = layout.line_field(event.line)
     if event.kind == 'released':
-        return [encode_event('released', **line, tension=event.tension, t=event.t)]
+        return [encode_event('released', line=event.line, tension=event.tension, t=event.t)]
     texts = []
-    if event.bollard:
-        texts.append(encode_event('set', **line, values={'bollard': event.bollard}))
+    if event.bollard:  # a parameter set, which names its line as the node's do
+        texts.append(encode_event('set', **layout.line_field(event.line),
+                                  values={'bollard': event.bollard}))
     refused = {'refused': True} if event.refused else {}
-    texts.append(encode_event('command', **line, command=event.command, t=event.t,
+    texts.append(encode_event('command', line=event.line, command=event.command, t=event.t,
                               text=event.text, **refused))
     return texts
 
