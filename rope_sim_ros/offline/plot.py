@@ -845,7 +845,7 @@ def _draw_passing(axis, record: ArrangementRecord, passer, left: float, right: f
     axis.plot(track[:, 0], track[:, 1], color='tab:cyan', linestyle='--', linewidth=0.8)
     inside = (outline[:, 0] >= left) & (outline[:, 0] <= right)
     label = (f'passing ship: {passing.length:g} m at {passing.speed:g} m/s, '
-             f'{passing.separation:g} m off, {abs(ahead):.0f} m '
+             f'{passing.separation:g} m off her start, {abs(ahead):.0f} m '
              f'{"ahead" if ahead >= 0.0 else "astern"}')
     if inside.any():  # on the plan (the axes clip what sticks out)
         axis.fill(outline[:, 0], outline[:, 1], color='tab:cyan', alpha=0.35, label=label)
