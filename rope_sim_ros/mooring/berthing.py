@@ -43,7 +43,7 @@ schedule, the pilot's settings and the demo's duration; every order is checked a
 arrangement before anything starts (read_berthing). No ROS.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 import difflib
 import math
 from typing import Any, List, Mapping, Optional, Sequence, Tuple
@@ -68,7 +68,7 @@ DEMO_NODE = 'berth_demo'
 # sideways approach at 0.25 m/s (half a knot); a landing at 0.1 m/s, the order of the design
 # berthing speeds PIANC's fender guidelines (2002) give a ship of her size in sheltered
 # water. At 4e7 N per m/s the tugs answer in m / gain = 4 s (m with her added mass in sway,
-# 1.58e8 kg): she lands at 0.11 m/s; at 2e7 N per m/s, lagging, at 0.128 m/s. The planned
+# 1.58e8 kg): she lands at 0.110 m/s; at 2e7 N per m/s, lagging, at 0.120 m/s. The planned
 # deceleration, 0.003 m/s^2, is what the tugs' pull and her drag give with room to spare.
 PILOT_SETTINGS = {
     'approach_speed': (0.25, 'm/s', 'her speed towards the quay while far off'),
@@ -93,7 +93,7 @@ class Berthing:
     """
 
     orders: Tuple['Order', ...] = ()
-    pilot: 'PilotSettings' = None
+    pilot: 'PilotSettings' = field(default_factory=lambda: PilotSettings())
     duration: Optional[float] = None
 
 

@@ -235,7 +235,7 @@ class BerthDemo(Node):
         self.duration = duration
         self.say = say
         self.orders = deque(plan.orders)
-        self.pilot = Pilot(plan.pilot) if plan.pilot is not None else Pilot()
+        self.pilot = Pilot(plan.pilot)
         self.tugs = any(order.kind == 'tugs' for order in plan.orders)
         self.clock_pub = self.create_publisher(Clock, '/clock', 10)
         self.tugs_pub = self.create_publisher(WrenchStamped, EXTERNAL_WRENCH, 10)
