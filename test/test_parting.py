@@ -30,7 +30,7 @@ import pytest
 from rope_sim_ros.model.objects import Environment, Line, LineType, Point, System
 from rope_sim_ros.offline.motion import read_motion
 from rope_sim_ros.offline.run import run_motion
-from rope_sim_ros.offline.sinks import LINE_COLUMNS
+from rope_sim_ros.offline.sinks import LINE_COLUMNS, STATE_COLUMN
 from rope_sim_ros.params.arrangement import single_line
 from rope_sim_ros.stepping.step import step
 
@@ -140,7 +140,7 @@ def test_the_offline_runner_writes_the_peak_the_length_and_parted(tmp_path):
                                             winch_mode='speed')),
                read_motion(motion), out, rate=50.0)
     table = np.genfromtxt(out, delimiter=',', names=True)
-    assert table.dtype.names == LINE_COLUMNS
+    assert table.dtype.names == LINE_COLUMNS + (STATE_COLUMN,)
     assert np.all(table['fairlead_peak_tension'] >= table['fairlead_tension'] - 1e-6)
     assert table['line_length'][0] == L0 and table['line_length'].min() < L0 - 0.05
     assert set(np.unique(table['parted'])) == {0.0, 1.0}

@@ -385,14 +385,16 @@ class Driver:
         middle = self.mooring.time + 0.5 * self.mooring.time_step
         while schedule and schedule[0].t < middle:
             scheduled = schedule.popleft()
+            bollard = ''
             try:
                 if scheduled.bollard:
                     self.update(scheduled.line, {'bollard': scheduled.bollard})
+                    bollard = scheduled.bollard
                 text = self.command(scheduled.line or None, scheduled.command)
                 refused = False
             except ValueError as e:  # CommandError, ParameterError: said, and the run goes on
                 text, refused = str(e), True
-            report.handled.append(Handled(self.mooring.time, scheduled, text, refused))
+            report.handled.append(Handled(self.mooring.time, scheduled, text, refused, bollard))
 
     def _emit(self, advance: Optional[MooringAdvance], report: Report) -> None:
         mooring = self.mooring

@@ -244,12 +244,16 @@ class Handled:
 
     :ivar t: the state time it was taken at [s]; scheduled: the command; text: what was
         done, or why it was refused; refused: whether it was.
+    :ivar bollard: the bollard the line was given before the command (scheduled.bollard;
+        '' if none was named or the line could not take it), whether the command was then
+        refused or not.
     """
 
     t: float
     scheduled: ScheduledCommand
     text: str
     refused: bool
+    bollard: str = ''
 
 
 @dataclass

@@ -32,24 +32,29 @@ demo's, and `rope_sim plot`'s of a bag holding a passing ship's load) is a passi
 event on one time axis: its force on the moored ship
 (ship/passing_ship_wrench), the ship's motion from its first pose (surge, sway, yaw) and
 every line's tension in % of its MBL against the WLL, with the passing ship's stagger on top.
-Times are the outputs' stamps (publish times), from the first output; the arrangement is
-the one the bag stores. No ROS.
+Every picture over time marks each line-handling command and each quick-release of the bag's
+events (the node's, or those of ``rope_sim run --commands``) with a dotted vertical line,
+labelled as 'head_1 make fast' or 'let go all' (a command a run refused as 'stern stow
+(refused)'). Times are the outputs' stamps (publish times), from the first output; the
+arrangement is the one the bag stores. No ROS.
 """
 
 from dataclasses import dataclass, field
 import math
 import os
 import textwrap
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .line_events import event_label
 from .resim import stored_setup
 from ..bag import bag_info, BagError, BagInfo, read_messages
-from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_wrench,
+from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_string, decode_wrench,
                        decode_wrench_stamped)
-from ..messages.topics import (BOLLARD_TENSION, FAIRLEAD_TENSION, MOORING_WRENCH, PARTICLES,
-                               PASSING_WRENCH, SHIP_POSE)
+from ..messages.topics import (BOLLARD_TENSION, FAIRLEAD_TENSION, LINE_NODE, MOORING_NODE,
+                               MOORING_WRENCH, PARTICLES, PASSING_WRENCH, SHIP_POSE)
+from ..mooring.events import decode_event
 from ..mooring.status import COLOURS, NEAR_BREAK_FRACTION, Rating, ratings
 from ..params.arrangement import ArrangementParams, single_line
 from ..params.ship import PassingShipParams
@@ -57,6 +62,10 @@ from ..params.table import LineParams
 
 WRENCH = f'/{MOORING_WRENCH}'
 PASSING = f'/{PASSING_WRENCH}'
+EVENTS = f'/{MOORING_NODE.events}'
+# The events marked on the time axes: a line-handling command, a quick-release hook's release.
+MARKED = ('command', 'released')
+MARK_COLOUR = '0.25'
 ENDS = ('fairlead', 'bollard')
 _TENSION_TOPICS = {'fairlead': FAIRLEAD_TENSION, 'bollard': BOLLARD_TENSION}
 
@@ -114,6 +123,42 @@ def read_tensions(path, namespace: str = '') -> Dict[str, TensionSeries]:
 
 def _seconds(ns: int) -> str:
     return f'{ns / 1e9:.3f} s'
+
+
+def mark(text: str) -> Optional[str]:
+    """Return the label of an event to mark on a time axis (MARKED), else None."""
+    try:
+        event = decode_event(text)
+    except ValueError:
+        return None  # not an event of ours: nothing to mark
+    if event['event'] not in MARKED:
+        return None
+    return event_label(event['event'], str(event.get('line', '')), str(event.get('command', '')),
+                       bool(event.get('refused', False)))
+
+
+def read_marks(path, topic: str, start_ns: int) -> List[Tuple[float, str]]:
+    """
+    Return the commands and releases on a bag's events topic: (time [s], label), in order.
+
+    The time is the event's publish time from start_ns.
+    """
+    marks = []
+    for message in read_messages(path, [topic]):
+        label = mark(decode_string(message.data))
+        if label is not None:
+            marks.append(((message.publish_time_ns - start_ns) / 1e9, label))
+    return marks
+
+
+def draw_marks(marks: Sequence[Tuple[float, str]], axes: Sequence[Any], labelled: Any) -> None:
+    """Draw each mark as a dotted vertical line on every axis; its label on `labelled`."""
+    for t, label in marks:
+        for axis in axes:
+            axis.axvline(t, color=MARK_COLOUR, linestyle=':', linewidth=1.0)
+        labelled.annotate(label, (t, 1.0), xycoords=('data', 'axes fraction'),
+                          textcoords='offset points', xytext=(-2, -3), rotation=90, ha='right',
+                          va='top', fontsize='x-small', color=MARK_COLOUR)
 
 
 def describe(path) -> str:
@@ -221,6 +266,7 @@ def plot_bag(path, out_path, params: LineParams, namespace: Optional[str] = None
     else:
         top.set_ylabel('tension [kN]')
         top.set_ylim(bottom=0.0)
+    draw_marks(read_marks(path, f'{namespace}/{LINE_NODE.events}', start), [top], top)
     top.set_xlabel(f'time since bag start [s] (start at log time {start / 1e9:.3f} s)')
     folder = os.path.normpath(os.fspath(path))
     title = os.path.join(os.path.basename(os.path.dirname(folder)), os.path.basename(folder))
@@ -261,6 +307,7 @@ class ArrangementRecord:
     :ivar start_ns: the first output's stamp [ns].
     :ivar passing_times: [s], (q,); passing_force (q, 3) [N], passing_moment (q, 3) [N m]:
         a passing ship's load on the ship (body axes, about its origin); empty without one.
+    :ivar marks: (time [s], label) of every line-handling command and release (read_marks).
     """
 
     setup: ArrangementParams
@@ -277,6 +324,7 @@ class ArrangementRecord:
     passing_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
     passing_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     passing_moment: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    marks: Tuple[Tuple[float, str], ...] = ()
 
     def peak(self, k: int) -> Tuple[float, float]:
         """Return line k's largest tension [N] and its time [s]."""
@@ -296,9 +344,13 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
                        'by the mooring node)')
     series: Dict[str, List[Tuple[int, float]]] = {line: [] for line in setup.names}
     topics = {f'/{line}/{FAIRLEAD_TENSION}': line for line in setup.names}
-    wrench, ship, passing = [], [], []
-    for message in read_messages(path, [*topics, WRENCH, PASSING, f'/{SHIP_POSE}']):
-        if message.topic in topics:
+    wrench, ship, passing, events = [], [], [], []
+    for message in read_messages(path, [*topics, WRENCH, PASSING, f'/{SHIP_POSE}', EVENTS]):
+        if message.topic == EVENTS:
+            label = mark(decode_string(message.data))
+            if label is not None:
+                events.append((message.publish_time_ns, label))
+        elif message.topic in topics:
             force, _ = decode_wrench(message.data)
             series[topics[message.topic]].append(
                 (message.publish_time_ns, float(np.linalg.norm(force))))
@@ -328,7 +380,8 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
         seconds([s[0] for s in ship]), np.array([s[1] for s in ship]).reshape(-1, 3),
         np.array([s[2] for s in ship]), start,
         seconds([p[0] for p in passing]), np.array([p[1] for p in passing]).reshape(-1, 3),
-        np.array([p[2] for p in passing]).reshape(-1, 3))
+        np.array([p[2] for p in passing]).reshape(-1, 3),
+        tuple((float(seconds(ns)), label) for ns, label in events))
 
 
 def _shapes_at(path, record: ArrangementRecord, t: float) -> List[np.ndarray]:
@@ -555,6 +608,7 @@ def draw_event(record: ArrangementRecord, out_path, story: str = '') -> None:
     if when is not None and when <= record.times[-1]:
         force.annotate('abeam', (when, 1.0), xycoords=('data', 'axes fraction'),
                        textcoords='offset points', xytext=(3, -12), fontsize='small')
+    draw_marks(record.marks, [force, motion, tension], force)
     figure.savefig(os.fspath(out_path))
 
 
@@ -595,8 +649,10 @@ def draw_tensions(record: ArrangementRecord, out_path, story: str = '') -> None:
     motion.legend(loc='upper right', fontsize='small')
     motion.grid(True, alpha=0.3)
     limit = max(rating.mbl for rating in record.ratings) * 1.05 / 1e3
+    timed = [motion]
     for k, name in enumerate(names):
         axis = figure.add_subplot(grid[1 + k // 2, k % 2], sharex=motion)
+        timed.append(axis)
         rating = record.ratings[k]
         axis.plot(record.times, record.tensions[:, k] / 1e3, color='tab:blue')
         axis.axhline(rating.wll / 1e3, color='tab:orange', linestyle='--',
@@ -627,6 +683,7 @@ def draw_tensions(record: ArrangementRecord, out_path, story: str = '') -> None:
                    'x forward, y to port)')
     load.legend(loc='upper right', fontsize='small')
     load.grid(True, alpha=0.3)
+    draw_marks(record.marks, timed + [load], motion)
     figure.savefig(os.fspath(out_path))
 
 

@@ -26,8 +26,10 @@ for silent, a skip ahead, a reset, a clock jump back, a pose dropped for its sta
 parameter set and a winch commanded at run time). Such a bag is replayed in its recorded
 order: poses and events go to the driver as the node took them, and the ropes are stepped to
 each output the node recorded, so the outputs are the node's to round-off, across gaps and
-jumps too. A bag without events (``rope_sim run``), or a re-simulation at another --rate,
-runs the poses in stamp order as ``rope_sim run`` does.
+jumps too. A bag without events, a bag of ``rope_sim run`` (its metadata says so: its
+events are the line-handling commands it took or refused and the releases), or a
+re-simulation at another --rate, runs the poses in stamp order as ``rope_sim run`` does,
+the recorded commands taken again at their times (line_events.py).
 """
 
 from collections import deque
@@ -39,15 +41,17 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
+from .line_events import BagEvents, RECORDED_BY, recorded_commands
 from .motion import Streams
-from .run import DEFAULT_RATE, driver_for, RunSummary, simulate, Tally
+from .run import (bag_events, DEFAULT_RATE, driver_for, layout_of, run_bag, RunSummary,
+                  simulate, Tally)
 from .sinks import BagSink
 from ..bag import bag_info, BagError, read_messages
 from ..bag.cdr import decode_pose_array, decode_pose_stamped, decode_string
 from ..bag.metadata import load_metadata, METADATA_FILE
 from ..messages import topics
 from ..messages.encode import encoder_for
-from ..messages.topics import Layout, LINE_NODE, MOORING_NODE, stream_of_event
+from ..messages.topics import Layout, stream_of_event
 from ..model.frames import pose_point, PoseError, stamp_ns
 from ..mooring.driver import Driver, SHIP
 from ..mooring.events import decode_event
@@ -73,9 +77,16 @@ class ResimSummary:
     skipped: List[str] = field(default_factory=list)
 
 
-def layout_of(setup: ArrangementParams) -> Layout:
-    """Return the topics of the node kind these parameters are for."""
-    return LINE_NODE if setup.single else MOORING_NODE
+def custom_data(path) -> dict:
+    """Return the custom_data of a bag's metadata.yaml, or {} without that file."""
+    metadata_path = os.path.join(os.fspath(path), METADATA_FILE)
+    if not os.path.isfile(metadata_path):
+        return {}
+    try:
+        custom = load_metadata(metadata_path).get('custom_data') or {}
+    except BagError:
+        return {}
+    return custom if isinstance(custom, dict) else {}
 
 
 def stored_setup(path, overrides: Optional[dict] = None) -> Optional[ArrangementParams]:
@@ -87,14 +98,8 @@ def stored_setup(path, overrides: Optional[dict] = None) -> Optional[Arrangement
 
     :raises ParameterError: stored parameters that are not allowed (with the overrides).
     """
-    metadata_path = os.path.join(os.fspath(path), METADATA_FILE)
-    if not os.path.isfile(metadata_path):
-        return None
-    try:
-        custom = load_metadata(metadata_path).get('custom_data') or {}
-    except BagError:
-        return None
-    return from_stored(custom, overrides) if isinstance(custom, dict) else None
+    custom = custom_data(path)
+    return from_stored(custom, overrides) if custom else None
 
 
 def namespaces(path, layout: Layout) -> List[str]:
@@ -156,9 +161,16 @@ def recorded_rate(path, setup: ArrangementParams, namespace: str = '') -> Option
 
 
 def has_events(path, setup: ArrangementParams, namespace: str = '') -> bool:
-    """Tell whether a bag holds a node's decisions (its events topic): a node recording."""
+    """Tell whether a bag holds an events topic (a node's decisions, or a run's events)."""
     topic = bag_info(path).topics.get(f'{namespace}/{layout_of(setup).events}')
     return topic is not None and topic.type_name == topics.STRING
+
+
+def is_node_recording(path, setup: ArrangementParams, namespace: str = '') -> bool:
+    """Tell whether a bag is a node's recording: its events topic, and not a run's bag."""
+    if custom_data(path).get(RECORDED_BY[0]) == RECORDED_BY[1]:
+        return False
+    return has_events(path, setup, namespace)
 
 
 def read_streams(path, setup: ArrangementParams, namespace: str,
@@ -237,16 +249,20 @@ def resim(path, out_path, setup: ArrangementParams, rate: Optional[float] = None
     """
     layout = layout_of(setup)
     namespace = choose_namespace(path, layout, namespace)
-    if rate is None and has_events(path, setup, namespace):
+    if rate is None and is_node_recording(path, setup, namespace):
         return _replay(path, out_path, setup, namespace, progress)
     skipped: List[str] = []
     streams, inputs, types = read_streams(path, setup, namespace, skipped)
+    commands = (recorded_commands(path, f'{namespace}/{layout.events}')
+                if has_events(path, setup, namespace) else [])
     if rate is None:
         rate = recorded_rate(path, setup, namespace) or DEFAULT_RATE
     driver_for(setup, rate)  # a refused line leaves no bag behind
-    sink = BagSink(out_path, encoder_for(setup), namespace, inputs, types, stored(setup))
+    sink = run_bag(out_path, setup, namespace, inputs, types, bool(commands))
+    events = [BagEvents(sink, layout)] if bag_events(setup, bool(commands)) else []
     try:
-        summary = simulate(setup, streams, rate, [sink], progress)
+        summary = simulate(setup, streams, rate, [sink], progress, commands=commands,
+                           events=events)
     except BaseException:
         sink.abandon()
         raise
