@@ -48,7 +48,6 @@ after SIGKILL `rope_sim recover` completes it.
 """
 
 import functools
-import gc
 import math
 import os
 import re
@@ -62,7 +61,6 @@ from geometry_msgs.msg import PoseArray, PoseStamped, Vector3Stamped, Wrench, Wr
 from nav_msgs.msg import Odometry
 import numpy as np
 from rcl_interfaces.msg import SetParametersResult
-import rclpy
 from rclpy.clock import Clock, ClockType
 from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
 from rclpy.exceptions import ParameterException
@@ -80,7 +78,7 @@ from .mooring_display import bollard_statuses, Fenders, line_diagnostics, LineMa
 from .outputs import OutputPublishers
 from .parameters import NodeParameters, plain, ROS_PARAMETERS, StartupError
 from .recorder import Recorder
-from .spinning import set_timer_period, spin_until_shutdown
+from .spinning import run_node, set_timer_period
 from ..bag import BagError
 from ..messages import topics
 from ..messages.encode import encoder_for, stiffness_message
@@ -1094,31 +1092,7 @@ def run(layout: Layout, args=None) -> int:
     if help_asked(sys.argv if args is None else args):
         print(usage(layout), end='')
         return 0
-    rclpy.init(args=args)
-    try:
-        node = MooringNode(layout)
-    except StartupError as e:
-        rclpy.logging.get_logger(layout.node_name).error(str(e))
-        rclpy.try_shutdown()
-        return 2
-    except KeyboardInterrupt:
-        rclpy.try_shutdown()
-        return 0
-    except Exception:
-        if rclpy.ok():
-            raise
-        return 0  # SIGTERM during start-up: rclpy shut the context down under us
-    # What start-up allocated (rclpy, numpy, numba: ~1e5 objects) lives as long as the node:
-    # keep it out of the cyclic collector, whose full passes over it took ~45 ms mid-run.
-    gc.freeze()
-    try:
-        # from here to the end, SIGINT and SIGTERM only stop the spin: the node's teardown
-        # and its bag's closing run whatever signals come (a terminal's and ros2 launch's)
-        spin_until_shutdown(node)
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return run_node(lambda: MooringNode(layout), layout.node_name, (StartupError,), args)
 
 
 def main_line(args=None) -> int:

@@ -14,6 +14,7 @@
 
 """Spin a node until Ctrl-C or SIGTERM, both ending quietly: the nodes' main loop and signals."""
 
+import gc
 import signal
 import time
 from typing import Callable, List, Tuple, Type
@@ -97,7 +98,12 @@ def run_node(start: Callable[[], Node], name: str, errors: Tuple[Type[Exception]
         if rclpy.ok():
             raise
         return 0  # SIGTERM during start-up: rclpy shut the context down under us
+    # What start-up allocated (rclpy, numpy, numba: ~1e5 objects) lives as long as the node:
+    # keep it out of the cyclic collector, whose full passes over it took ~45 ms mid-run.
+    gc.freeze()
     try:
+        # from here to the end, SIGINT and SIGTERM only stop the spin: the node's teardown
+        # and its bag's closing run whatever signals come (a terminal's and ros2 launch's)
         spin_until_shutdown(node)
     finally:
         node.destroy_node()
