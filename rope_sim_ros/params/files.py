@@ -67,16 +67,20 @@ def read_yaml_file(path, kind: str, error: type = ParameterError) -> Any:
         raise error(f'{kind} {path} is not valid YAML: {" ".join(str(e).split())}') from None
 
 
-def read_params_file(path, node_name: str = NODE_NAME) -> dict:
+def read_params_file(path, node_name: str = NODE_NAME, optional: bool = False) -> dict:
     """
     Read the `ros__parameters` of `node_name` from a ROS 2 parameter YAML file.
 
     Accepts the node name with or without a namespace and the `/**` wildcard, as the ROS
     parameter file format does.
 
-    :raises ParameterError: unreadable file or no parameters for the node.
+    :param optional: a file with no parameters for the node gives {} (one file may hold
+        several nodes' parameters, or some of them).
+    :raises ParameterError: unreadable file or (not optional) no parameters for the node.
     """
     data = read_yaml_file(path, 'parameter file')
+    if optional and not isinstance(data, dict):
+        return {}
     if not isinstance(data, dict):
         raise ParameterError(f'parameter file {path} has no "{node_name}:" section')
     values = {}
@@ -84,7 +88,7 @@ def read_params_file(path, node_name: str = NODE_NAME) -> dict:
         short = str(key).rstrip('/').split('/')[-1]
         if short in (node_name, '**') and isinstance(section, dict):
             values.update(section.get('ros__parameters') or {})
-    if not values:
+    if not values and not optional:
         raise ParameterError(
             f'parameter file {path} has no "{node_name}: ros__parameters:" section')
     values.pop('use_sim_time', None)
