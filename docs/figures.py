@@ -79,11 +79,12 @@ def rope_sim(*arguments: str) -> None:
 
 
 def read_out(path: Path) -> dict:
-    """Return the columns of an OUT.csv by name, as arrays."""
+    """Return the columns of numbers of an OUT.csv by name, as arrays (not the lines' states)."""
     with open(path, newline='', encoding='utf-8') as stream:
         rows = list(csv.reader(stream))
-    values = np.array(rows[1:], dtype=float)
-    return {name: values[:, i] for i, name in enumerate(rows[0])}
+    numbers = [i for i, name in enumerate(rows[0]) if not name.endswith('state')]
+    values = np.array([[row[i] for i in numbers] for row in rows[1:]], dtype=float)
+    return {rows[0][i]: values[:, j] for j, i in enumerate(numbers)}
 
 
 # ---------------------------------------------------------------------- the angle sketch

@@ -116,6 +116,16 @@ class OneLine:
         return Advance(done.steps, done.lag, done.restarted.get(0, ''),
                        done.beyond_reach.get(0, 0.0), done.parted.get(0))
 
+    def run(self, times) -> tuple:
+        """Advance to each of times: return the outputs there and the partings on the way."""
+        outputs, partings = [], []
+        for t in times:
+            advance = self.advance_to(float(t))
+            outputs.append(self.output())
+            if advance.parted is not None:
+                partings.append(advance.parted)
+        return outputs, partings
+
     def output(self) -> Output:
         out = self.mooring.output()
         velocity = None

@@ -32,6 +32,7 @@ from rope_sim_ros.bag import bag_info
 from rope_sim_ros.offline import cli
 from rope_sim_ros.offline.motion import read_motion
 from rope_sim_ros.offline.resim import stored_setup
+from rope_sim_ros.offline.sinks import STATE_COLUMN
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
 import yaml
@@ -93,7 +94,8 @@ def run(tmp_path_factory):
         '--set', f'fairlead_offset={FAIRLEAD_OFFSET.tolist()}'])
     assert code == 0
     with open(out, newline='') as f:
-        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        rows = [{k: float(v) for k, v in row.items() if k != STATE_COLUMN}
+                for row in csv.DictReader(f)]
     return {'motion': read_points(motion), 'rows': rows, 'bag': bag}
 
 

@@ -15,11 +15,12 @@
 """rope_sim run of a free ship: --loads LOADS.csv --duration T, its motion in OUT.csv."""
 
 import csv
+import math
 
 import pytest
 
 from rope_sim_ros.offline import cli
-from rope_sim_ros.offline.sinks import FENDER_COLUMNS, LOAD_COLUMNS, SHIP_COLUMNS
+from rope_sim_ros.offline.sinks import FENDER_COLUMNS, LOAD_COLUMNS, SHIP_COLUMNS, STATE_COLUMN
 
 FREE_BERTH = """/**/mooring:
   ros__parameters:
@@ -58,7 +59,12 @@ def test_a_free_ship_runs_under_its_loads_into_out_csv(files):
                      '--rate', '10', '--out', str(out), '--quiet']) == 0
     with open(out, newline='') as stream:
         rows = list(csv.reader(stream))
-    header, data = rows[0], [[float(v) for v in row] for row in rows[1:]]
+    header = rows[0]
+    states = [i for i, name in enumerate(header) if name.endswith(f'_{STATE_COLUMN}')]
+    assert [header[i] for i in states] == [f'{line}_{STATE_COLUMN}' for line in ('head', 'stern')]
+    assert {row[i] for row in rows[1:] for i in states} == {'fast'}
+    data = [[math.nan if i in states else float(v) for i, v in enumerate(row)]
+            for row in rows[1:]]
     ship = header.index('x')
     assert header[ship:ship + len(SHIP_COLUMNS)] == list(SHIP_COLUMNS)
     fender = ship + len(SHIP_COLUMNS)
@@ -112,3 +118,25 @@ def test_a_load_no_tug_gives_is_refused_naming_its_row(files, capsys):
     assert 'row 3 (t = 4 s): an external force of 1e+12 N is more than any tug or thruster ' \
         'gives this ship: at most 8.67e+07 N' in err, err
     assert not out.exists()
+
+
+def test_a_free_ship_takes_its_commands_at_their_times(files, tmp_path, capsys):
+    params, loads, out = files
+    commands = tmp_path / 'commands.csv'
+    commands.write_text('t,line,command\n1.0,head,let_go\n2.0,stern,stow\n')
+    assert cli.main(['run', '--params', str(params), '--loads', str(loads), '--duration', '3',
+                     '--rate', '10', '--out', str(out), '--commands', str(commands),
+                     '--quiet']) == 0
+    with open(out, newline='') as stream:
+        rows = list(csv.DictReader(stream))
+    t = [float(row['t']) for row in rows]
+    head = [(row['head_state'], float(row['head_tension'])) for row in rows]
+    assert {state for state, _ in head[:t.index(1.0) + 1]} == {'fast'}
+    assert {state for state, _ in head[t.index(1.0) + 1:]} == {'free'}
+    assert head[t.index(1.0)][1] == pytest.approx(126000.0, rel=0.01)  # its pretension
+    # its pull gone: it hangs from the fairlead, at most 2.7 kN, 2.2 % of its pretension
+    assert max(tension for _, tension in head[t.index(1.0) + 1:]) < 0.05 * 126000.0
+    assert {row['stern_state'] for row in rows} == {'fast'}
+    assert capsys.readouterr().err == (
+        'rope_sim: warning: t = 2.000 s: stow refused: line stern is fast on its bollard: '
+        'only a line let go and heaved in can be stowed\n')

@@ -31,7 +31,7 @@ from one_line import OneLine
 import pytest
 from rope_sim_ros.offline import cli
 from rope_sim_ros.offline.motion import read_motion
-from rope_sim_ros.offline.sinks import LINE_COLUMNS
+from rope_sim_ros.offline.sinks import LINE_COLUMNS, STATE_COLUMN
 from rope_sim_ros.params.arrangement import read_setup
 from rope_sim_ros.params.files import parse_set
 from rope_sim_ros.params.materials import default_config_dir
@@ -65,11 +65,14 @@ def motion_points(path: Path) -> tuple:
 
 
 def read_out(path: Path) -> tuple:
-    """Return (header, rows as a float array) of an OUT.csv."""
+    """Return (header, rows as a float array) of a single line's OUT.csv: all but its state."""
     with open(path, newline='') as f:
         reader = csv.reader(f)
         header = next(reader)
-        return header, np.array([[float(v) for v in row] for row in reader])
+        assert header[-1] == STATE_COLUMN  # the one word, last
+        rows = list(reader)
+    assert {row[-1] for row in rows} == {'fast'}
+    return header, np.array([[float(v) for v in row[:-1]] for row in rows])
 
 
 def simulation(params, times, points, rate: float) -> np.ndarray:
@@ -100,7 +103,7 @@ def good_run(reference_dir, tmp_path_factory):
 def test_rows_every_step_from_first_to_last_time(good_run):
     motion_path, out = good_run
     header, rows = read_out(out)
-    assert tuple(header) == LINE_COLUMNS
+    assert tuple(header) == LINE_COLUMNS + (STATE_COLUMN,)
     times, _ = motion_points(motion_path)
     assert rows[0, 0] == times[0] == 0.0
     assert rows[-1, 0] == pytest.approx(times[-1], abs=1e-12)
@@ -275,7 +278,7 @@ def test_a_payload_adds_its_position_to_out_csv_and_the_bag(tmp_path):
                      '--rate', '50', '--quiet', '--set', 'segments=8',
                      '--set', 'payload_mass=500']) == 0
     header, rows = read_out(out)
-    assert tuple(header) == LINE_COLUMNS + PAYLOAD_COLUMNS
+    assert tuple(header) == LINE_COLUMNS + PAYLOAD_COLUMNS + (STATE_COLUMN,)
     assert len(rows) == 101 and np.isfinite(rows).all()
     payload = rows[:, len(LINE_COLUMNS):]
     # it hangs about a line's length under the fairlead (the bollard samples are ignored)

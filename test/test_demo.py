@@ -27,11 +27,14 @@ import sys
 
 from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
 from matplotlib import image
+from nav_msgs.msg import Odometry
 import numpy as np
 import pytest
 import rclpy
 from rope_sim_ros.messages import topics
 from rope_sim_ros.messages.encode import OutputEncoder
+from rope_sim_ros.mooring.berthing import read_berthing
+from rope_sim_ros.mooring.events import encode_event
 from rope_sim_ros.offline import cli, demo
 from rope_sim_ros.offline.plot import (_passing_outline, abeam_time, line_kinds, plot_event,
                                        read_record, ship_offsets, stagger)
@@ -40,6 +43,7 @@ from rope_sim_ros.offline.sinks import BagSink
 from rope_sim_ros.params.arrangement import stored
 from rope_sim_ros.params.table import ParameterError
 from rope_sim_ros.ros import berth_demo_node as table
+from std_msgs.msg import String
 
 BERTH_LINES = ['head_1', 'head_2', 'breast_fwd', 'spring_fwd', 'spring_aft', 'breast_aft',
                'stern_1', 'stern_2']
@@ -50,6 +54,31 @@ CLOSE = """/**/mooring:
     publish_rate: 10.0
     passing_ship: {speed: 5.0, length: 200.0, beam: 32.0, draft: 12.0,
                    block_coefficient: 0.8, separation: 60.0, start_x: -100.0, direction: 1}
+"""
+# A berthing in short, as the demo's: the ship 3 m off, the forward spring and the breast
+# lines stowed (the others fast at their pretensions, slack as she comes in), landed by
+# t = 29 s at 0.1 m/s, the three lines made fast and heaved; a ship passing 80 m off her
+# berth at 3 m/s, abeam at 30 s.
+BERTHING = """/**/mooring:
+  ros__parameters:
+    ship_mode: free
+    publish_rate: 10.0
+    ship: {start_position: [0.0, -20.6, 0.0]}
+    spring_fwd: {start_state: stowed, length: 51.0, winch_mode: constant_tension,
+                 winch_tension: 1.0e4, winch_max_speed: 0.25}
+    breast_fwd: {start_state: stowed, length: 17.0, winch_mode: constant_tension,
+                 winch_tension: 1.0e4, winch_max_speed: 0.25}
+    breast_aft: {start_state: stowed, length: 17.0, winch_mode: constant_tension,
+                 winch_tension: 1.0e4, winch_max_speed: 0.25}
+    passing_ship: {speed: 3.0, length: 200.0, beam: 32.0, draft: 12.0,
+                   block_coefficient: 0.8, separation: 77.0, start_x: -90.0, direction: 1}
+/**/berth_demo:
+  ros__parameters:
+    duration: 40.0
+    schedule: ['0 tugs push', '10 spring_fwd make_fast', '18 breast_fwd make_fast',
+               '18 breast_aft make_fast', '24 spring_fwd.winch_tension 141000',
+               '24 breast_fwd.winch_tension 91000', '24 breast_aft.winch_tension 91000',
+               '30 tugs stop']
 """
 
 
@@ -70,61 +99,70 @@ def close_scenario(tmp_path_factory):
 def test_the_table_reads_both_files_the_later_on_top(config):
     setup = table.read_setup([str(config / 'berth.yaml'), str(config / 'berth_demo.yaml')])
     assert setup.names == BERTH_LINES and len(setup.fenders) == 4
-    assert setup.ship.free and setup.ship.start_position == [0.0, -17.6, 0.0]
+    assert setup.ship.free and setup.ship.start_position == [0.0, -47.6, 0.0]
+    assert [line.params.start_state for line in setup.lines] == ['stowed'] * 8
     assert (setup.passing.speed, setup.passing.separation, setup.passing.start_x) == (
-        2.5, 100.0, -350.0)
+        2.5, 70.0, -725.0)
+    plan = read_berthing([config / 'berth.yaml', config / 'berth_demo.yaml'], setup)
+    assert plan.duration == 360.0 and plan.pilot.landing_speed == 0.1
+    assert {order.line for order in plan.orders if order.what == 'make_fast'} == set(
+        BERTH_LINES)
 
 
 def test_the_passing_ship_is_where_its_parameters_put_it(config):
     setup = table.read_setup([str(config / 'berth.yaml'), str(config / 'berth_demo.yaml')])
     passer = table.passing_ship(setup)
-    rest = setup.ship.start_position
-    assert table.where_passing(passer, 0.0, rest, 0.0) == pytest.approx((-350.0, 100.0))
-    assert table.where_passing(passer, 140.0, rest, 0.0) == pytest.approx((0.0, 100.0))
-    # drawn 0.5 m off the quay towards it, then turned 0.01 rad bow to port
-    assert table.where_passing(passer, 140.0, [0.0, -18.1, 0.0], 0.0) == pytest.approx(
-        (0.0, 99.5))
-    dx, dy = -350.0, -100.0
+    start = setup.ship.start_position
+    assert table.where_passing(passer, 0.0, start, 0.0) == pytest.approx((-725.0, 70.0))
+    assert table.where_passing(passer, 290.0, start, 0.0) == pytest.approx((0.0, 70.0))
+    # at her berth, 30 m nearer the quay: 100 m off; then turned 0.01 rad bow to port
+    berth = [0.0, -17.6, 0.0]
+    assert table.where_passing(passer, 290.0, berth, 0.0) == pytest.approx((0.0, 100.0))
+    dx, dy = -725.0, -100.0
     c, s = math.cos(0.01), math.sin(0.01)
-    assert table.where_passing(passer, 0.0, rest, 0.01) == pytest.approx(
+    assert table.where_passing(passer, 0.0, berth, 0.01) == pytest.approx(
         (c * dx + s * dy, s * dx - c * dy))
     assert table.passing_ship(table.read_setup([str(config / 'berth.yaml')])) is None
     # in a current along its track it moves over the ground faster, as the node moves it
-    drifting = table.read_setup([str(config / 'berth.yaml'), str(config / 'berth_demo.yaml')])
-    drifting = table.arrangement.from_values({**table.arrangement.flatten(drifting.values()),
+    drifting = table.arrangement.from_values({**table.arrangement.flatten(setup.values()),
                                               'current': [0.5, -0.2, 0.0]})
     passer = table.passing_ship(drifting)
-    assert table.where_passing(passer, 100.0, rest, 0.0) == pytest.approx((-50.0, 100.0))
+    assert table.where_passing(passer, 100.0, start, 0.0) == pytest.approx((-425.0, 70.0))
 
 
-def test_offsets_are_in_the_start_pose_axes():
-    assert table.offsets([0.0, -17.6, 0.0], 0.0, [0.1, -18.1, 0.0], 0.01) == pytest.approx(
-        (0.1, -0.5, math.degrees(0.01)))
-    # heading along world +y: a move along world +y is surge, along world -x is sway to port
-    assert table.offsets([5.0, 5.0, 0.0], math.pi / 2, [4.0, 7.0, 0.0],
-                         math.pi / 2 - 0.02) == pytest.approx((2.0, 1.0, -math.degrees(0.02)))
-    # across +-pi: the short way round
-    assert table.offsets([0.0, 0.0, 0.0], math.pi - 0.01, [0.0, 0.0, 0.0],
-                         -math.pi + 0.01)[2] == pytest.approx(math.degrees(0.02))
-    assert table.yaw_of((0.0, 0.0, math.sin(0.3), math.cos(0.3))) == pytest.approx(0.6)
+FENDERS = ['fender_1', 'fender_2', 'fender_3', 'fender_4']
 
 
 def test_the_rows_line_up_under_the_header():
-    names = table.HEADER.splitlines()[1]
-    row = table.format_row(100.0, (-12.25, 70.31), (0.0512, -0.6443, -0.5504), (-12e3, -471.9e3),
-                           ('breast_fwd', 365.04e3, 0.402))
-    assert row.split() == ['100.0', '-12.2', '70.3', '+0.051', '-0.644', '-0.550', '-12.0',
-                           '-471.9', 'breast_fwd', '365.0', '40.2']
-    # every number ends where its column's name ends (the line's name starts with its name)
-    for name, number in [('t [s]', '100.0'), ('stagger [m]', '-12.2'), ('separ. [m]', '70.3'),
-                         ('surge [m]', '+0.051'), ('sway [m]', '-0.644'),
-                         ('yaw [deg]', '-0.550'), ('Fx [kN]', '-12.0'), ('Fy [kN]', '-471.9'),
-                         ('T [kN]', '365.0'), ('% MBL', '40.2')]:
-        assert names.index(name) + len(name) == row.index(number) + len(number), name
-    assert names.index('name') == row.index('breast_fwd')
-    empty = table.format_row(3.0, None, None, None, None)
-    assert empty.split() == ['3.0'] + ['-'] * 8
-    assert len(table.HEADER.splitlines()[0]) <= len(names)
+    layout = table.Table(BERTH_LINES, FENDERS, True)
+    titles, tops, bottoms = layout.header.splitlines()
+    assert tops.split() == ['off', 'in', 'push'] + ['fender'] * 4 + [
+        'head', 'head', 'breast', 'spring', 'spring', 'breast', 'stern', 'stern', 'ship']
+    bottoms = bottoms.replace('t [s]', 't_[s]')  # (benchmarks/cold_start.py looks for it)
+    assert bottoms.split() == ['t_[s]', '[m]', '[m/s]', '[kN]', '1', '2', '3', '4', '1', '2',
+                               'fwd', 'fwd', 'aft', 'aft', '1', '2', '[m]']
+    assert titles.split() == ['ship', 'tugs', 'fender', 'load', '[kN]', 'line', 'tension',
+                              '[kN]', 'passing']
+    row = layout.row(155.04, -0.0449, 0.1094, -412.6e3, [76.9e3, 0.0, None, 0.4],
+                     ['-', 'free', '1', '127', '106', '1', 'PART', '-'], -337.5)
+    assert row.split() == ['155.0', '-0.04', '+0.109', '-413', '77', '0', '-', '0', '-',
+                           'free', '1', '127', '106', '1', 'PART', '-', '-338']
+    # every cell ends where its column's names end, each group under its title
+    ends = [m.end() for m in re.finditer(r'\S+', bottoms)]
+    assert [m.end() for m in re.finditer(r'\S+', row)] == ends
+    assert [m.end() for m in re.finditer(r'\S+', tops)] == ends[1:]
+    assert titles.index('line tension') > row.index('-413')
+    empty = layout.row(3.0, None, None, None, [None] * 4, ['-'] * 8)
+    assert empty.split() == ['3.0'] + ['-'] * 16
+    plain = table.Table(['a'], [], False)  # no fenders, no passing ship
+    assert plain.row(1.0, None, None, 5e3, [], ['12']).split() == ['1.0', '-', '-', '5', '12']
+
+
+def test_a_line_shows_its_tension_when_fast_else_its_state():
+    assert table.cell('fast', 126.4e3) == '126'
+    assert table.cell('fast', None) == '-'
+    assert [table.cell(state, 5e3) for state in ('stowed', 'free', 'parted')] == [
+        '-', 'free', 'PART']
 
 
 def _stamped(cls, t: float):
@@ -152,9 +190,26 @@ def test_a_row_a_second_of_each_output_whole_whatever_the_order(config):
             msg.wrench.force.x, msg.wrench.force.y = 1000.0, fy
             return msg
 
+        def odometry(t, speed):
+            msg = _stamped(Odometry, t)
+            msg.pose.pose.position.y = -17.6
+            msg.pose.pose.orientation.w = 1.0
+            msg.twist.twist.linear.y = speed  # body axes: to port, to the quay
+            return msg
+
         tension = Wrench()
         tension.force.x = 140.8e3  # 10 % of the spring's MBL
         node._keeper('spring_fwd')(tension)
+        node._on_event(String(data=encode_event('command', line='spring_fwd',
+                                                command='make_fast', t=0.0, text='')))
+        node._on_event(String(data=encode_event('command', line='head_1', command='make_fast',
+                                                t=0.0, text='')))
+        node._on_event(String(data=encode_event('released', line='head_1', tension=1e5,
+                                                t=0.0)))
+        node._on_odometry(odometry(0.0, 0.05))
+        reaction = _stamped(WrenchStamped, 0.0)
+        reaction.wrench.force.y = -230e3
+        node._fender_keeper('fender_2')(reaction)
         node._on_pose(pose(0.0, 0.0))
         node._on_passing(load(0.0, 2e3))  # the load after the pose
         node._on_pose(pose(0.5, -0.1))
@@ -169,23 +224,33 @@ def test_a_row_a_second_of_each_output_whole_whatever_the_order(config):
     finally:
         node.destroy_node()
         context.try_shutdown()
-    assert [row.split()[:8] for row in rows] == [
-        ['0.0', '-350.0', '100.0', '+0.000', '+0.000', '+0.000', '+1.0', '+2.0'],
-        ['1.0', '-347.5', '99.8', '+0.000', '-0.200', '+0.000', '+1.0', '+4.0'],
-        ['2.0', '-345.0', '99.6', '+0.000', '-0.400', '+0.000', '+1.0', '+5.0']]
-    assert rows[0].split()[8:] == ['spring_fwd', '140.8', '10.0']
+    # her distance off the fenders from her pose, her speed from the odometry, no tugs (no
+    # orders), the fenders' loads, each line's state and tension, the passing ship's place
+    assert [row.split() for row in rows] == [
+        [t, off, '+0.050', '-', '-', '230', '-', '-', 'free', '-', '-', '141', '-', '-', '-',
+         '-', stagger] for t, off, stagger in (('0.0', '0.00', '-725'), ('1.0', '0.20', '-722'),
+                                               ('2.0', '0.40', '-720'))]
 
 
 # -- the demo's setup and bad input ---------------------------------------------------------
 
-def test_the_demo_setup_puts_the_passing_ship_abeam_in_the_middle(config, close_scenario):
+def test_the_demo_is_a_berthing_then_the_passing_ship(config, close_scenario):
     setup = demo.demo_setup(config / 'berth.yaml', config / 'berth_demo.yaml')
-    assert demo.default_duration(setup) == pytest.approx(280.0)
-    assert demo.story(setup) == (
-        'A 200 m ship passes 100 m off the starboard side at 2.5 m/s (4.9 kn) in 16 m of '
-        'water, abeam at t = 140 s: it moves the free ship, the lines hold it')
+    plan = read_berthing([config / 'berth.yaml', config / 'berth_demo.yaml'], setup)
+    assert demo.default_duration(setup, plan) == pytest.approx(360.0)
+    assert demo.default_duration(setup) == pytest.approx(580.0)  # without its own: abeam x 2
+    assert demo.story(setup, plan) == (
+        'Tugs push the 225 m ship in from 30 m off and land her on her fenders at 0.1 m/s; '
+        'the crew makes 8 lines fast and heaves them to their pretensions; then a 200 m ship '
+        'passes 100 m off the starboard side at 2.5 m/s (4.9 kn) in 16 m of water, abeam at '
+        't = 290 s')
+    # a passing ship alone (no berth_demo section): abeam in the middle
     close = demo.demo_setup(config / 'berth.yaml', close_scenario)
-    assert demo.default_duration(close) == pytest.approx(40.0)
+    plan = read_berthing([config / 'berth.yaml', close_scenario], close)
+    assert plan.orders == () and demo.default_duration(close, plan) == pytest.approx(40.0)
+    assert demo.story(close, plan) == (
+        'A 200 m ship passes 60 m off the starboard side at 5 m/s (9.7 kn) in 16 m of water, '
+        'abeam at t = 20 s: it moves the free ship, the lines hold it')
     with pytest.raises(ParameterError, match="ship_mode is 'driven'"):
         demo.demo_setup(config / 'berth.yaml', None)  # the berth's own ship is driven
 
@@ -219,10 +284,17 @@ def fake_install(tmp_path):
     (['--params', '{config}/mooring_line.yaml'],
      'demo: {config}/mooring_line.yaml holds no mooring node parameters (mooring: '
      'ros__parameters: lines: ...)'),
+    (['--scenario', '{bad_order}'],
+     "demo: berth_demo: schedule: order '120 spring_fwd makefast': a line takes one of "
+     'make_fast, let_go, stow, or LINE.PARAMETER VALUE (the commands: make_fast, let_go, '
+     'stow, let_go_all)'),
 ])
 def test_bad_input_is_one_line_before_anything_starts(arguments, message, config, fake_install,
                                                       tmp_path, capsys):
-    arguments = [a.format(config=config) for a in arguments]
+    bad_order = tmp_path / 'bad_order.yaml'
+    bad_order.write_text((config / 'berth_demo.yaml').read_text().replace(
+        "'110 spring_fwd make_fast'", "'120 spring_fwd makefast'"))
+    arguments = [a.format(config=config, bad_order=bad_order) for a in arguments]
     assert demo.main(arguments + ['--install', str(fake_install),
                                   '--out', str(tmp_path / 'out')]) == 2
     err = capsys.readouterr().err
@@ -282,6 +354,13 @@ def test_the_record_holds_the_passing_ship_and_the_motion(free_bag):
                          1 - 2 * (q[:, 1] ** 2 + q[:, 2] ** 2))
     assert yaw == pytest.approx(np.degrees(heading - heading[0]), abs=1e-9)
     assert sway.min() < -0.1  # the free ship was drawn off the quay
+    # the fenders' force on it, all together, in its body axes; no tugs
+    fenders = np.array([p.output.fender_forces.sum(axis=0) for p in outputs])
+    c, s = np.cos(heading), np.sin(heading)
+    assert record.fender_times == pytest.approx(times - times[0])
+    assert record.fender_force[:, 0] == pytest.approx(c * fenders[:, 0] + s * fenders[:, 1])
+    assert record.fender_force[:, 1] == pytest.approx(-s * fenders[:, 0] + c * fenders[:, 1])
+    assert record.fender_force[:, 1].min() < -1e5 and not len(record.push_times)
 
 
 def test_line_kinds_from_their_leads(free_bag):
@@ -312,12 +391,13 @@ def test_plot_event_draws_force_motion_tension_and_the_plan(free_bag, tmp_path):
 
 # -- the live demo ----------------------------------------------------------------------------
 
-def test_make_demo_runs_the_event_and_leaves_its_table_bag_and_plots(
-        colcon_install, colcon_env, close_scenario, tmp_path):
-    # abeam at 20 s: the default 40 s at 2x
+def test_make_demo_runs_the_berthing_and_leaves_its_table_bag_and_plots(
+        colcon_install, colcon_env, tmp_path):
+    scenario = tmp_path / 'berthing.yaml'
+    scenario.write_text(BERTHING)
     result = subprocess.run(
         [sys.executable, '-m', 'rope_sim_ros.offline.demo', '--speed', '2', '--scenario',
-         str(close_scenario), '--install', str(colcon_install.parent), '--out', str(tmp_path)],
+         str(scenario), '--install', str(colcon_install.parent), '--out', str(tmp_path)],
         env=colcon_env, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=300)
     output = result.stdout + result.stderr
     assert result.returncode == 0, output
@@ -326,26 +406,45 @@ def test_make_demo_runs_the_event_and_leaves_its_table_bag_and_plots(
     assert 'skipped ahead' not in output, output
     rows = [line.split() for line in result.stdout.splitlines()
             if re.match(r'\s+\d+\.\d\s+-?\d', line)]
-    numbers = np.array([[float(v) for v in row[:8]] for row in rows])
-    names = {row[8] for row in rows}
-    # a row a simulated second of the ship's outputs, from its start to the end
-    t = numbers[:, 0]
+    # t, off, in, push, 4 fenders, 8 lines, the passing ship
+    assert {len(row) for row in rows} == {17}, output
+    t = np.array([float(row[0]) for row in rows])
+    off, speed = (np.array([float(row[k]) for row in rows]) for k in (1, 2))
+    push = [row[3] for row in rows]
+    lines = [dict(zip(BERTH_LINES, row[8:16])) for row in rows]
+    # a row a simulated second of the ship's outputs, from her start to the end
     assert t == pytest.approx(np.arange(41.0)), output
-    # the passing ship where its parameters put it, in the moored ship's axes
-    assert np.abs(numbers[:, 1] - (-100.0 + 5.0 * t)).max() < 1.5, output
-    assert np.abs(numbers[:, 2] - 60.0).max() < 2.5, output
-    # it starts at rest, then the passing ship draws it off the quay (- to port)
-    assert numbers[0, 3:6] == pytest.approx([0.0, 0.0, 0.0], abs=0.002), output
-    assert numbers[:, 4].min() < -0.1 and numbers[:, 7].min() < -200.0, output
-    assert names <= set(BERTH_LINES), output
+    # 3 m off at rest; pushed in (all the tugs have: 1200 kN), she lands at about 0.1 m/s
+    assert off[0] == pytest.approx(3.0, abs=0.005) and speed[0] == pytest.approx(0.0, abs=1e-3)
+    assert push[1:5] == ['1200'] * 4, output
+    landed = int(np.argmax(off <= 0.0))
+    assert 24 <= landed <= 34 and 0.08 < speed[landed - 1] < 0.13, output
+    assert off[-1] < 0.05 and off.min() > -0.9, output
+    # the stowed lines show '-' until the crew makes them fast, then their tensions
+    assert [lines[0][name] for name in ('spring_fwd', 'breast_fwd', 'breast_aft')] == ['-'] * 3
+    assert lines[0]['head_1'] == '126' and lines[0]['spring_aft'] == '141', output
+    assert all(value.isdigit() for value in lines[-1].values()), output
+    # heaved to their pretensions once landed
+    assert float(lines[-1]['spring_fwd']) == pytest.approx(141.0, rel=0.15), output
+    # each order answered: the node took every command and parameter
+    answers = [line.split('> ', 1)[1] for line in result.stdout.splitlines() if '  > ' in line]
+    assert len(answers) == 8 and not any('refused' in a for a in answers), output
+    assert answers[1].startswith('spring_fwd make_fast: line spring_fwd made fast to its '
+                                 'bollard at (12, 3, 3.5): '), output
+    assert 'breast_fwd.winch_tension 91000: set' in answers, output
+    # the passing ship where its parameters put it, in the moored ship's axes (she lands
+    # turned a degree bow in: 80 m x sin(1 deg) = 1.4 m)
+    assert np.abs(np.array([float(row[16]) for row in rows]) - (-90.0 + 3.0 * t)).max() < 3.0
     assert 'lines (peak fairlead tension' in result.stdout
     assert 'stopped mooring, berth_demo' in result.stdout
     run = next(tmp_path.glob('demo_*'))
     record = read_record(run / 'bag')
     assert len(record.passing_times) > 300 and len(record.ship_times) > 300
-    # the node's passing ship pulls hardest where the table's is abeam
-    i = int(np.argmin(record.passing_force[:, 1]))
-    assert abs(-100.0 + 5.0 * record.passing_times[i]) < 10.0
+    # the bag holds the commands, the tugs' pushes and the fenders' loads
+    assert [label for _, label in record.marks] == [
+        'spring_fwd make fast', 'breast_fwd make fast', 'breast_aft make fast'], output
+    assert len(record.push_times) > 20 and record.push_force[0, 1] == pytest.approx(1.2e6)
+    assert record.fender_force[:, 1].min() < -5e5  # the landing, pushing her off the quay
     for name in ('event.png', 'plan.png'):
         assert (run / name).stat().st_size > 20_000, name
 

@@ -27,8 +27,10 @@ import math
 import numpy as np
 import pytest
 
+from rope_sim_ros.model import parting
 from rope_sim_ros.model.forces import assembly
 from rope_sim_ros.model.forces import fluid
+from rope_sim_ros.model.layout import REST
 from rope_sim_ros.model.objects import (Environment, Line, LineType, Point, single_line,
                                         System)
 from rope_sim_ros.model.statics.catenary import chain_equilibrium
@@ -94,6 +96,28 @@ def test_the_submerged_lengths_add_up_to_the_wetted_length():
     assert sub.sum() == pytest.approx(40.0 * 3.0 / 8.0, rel=1e-12)
     assert tangent == pytest.approx(np.tile([0.0, 0.0, 1.0], (17, 1)), abs=1e-15)
     assert sub[0] == pytest.approx(1.25) and sub[-1] == 0.0
+
+
+def test_a_parted_segments_halves_are_wetted_each_at_its_own_end():
+    """The line above parted at the surface: each half of that segment wet at its own end."""
+    x = np.linspace([0.0, 0.0, -3.0], [0.0, 0.0, 5.0], 17)
+    system = single_line(WIRE, Environment(water_level=0.0), 40.0, 16, x,
+                         Point('fixed', x[0]), Point('fixed', x[-1]))
+    sub, parted_sub = np.zeros(17), np.zeros(17)
+    tangent = np.zeros((17, 3))
+    tables = (system.particles, system.lines_table, system.line_real, system.env)
+    assembly.line_passes(system.x, *tables, sub, tangent)
+    # segment 6, z from 0 (at the surface) to 0.5 m, parts: its rest length is now 1e300 m
+    parting.part(system.particles, system.lines_table, system.particles[:, REST].copy(), 0, 6)
+    assembly.line_passes(system.x, *tables, parted_sub, tangent)
+    # whole, it was wet over the ramp's upper half (0.02 m of its 0.5 m rise): 1 % of 2.5 m
+    whole = fluid.wetted_fraction.py_func(0.0, 0.5, 0.0, WIRE.diameter) * 2.5
+    assert WIRE.diameter == 0.04 and whole == pytest.approx(0.025)
+    expected = sub.copy()
+    expected[6] += 0.5 * 2.5 * 0.5 - 0.5 * whole  # its end on the surface: half of 1.25 m
+    expected[7] -= 0.5 * whole  # its other end 0.5 m above: dry
+    assert parted_sub == pytest.approx(expected, rel=1e-12)
+    assert parted_sub.sum() == pytest.approx(40.0 * 3.0 / 8.0 - whole + 0.625, rel=1e-12)
 
 
 def _drag(v, q, c_n, c_t, current):

@@ -532,3 +532,62 @@ def test_a_heat_map_cell_is_its_worst_case_and_says_what_parted_or_failed():
     assert labels[(0, 1)] == '100 %\nbreast_fwd\na line parted'
     assert grid[1, 0] == pytest.approx(15.0) and labels[(1, 0)].endswith('breast_aft')
     assert math.isnan(grid[1, 1]) and labels[(1, 1)] == 'failed'
+
+
+def test_a_case_takes_its_commands_file_as_rope_sim_run_does(tmp_path, capsys):
+    # two cases of the berth's four lines: no commands, then head_1 let go at 1 s (a
+    # commands file per case, as a motion file)
+    write_study(tmp_path, '')
+    (tmp_path / 'let_go.csv').write_text('t,line,command\n1.0,head_1,let_go\n')
+    path = tmp_path / 'commands.yaml'
+    path.write_text(f'study:\n  arrangement: berth4.yaml\n  duration: {SECONDS}\n'
+                    f'  motion: ship.csv\n  rate: {RATE}\n'
+                    '  cases: [{}, {commands: let_go.csv}]\n')
+    study = read_study(path)
+    assert study.cases[1].commands == str(tmp_path / 'let_go.csv')
+    prepared = prepare(study)
+    assert [[(c.t, c.line, c.command) for c in item.commands] for item in prepared] == [
+        [], [(1.0, 'head_1', 'let_go')]]
+    assert prepared[0].key != prepared[1].key
+    outcomes = [run_case(job_of(study, item), item.streams) for item in prepared]
+    assert [o.status for o in outcomes] == [OK, OK], [o.status for o in outcomes]
+    tables = []
+    for item, outcome in zip(prepared, outcomes):
+        out = tmp_path / f'case_{item.case.index}.csv'
+        out.write_bytes(outcome.csv)
+        assert outcome.summary == summarise(out, LINES, ratings(item.setup))
+        with open(out, newline='') as stream:
+            tables.append(list(csv.DictReader(stream)))
+    # the case's OUT.csv is rope_sim run's with the same file
+    run_out = tmp_path / 'run.csv'
+    assert cli.main(['run', '--params', str(tmp_path / 'berth4.yaml'), '--motion',
+                     str(tmp_path / 'ship.csv'), '--commands', str(tmp_path / 'let_go.csv'),
+                     '--out', str(run_out), '--rate', str(RATE), '--quiet']) == 0
+    lines = run_out.read_text().splitlines()
+    assert outcomes[1].csv.decode().splitlines() == lines[:len(tables[1]) + 1]
+    held, let_go = tables
+    for row, free in zip(held, let_go):
+        t = float(row['t'])
+        assert row['head_1_state'] == 'fast'
+        assert free['head_1_state'] == ('fast' if t <= 1.0 + 1e-9 else 'free')
+    # let go after 1 s of the 4: head_1's mean pull falls to a quarter (141.9 -> 34.0 kN)
+    mean_held = outcomes[0].summary['head_1_mean_tension']
+    assert outcomes[1].summary['head_1_mean_tension'] < 0.3 * mean_held
+
+
+@pytest.mark.parametrize('rows, message', [
+    ('1.0,head_9,let_go\n', "'head_9' is not a line: one of head_1, spring_fwd, spring_aft, "
+     "stern_1; did you mean 'head_1'?"),
+    ('4.0,head_1,let_go\n', "data row 1, column 't': 4 s is not before the study's duration "
+     'of 4 s: the command would never be taken'),
+])
+def test_a_bad_commands_file_refuses_the_study_naming_the_case(tmp_path, capsys, rows,
+                                                               message):
+    study = write_study(tmp_path, '  cases: [{}, {commands: bad.csv}]\n')
+    (tmp_path / 'bad.csv').write_text('t,line,command\n' + rows)
+    assert cli.main(['study', str(study), '--out', str(tmp_path / 'out')]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f'rope_sim study: error: {study}: case 1 (commands=bad.csv): '
+                          f'{tmp_path / "bad.csv"}: ') and err.count('\n') == 1, err
+    assert message in err
+    assert not (tmp_path / 'out').exists()

@@ -272,6 +272,30 @@ def test_constant_tension_without_a_set_tension_holds_the_one_it_started_with():
     assert length[-1] > 40.3
 
 
+def test_constant_tension_heaves_in_a_line_parted_at_its_own_segment():
+    # The line nearly taut at 3.1 kN, its fairlead jerked 0.4 m away at 4 m/s: under implicit
+    # Euler the tension front parts the segment at the winch first (the adaptive step parts
+    # the one at the bollard). The winch steered by that segment's EA / l_i times l_i, 0 and
+    # 1e300 m once parted: a division by zero. Now by the line's EA, as wherever it parts.
+    params = reference_params('polyester', 20, integrator='implicit_euler', break_load=5.0e4,
+                              winch_mode='constant_tension')
+    sim = OneLine(params, history=math.inf)
+    start = np.array([39.0, 0.0, 8.0])
+    for t, away in ((0.0, 0.0), (0.5, 0.0), (0.6, 0.4), (10.0, 0.4)):
+        sim.push_fairlead(t, start + [away, 0.0, 0.0])
+    sim.start(0.0)
+    held = sim.output().fairlead_tension
+    outputs, partings = sim.run(np.arange(0.02, 3.0 + 1e-9, 0.02))
+    print(f'held {held:.0f} N, parted at {partings[0].t:.4f} s, '
+          f'length {outputs[-1].line_length:.3f} m')
+    assert held == pytest.approx(3076.0, abs=1.0)
+    assert len(partings) == 1 and sim.system.lines[0].parted == 19  # the winch's segment
+    assert all(np.isfinite(o.positions).all() for o in outputs)
+    # nothing holds the set tension any more: it heaves the piece in, at up to its 1 m/s
+    lengths = np.array([o.line_length for o in outputs])
+    assert np.all(np.diff(lengths) <= 0.0) and lengths[-1] < 39.5
+
+
 def test_winch_parameters_are_checked():
     with pytest.raises(ParameterError, match="'winch_mode' = 'reel' is not allowed: must be one "
                                              'of none, speed, brake, constant_tension'):

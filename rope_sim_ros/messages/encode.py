@@ -32,6 +32,8 @@ physics (370 us an output for one line's particles and tensions, as bytes 80 us)
   velocity in ship_frame_id axes, covariances unknown: zero);
 - each fender's <fender>/reaction: geometry_msgs/WrenchStamped in frame_id, the force of the
   fender on the hull at its contact point (no torque about that point);
+- each named bollard's <bollard>/load: geometry_msgs/WrenchStamped in frame_id, the sum of
+  the forces of the lines fast on it (no torque about the bollard);
 - ship/passing_ship_wrench: a passing ship's surge and sway force and yaw moment on the ship
   (geometry_msgs/WrenchStamped, body axes, about its origin).
 """
@@ -68,12 +70,14 @@ class OutputEncoder:
 
     def __init__(self, layout: Layout, names: Sequence[str], payloads: Sequence[bool],
                  frame_id: str, ship_frame_id: str = 'base_link', free: bool = False,
-                 fenders: Sequence[str] = (), passing: bool = False):
+                 fenders: Sequence[str] = (), passing: bool = False,
+                 bollards: Sequence[str] = ()):
         """
         Name every output of these lines (payloads: which lines end in a payload).
 
         :param free: a free ship's (its pose and odometry are outputs).
         :param fenders: the fenders' names (their reactions are outputs).
+        :param bollards: the named bollards' (their loads are outputs).
         :param passing: a ship passes (its load on the ship is an output).
         """
         self.layout = layout
@@ -99,6 +103,9 @@ class OutputEncoder:
         self.fender_topics = {f'{name}/{topics.FENDER_REACTION}': f
                               for f, name in enumerate(fenders)}
         self.ship_topics.update({topic: topics.WRENCH_STAMPED for topic in self.fender_topics})
+        self.bollard_topics = {f'{name}/{topics.BOLLARD_LOAD}': b
+                               for b, name in enumerate(bollards)}
+        self.ship_topics.update({topic: topics.WRENCH_STAMPED for topic in self.bollard_topics})
         self.types.update(self.ship_topics)
         # one tuple for the node's life: which of them are taken is kept while it is the same
         self.output_topics = tuple(self.line_topics) + tuple(self.ship_topics)
@@ -159,6 +166,10 @@ class OutputEncoder:
                 data = cdr.wrench_stamped(sec, nanosec, self.frame_id,
                                           out.fender_forces[self.fender_topics[topic]],
                                           (0.0, 0.0, 0.0))
+            elif topic in self.bollard_topics:
+                load = published.bollard_loads[self.bollard_topics[topic]]
+                data = cdr.wrench_stamped(sec, nanosec, self.frame_id, load.force,
+                                          (0.0, 0.0, 0.0))
             elif topic == topics.PASSING_WRENCH:
                 fx, fy, mz = out.ship_loads[2]
                 data = cdr.wrench_stamped(sec, nanosec, self.ship_frame_id, (fx, fy, 0.0),
@@ -190,7 +201,8 @@ def encoder_for(setup: ArrangementParams) -> OutputEncoder:
     layout = topics.LINE_NODE if setup.single else topics.MOORING_NODE
     return OutputEncoder(layout, setup.names, [line.params.has_payload for line in setup.lines],
                          setup.shared.frame_id, setup.ship_frame_id, setup.ship.free,
-                         [fender.name for fender in setup.fenders], setup.passing.present)
+                         [fender.name for fender in setup.fenders], setup.passing.present,
+                         [bollard.name for bollard in setup.bollards])
 
 
 def stiffness_message(matrix: np.ndarray) -> bytes:

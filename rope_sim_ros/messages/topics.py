@@ -80,8 +80,13 @@ CURRENT = 'environment/current'  # in: the water's velocity, where it goes TO
 STIFFNESS = 'ship/stiffness'  # the 6x6 stiffness of the lines and fenders, row-major
 STIFFNESS_DIMENSIONS = ('rows', 'cols')
 FENDER_REACTION = 'reaction'  # a fender's force on the ship, in its namespace
+BOLLARD_LOAD = 'load'  # a named bollard's load (its lines' forces on it), in its namespace
 MARKERS = 'mooring/markers'
 DIAGNOSTICS = '/diagnostics'
+# Services (std_srvs/Trigger): each line's commands (mooring/handling.py LINE_COMMANDS) are
+# named by line_topic(line, command): head_1/make_fast, or make_fast for the single line;
+# the mooring node's let go all is this one.
+LET_GO_ALL = 'mooring/let_go_all'
 
 
 @dataclass(frozen=True)

@@ -51,12 +51,12 @@ lengths it scales are what the strain is measured against.
 import numba
 import numpy as np
 
-from .layout import (BEND_DAMPING, BEND_REST, BEND_STIFFNESS, BRAKE, CONSTANT_TENSION,
-                     CURVE_POINTS, DAMPING, DRAG, END_A, FIRST, FREE, INV_MASS, KIND, LAST,
-                     LENGTH, MASS, NO_WINCH, REST, REST_RATE, SPEED, STIFFNESS, TOTAL_MASS,
-                     UNSTRETCHED, WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND,
-                     WINCH_END, WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH,
-                     WINCH_MODE, WINCH_RAMP, WINCH_RESPONSE, WINCH_SPEED)
+from .layout import (AXIAL_STIFFNESS, BEND_DAMPING, BEND_REST, BEND_STIFFNESS, BRAKE,
+                     CONSTANT_TENSION, CURVE_POINTS, DAMPING, DRAG, END_A, FIRST, FREE, INV_MASS,
+                     KIND, LAST, LENGTH, MASS, NO_WINCH, REST, REST_RATE, SPEED, STIFFNESS,
+                     TOTAL_MASS, UNSTRETCHED, WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND,
+                     WINCH_END, WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
+                     WINCH_RAMP, WINCH_RESPONSE, WINCH_SPEED)
 from .tension_curve import curve_strain, tension_at
 
 # The winch's acceleration itself changes from 0 to its maximum in this time [s] (a drive's
@@ -204,7 +204,10 @@ def quasi_static_stiffness(x, particles, lines, line_real, k, tension, g):
                              + (x[j + 1, 2] - x[j, 2]) ** 2)
             elastic += rest / tension_at(real, span_j / rest - 1.0)[1]
     else:
-        elastic = length / (particles[i, STIFFNESS] * particles[i, REST])  # L / EA
+        # the line's EA, not its winch segment's EA / l_i times l_i: a parted one's are 0
+        # and 1e300 m (parting.py), and a constant-tension winch whose own segment parted
+        # divided by zero
+        elastic = length / real[AXIAL_STIFFNESS]  # L / EA
     compliance = elastic + w * w * chord ** 3 / (12.0 * horizontal ** 3)
     return 1.0 / compliance
 

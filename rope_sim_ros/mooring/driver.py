@@ -59,7 +59,7 @@ from .line import Parting
 from .mooring import Mooring
 from .records import Handled, MooringAdvance, Published, Report
 from .statics import stiffness_now
-from .status import Rating, ratings
+from .status import bollard_loads, Rating, ratings
 from ..params.arrangement import ArrangementParams
 from ..params.table import ParameterError
 
@@ -385,14 +385,16 @@ class Driver:
         middle = self.mooring.time + 0.5 * self.mooring.time_step
         while schedule and schedule[0].t < middle:
             scheduled = schedule.popleft()
+            bollard = ''
             try:
                 if scheduled.bollard:
                     self.update(scheduled.line, {'bollard': scheduled.bollard})
+                    bollard = scheduled.bollard
                 text = self.command(scheduled.line or None, scheduled.command)
                 refused = False
             except ValueError as e:  # CommandError, ParameterError: said, and the run goes on
                 text, refused = str(e), True
-            report.handled.append(Handled(self.mooring.time, scheduled, text, refused))
+            report.handled.append(Handled(self.mooring.time, scheduled, text, refused, bollard))
 
     def _emit(self, advance: Optional[MooringAdvance], report: Report) -> None:
         mooring = self.mooring
@@ -410,8 +412,12 @@ class Driver:
         if self._fresh:  # (re)started ropes: the next outputs are due from here
             self._fresh = False
             self._origin, self._count = out.t, 0
+        # the lines fast on each bollard now: a line's bollard changes only while it is not
+        bollards = (bollard_loads(mooring.arrangement, out.states, out.bollard_forces)
+                    if mooring.arrangement.bollards else ())
         report.outputs.append(Published(self.stamp_ns(out.t), out, position, orientation,
-                                        mooring.offsets, bollard_levers, advance))
+                                        mooring.offsets, bollard_levers, advance,
+                                        tuple(bollards)))
 
     def _bollard_levers_at(self, t: float) -> np.ndarray:
         """Return each bollard's lever at time t (its newest sample's at or before it)."""

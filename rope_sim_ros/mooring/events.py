@@ -23,9 +23,11 @@ import json
 from typing import Any, Dict
 
 # The decisions a node records (one JSON object each, encode_event), and what a model did
-# ('parted', 'ship_restart': replayed, the model does it again).
+# ('parted', 'ship_restart', 'released': replayed, the model does it again). A line-handling
+# command is 'command' (line, command, t, text: what was done or why it was refused); a line
+# its quick-release hook let go is 'released' (line, tension, t).
 EVENT_KINDS = ('silent', 'skip', 'reset', 'clock_back', 'drop', 'restamp', 'set', 'winch',
-               'start', 'load', 'parted', 'ship_restart')
+               'start', 'load', 'parted', 'ship_restart', 'command', 'released')
 
 
 def encode_event(kind: str, **fields: Any) -> str:

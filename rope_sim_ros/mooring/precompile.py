@@ -72,6 +72,11 @@ CONFIGURATIONS = (
     # a line with a strain-tension curve: the kernels take it in the same tables; this
     # compiles the curve's own evaluation (TensionCurve.tension) the start of one calls
     {'integrator': 'implicit_euler', 'material': 'nylon', 'load_extension': 'curve'},
+    # a line crossing the water's surface: its start's statics call forces/fluid.py
+    # wetted_fraction from Python (statics/catenary.py node_weights), a specialisation of its
+    # own that no kernel compiles (they inline it); without it a study of a berth in water
+    # compiled it in its first case, after the warm-up (test_study checks none does)
+    {'integrator': 'adaptive', 'water_level': -1.0},
 )
 
 START_MESSAGE = ('preparing the physics kernels: numba is compiling them (its cache holds none '

@@ -164,14 +164,16 @@ class Published:
     :ivar bollard_levers: each bollard minus its pose's origin (L, 3) [m] (zeros: a fixed
         bollard).
     :ivar advance: the Mooring advance that reached it; None for a fresh output.
+    :ivar bollard_loads: each named bollard's load (status.BollardLoad), in the order of
+        the arrangement's bollards: the lines fast on each at this output.
     """
 
     __slots__ = ('stamp_ns', 'output', 'ship_position', 'ship_orientation', 'bollard_levers',
-                 'advance', '_offsets', '_rotation', '_wrench')
+                 'advance', 'bollard_loads', '_offsets', '_rotation', '_wrench')
 
     def __init__(self, stamp_ns: int, output: MooringOutput, ship_position: np.ndarray,
                  ship_orientation: np.ndarray, offsets: np.ndarray, bollard_levers: np.ndarray,
-                 advance: Optional[MooringAdvance]):
+                 advance: Optional[MooringAdvance], bollard_loads: tuple = ()):
         """Keep an output and what its levers and wrench are made from."""
         self.stamp_ns = stamp_ns
         self.output = output
@@ -179,6 +181,7 @@ class Published:
         self.ship_orientation = ship_orientation
         self.bollard_levers = bollard_levers
         self.advance = advance
+        self.bollard_loads = bollard_loads
         self._offsets = offsets
         self._rotation = None
         self._wrench = None
@@ -241,12 +244,16 @@ class Handled:
 
     :ivar t: the state time it was taken at [s]; scheduled: the command; text: what was
         done, or why it was refused; refused: whether it was.
+    :ivar bollard: the bollard the line was given before the command (scheduled.bollard;
+        '' if none was named or the line could not take it), whether the command was then
+        refused or not.
     """
 
     t: float
     scheduled: ScheduledCommand
     text: str
     refused: bool
+    bollard: str = ''
 
 
 @dataclass

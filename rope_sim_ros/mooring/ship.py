@@ -37,7 +37,7 @@ from .records import ShipState
 from .trajectory import TrajectoryError
 from ..model.body import Body, Fender, out_of_bounds
 from ..model.forces.body import place_points
-from ..model.forces.fender import fender_force
+from ..model.forces.fender import contact, fender_force
 from ..model.frames import rotation_matrix
 from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
                             BODY_QUATERNION, BODY_VELOCITY, FENDER_COLUMNS)
@@ -67,6 +67,40 @@ def fenders(setup: ArrangementParams, body: int = 0) -> List[Fender]:
     """Return the arrangement's fenders, each touching the hull of body `body`."""
     return [Fender(fender.position, fender.normal, fender.curve, fender.friction, body)
             for fender in setup.fenders]
+
+
+def fender_gaps(setup: ArrangementParams, position, orientation) -> np.ndarray:
+    """
+    Return how far the hull is off each fender's face with its origin at this pose [m].
+
+    < 0: it compresses the fender that much (as the fenders push, model/forces/fender.py);
+    0 for a fender facing no side of the hull.
+
+    :param position: the body origin in frame_id; orientation: (x, y, z, w).
+    """
+    body = ship_body(setup)
+    rotation = rotation_matrix(orientation)
+    body.quaternion = np.array(orientation, dtype=float)
+    body.position = np.asarray(position, dtype=float) - rotation @ np.asarray(body.origin)
+    row = body.row()
+    point = np.zeros(3)
+    return np.array([-contact(fender.row(), row, rotation, point)
+                     for fender in fenders(setup)])
+
+
+def quay_normal(setup: ArrangementParams) -> np.ndarray:
+    """
+    Return the horizontal unit vector out of the quay towards the ship: its fenders' normal.
+
+    :raises ParameterError: no fenders, or their normals have no common horizontal direction.
+    """
+    normals = np.array([fender.normal for fender in setup.fenders], dtype=float).reshape(-1, 3)
+    normal = normals.sum(axis=0) * [1.0, 1.0, 0.0]
+    size = float(np.linalg.norm(normal))
+    if size < 1e-6:
+        raise ParameterError('the berth needs fenders on its quay (fenders: [...], each with '
+                             'a horizontal normal out of the quay): they say where the quay is')
+    return normal / size
 
 
 def start_pose(setup: ArrangementParams) -> tuple:

@@ -76,9 +76,11 @@ def build_parser() -> argparse.ArgumentParser:
         'qz, qw or yaw. A free ship (ship_mode: free) takes no motion: it starts at rest at '
         'its start pose and runs for --duration s under the loads of --loads LOADS.csv (t, '
         'force_x, force_y, force_z, moment_x, moment_y, moment_z: frame_id axes, about its '
-        'origin, linear between rows). Writes OUT.csv with the forces of the lines every '
-        "1/rate s (and a free ship's motion and fenders) and/or a bag as the node records "
-        'it.')
+        'origin, linear between rows). Either takes line-handling commands from --commands '
+        'COMMANDS.csv (t, line, command and optionally bollard: make_fast, let_go, stow or '
+        "let_go_all at t s from the run's start). Writes OUT.csv with the forces and states "
+        "of the lines every 1/rate s (and a free ship's motion and fenders) and/or a bag as "
+        'the node records it.')
     _add_params_options(run, LINE_FILE)
     run.add_argument('--motion', metavar='MOTION.csv',
                      help='motion table (SHIP.csv for an arrangement); not for a free ship')
@@ -86,6 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="a free ship's external load over time (default: none)")
     run.add_argument('--duration', type=float, metavar='S',
                      help="a free ship's run: how many simulated seconds")
+    run.add_argument('--commands', metavar='COMMANDS.csv',
+                     help='line-handling commands at their times: t, line, command (make_fast, '
+                     'let_go, stow, let_go_all) and optionally bollard (default: none)')
     run.add_argument('--out', metavar='OUT.csv',
                      help='output table (overwritten); required unless --bag is given')
     run.add_argument('--rate', type=float, default=100.0, metavar='HZ',
@@ -239,6 +244,44 @@ def _report(summary, single: bool) -> None:
               file=sys.stderr)
 
 
+def _commands(args, setup):
+    """Return the commands of --commands (none without it), checked against the mooring."""
+    from .motion import read_commands
+    if args.commands is None:
+        return ()
+    return read_commands(args.commands, setup.names,
+                         [bollard.name for bollard in setup.bollards]).commands
+
+
+def _say_events(quiet: bool, progress):
+    """
+    Return the event sink that prints each line event once, as the run goes.
+
+    As the node logs them: a command taken on stdout (not with --quiet), a refused one and a
+    quick-release hook's release as warnings on stderr.
+    """
+    def say(event) -> None:
+        if progress is not None:
+            progress.clear()
+        if event.refused:
+            print(f'{PROG}: warning: t = {event.t:.3f} s: {event.command} refused: '
+                  f'{event.text}', file=sys.stderr, flush=True)
+        elif event.kind == 'released':
+            print(f'{PROG}: warning: t = {event.t:.3f} s: {event.text}', file=sys.stderr,
+                  flush=True)
+        elif not quiet:
+            print(f'{PROG}: t = {event.t:.3f} s: {event.text}', flush=True)
+    return say
+
+
+def _report_not_taken(summary, origin: float) -> None:
+    if summary.not_taken:
+        count, first = len(summary.not_taken), summary.not_taken[0]
+        print(f'{PROG}: warning: {count} command{"s" if count > 1 else ""} from t = '
+              f'{first.t:g} s on {"were" if count > 1 else "was"} not taken: the run ended at '
+              f'{summary.end - origin:.3f} s', file=sys.stderr)
+
+
 def _cmd_run(args) -> int:
     from .motion import read_motion, read_ship_motion
     from .run import run_motion
@@ -258,14 +301,17 @@ def _cmd_run(args) -> int:
         streams = read_motion(args.motion, line.fairlead_offset, line.bollard_offset)
     else:
         streams = read_ship_motion(args.motion)
+    commands = _commands(args, setup)
     progress = _progress(args.quiet)
     try:
         with _compiling_notice(args.quiet):
-            summary = run_motion(setup, streams, args.out, args.rate, args.bag, progress)
+            summary = run_motion(setup, streams, args.out, args.rate, args.bag, progress,
+                                 commands=commands, events=[_say_events(args.quiet, progress)])
     finally:
         if progress is not None:
             progress.finish()
     _report(summary, setup.single)
+    _report_not_taken(summary, streams.origin)
     if not args.quiet:
         targets = ' and '.join(t for t in (args.out, args.bag) if t)
         what = '' if setup.single else f' of {len(setup.lines)} lines'
@@ -288,14 +334,17 @@ def _run_free(args, setup) -> int:
         raise ParameterError("run: a free ship's run writes --out OUT.csv; record a bag "
                              'with the mooring node')
     loads = read_loads(args.loads) if args.loads is not None else None
+    commands = _commands(args, setup)
     progress = _progress(args.quiet)
     try:
         with _compiling_notice(args.quiet):
-            summary = run_free(setup, args.duration, loads, args.out, args.rate, progress)
+            summary = run_free(setup, args.duration, loads, args.out, args.rate, progress,
+                               commands=commands, events=[_say_events(args.quiet, progress)])
     finally:
         if progress is not None:
             progress.finish()
     _report(summary, False)
+    _report_not_taken(summary, 0.0)
     if not args.quiet:
         print(f'{summary.rows} outputs of a free ship on {len(setup.lines)} lines, t = '
               f'{summary.start:.3f} .. {summary.end:.3f} s every {1 / args.rate:g} s (step '

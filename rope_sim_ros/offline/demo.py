@@ -13,20 +13,23 @@
 # limitations under the License.
 
 """
-`make demo`: a free ship at its berth on eight lines, a ship passing it; recorded, plotted.
+`make demo`: a berthing, then a ship passing the moored ship; recorded, plotted.
 
 Starts, in their own ROS domain (unless ROS_DOMAIN_ID is set), the colcon-installed mooring
-node with config/berth.yaml (a 225 m bulk carrier on eight lines at 10 % of their MBL, four
-fenders) and, on top, config/berth_demo.yaml (the event: the ship free, ship_mode: free; a
-200 m ship passing 100 m off at 2.5 m/s from 350 m astern), use_sim_time, recording to a new
-bag out/demo_<time>/bag; and the berth demo (ros/berth_demo_node.py: /clock, sim time
-running at --speed times the wall clock, and the live table, one row a simulated second:
-where the passing ship is, how far the ship moved, the passing ship's force on it and the
-most loaded line). The berth demo ends by itself after --duration simulated seconds (by
-default twice the time the passing ship takes to come abeam: it passes in the middle); then
-the mooring node is stopped with SIGINT, by its process id, `rope_sim info` describes the
-bag, and the plots are drawn (plot.py): out/demo_<time>/event.png, the passing ship's force,
-the ship's motion and every line's tension (% of its MBL, against the WLL) on one time axis,
+node with config/berth.yaml (a 225 m bulk carrier, eight lines, four fenders) and, on top,
+config/berth_demo.yaml (the ship free, ship_mode: free, 30 m off her berth, parallel to it,
+at rest, every line stowed; a 200 m ship passing 100 m off her berth at 2.5 m/s), use_sim_time,
+recording to a new bag out/demo_<time>/bag; and the berth demo (ros/berth_demo_node.py:
+/clock, sim time running at --speed times the wall clock; the pilot, whose tugs push her in
+and land her on the fenders at 0.1 m/s; the crew, who make the lines fast and heave them to
+their pretensions as config/berth_demo.yaml's schedule says; and the live table, one row a
+simulated second: her distance off the fenders, her speed towards them, the tugs' push,
+each fender's load, each line's state and tension, and where the passing ship is). The berth
+demo ends by itself after --duration simulated seconds (by default berth_demo.duration, else
+twice the time the passing ship takes to come abeam); then the mooring node is stopped with
+SIGINT, by its process id, `rope_sim info` describes the bag, and the plots are drawn
+(plot.py): out/demo_<time>/event.png, the loads on the ship (the tugs', the fenders', the
+passing ship's), her motion and every line's tension on one time axis, each command marked,
 and plan.png, the berth from above at the most loaded moment.
 
     python -m rope_sim_ros.offline.demo [--speed 2] [--duration S] [--install install]
@@ -44,8 +47,11 @@ import sys
 import time
 from typing import Optional
 
+import numpy as np
+
 from .plot import abeam_time
-from ..mooring.ship import water_depth
+from ..mooring.berthing import Berthing, read_berthing, watch
+from ..mooring.ship import quay_normal, ship_loads, start_pose, water_depth
 from ..params.arrangement import ArrangementParams, flatten, NODE_NAME, read_setup
 from ..params.files import read_params_file
 from ..params.table import ParameterError
@@ -108,25 +114,49 @@ def demo_setup(params: Path, scenario: Optional[Path]) -> ArrangementParams:
     return setup
 
 
-def default_duration(setup: ArrangementParams) -> float:
-    """Return the simulated seconds of the demo: the passing ship abeam in the middle."""
+def default_duration(setup: ArrangementParams, plan: Berthing = Berthing()) -> float:
+    """Return the simulated seconds of the demo: its own, else the passing ship abeam midway."""
+    if plan.duration is not None:
+        return plan.duration
     when = abeam_time(setup.passing)
     return QUIET_DURATION if when is None else max(2.0 * when, 10.0)
 
 
-def story(setup: ArrangementParams) -> str:
+def story(setup: ArrangementParams, plan: Berthing = Berthing()) -> str:
     """Return what the run is, a sentence for the top of event.png."""
     passing = setup.passing
+    berthing, off = '', 0.0
+    if any(order.kind == 'tugs' for order in plan.orders):
+        off = watch(setup, *start_pose(setup), np.zeros(3))[0]
+        fast = {order.line for order in plan.orders if order.what == 'make_fast'}
+        berthing = (f'Tugs push the {setup.ship.length:g} m ship in from {off:.0f} m off and '
+                    f'land her on her fenders at {plan.pilot.landing_speed:g} m/s; the crew '
+                    f'makes {len(fast)} lines fast and heaves them to their pretensions')
     if not passing.present:
-        return 'The free ship at its berth, no ship passing'
+        return berthing or 'The free ship at its berth, no ship passing'
     when = abeam_time(passing)
     side = 'starboard' if passing.separation > 0.0 else 'port'
     depth = water_depth(setup.shared)
-    return (f'A {passing.length:g} m ship passes {abs(passing.separation):g} m off the '
+    return ((f'{berthing}; then a' if berthing else 'A')
+            + f' {passing.length:g} m ship passes {passing_off(setup, off):.0f} m off the '
             f'{side} side at {passing.speed:g} m/s ({passing.speed * 3600 / 1852:.1f} kn)'
             + ('' if depth == math.inf else f' in {depth:g} m of water')
             + ('' if when is None else f', abeam at t = {when:.0f} s')
-            + ': it moves the free ship, the lines hold it')
+            + ('' if berthing else ': it moves the free ship, the lines hold it'))
+
+
+def passing_off(setup: ArrangementParams, off: float = 0.0) -> float:
+    """
+    Return how far the passing ship's track is from the moored ship's centreline [m].
+
+    Where she lies once moved `off` m towards her quay from her start pose (0: there).
+    """
+    passer = ship_loads(setup).passing
+    where = np.asarray(setup.ship.start_position, dtype=float)
+    if off:
+        where = where - off * quay_normal(setup)
+    apart = where - passer.midship(0.0)
+    return float(abs(passer.heading[0] * apart[1] - passer.heading[1] * apart[0]))
 
 
 def main(argv=None) -> int:
@@ -171,10 +201,11 @@ def main(argv=None) -> int:
         return 2
     try:
         setup = demo_setup(args.params, args.scenario)
+        plan = read_berthing([args.params, args.scenario], setup)
     except ParameterError as e:
         print(f'demo: {e}', file=sys.stderr)
         return 2
-    duration = args.duration or default_duration(setup)
+    duration = args.duration or default_duration(setup, plan)
     try:
         run_dir = new_run_directory(args.out)
     except OSError as e:
@@ -186,7 +217,7 @@ def main(argv=None) -> int:
     env = overlay_environment(prefix)
     print(f'demo: ROS_DOMAIN_ID={env["ROS_DOMAIN_ID"]}, {len(setup.lines)} lines from '
           f'{args.params} with {args.scenario}; {duration:g} s simulated at {args.speed:g}x, '
-          f'recording to {bag}; Ctrl-C stops early\ndemo: {story(setup)}', flush=True)
+          f'recording to {bag}; Ctrl-C stops early\ndemo: {story(setup, plan)}', flush=True)
     children = {}
     ok = False
     try:
@@ -209,7 +240,7 @@ def main(argv=None) -> int:
     if bad:
         print(f'demo: exit codes {bad}', file=sys.stderr)
     print(f'demo: stopped {", ".join(codes)}', flush=True)
-    shown = show_bag(executables / 'rope_sim', env, bag, run_dir, story(setup))
+    shown = show_bag(executables / 'rope_sim', env, bag, run_dir, story(setup, plan))
     return 0 if ok and not bad and shown else 1
 
 

@@ -13,13 +13,16 @@
 # limitations under the License.
 
 """
-The files an offline run reads: MOTION.csv of a single line, SHIP.csv of a ship, LOADS.csv.
+The files an offline run reads: MOTION.csv, SHIP.csv, LOADS.csv and COMMANDS.csv.
 
-Both are CSV tables with a header naming their columns; other columns are ignored. Every
-cell of the columns read must be a finite number and ``t`` [s] must increase strictly; it
-is read to the exact nanosecond (a decimal, not a float: epoch times keep their digits).
-Errors name the file, the data row (1-based, header excluded), the file line and the
-column.
+MOTION.csv moves a single line, SHIP.csv a ship, LOADS.csv pushes a free ship, and
+COMMANDS.csv handles the lines.
+
+All are CSV tables with a header naming their columns; other columns are ignored. Every
+cell of the columns of numbers must be a finite number. In the motion and loads files ``t``
+[s] must increase strictly; it is read to the exact nanosecond (a decimal, not a float:
+epoch times keep their digits). Errors name the file, the data row (1-based, header
+excluded), the file line and the column.
 
 - MOTION.csv: ``t`` and the world-frame fairlead point ``fairlead_x, fairlead_y,
   fairlead_z`` [m], optionally the bollard point ``bollard_x, bollard_y, bollard_z`` (all
@@ -31,6 +34,11 @@ column.
 - LOADS.csv: ``t`` and the external load on a free ship (ship_mode free): ``force_x,
   force_y, force_z`` [N] and ``moment_x, moment_y, moment_z`` [N m] about the ship's origin,
   in frame_id axes; linear between rows, held after the last.
+- COMMANDS.csv: line-handling commands (mooring/handling.py): ``t`` [s of simulated time
+  from the run's start, the first row of MOTION.csv or SHIP.csv being 0], ``line`` (empty
+  for let_go_all, and for a single line, which has no name), ``command`` (make_fast,
+  let_go, stow or let_go_all) and optionally ``bollard`` (for make_fast: the bollard to
+  make the line fast to, else its own). Times may repeat but not go back.
 
 A line's motion is a ship's: its fairlead point is the pose whose origin plus the
 fairlead_offset (identity orientation) is that point, so the node fed with the recorded
@@ -40,11 +48,14 @@ poses follows the same points.
 import csv
 from dataclasses import dataclass, field
 import decimal
+import difflib
 import math
 import os
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
+
+from ..params.bollards import BOLLARDS
 
 TIME = 't'
 FAIRLEAD_COLUMNS = ('fairlead_x', 'fairlead_y', 'fairlead_z')
@@ -124,20 +135,26 @@ def read_table(path, required: Sequence[str], optional: Sequence[str],
         with too few or too many cells, a non-numeric or non-finite cell, t not
         increasing strictly.
     """
+    return _read_csv(path, 'motion file', lambda reader, name: _parse(
+        reader, name, required, optional, expected))
+
+
+def _read_csv(path, what: str, parse):
+    """Return parse(csv reader, file name) of a file, its failures to read as MotionError."""
     name = os.fspath(path)
     try:
         with open(name, newline='', encoding='utf-8-sig') as stream:
-            return _parse(csv.reader(stream), name, required, optional, expected)
+            return parse(csv.reader(stream), name)
     except OSError as e:
-        raise MotionError(f'cannot read motion file {name}: {e.strerror or e}') from None
+        raise MotionError(f'cannot read {what} {name}: {e.strerror or e}') from None
     except csv.Error as e:
         raise MotionError(f'{name}: not valid CSV: {e}') from None
     except UnicodeDecodeError as e:
         raise MotionError(f'{name}: not a UTF-8 text file ({e.reason})') from None
 
 
-def _parse(reader, path: str, required: Sequence[str], optional: Sequence[str],
-           expected: str) -> Tuple[Dict[str, np.ndarray], np.ndarray]:
+def _header(reader, path: str, required: Sequence[str], expected: str) -> List[str]:
+    """Return the header's column names: no duplicate, every required one there."""
     header = next(reader, None)
     while header is not None and not any(cell.strip() for cell in header):
         header = next(reader, None)
@@ -154,18 +171,30 @@ def _parse(reader, path: str, required: Sequence[str], optional: Sequence[str],
         raise MotionError(
             f'{path}: file line 1 (header): missing column(s) {", ".join(missing)}; the header '
             f'must name {expected} (found: {", ".join(names) or "nothing"})')
-    columns = list(required) + [column for column in optional if column in seen]
+    return names
+
+
+def _rows(reader, path: str, names: Sequence[str]) -> Iterator[Tuple[int, int, List[str]]]:
+    """Yield (data row, file line, cells) of every row that is not blank, of full width."""
+    row = 0
+    for cells in reader:
+        if not any(cell.strip() for cell in cells):
+            continue  # blank lines, e.g. at the end of the file
+        row += 1
+        if len(cells) != len(names):
+            raise MotionError(f'{_where(path, row, reader.line_num)}: {len(cells)} cells, but '
+                              f'the header has {len(names)} columns')
+        yield row, reader.line_num, cells
+
+
+def _parse(reader, path: str, required: Sequence[str], optional: Sequence[str],
+           expected: str) -> Tuple[Dict[str, np.ndarray], np.ndarray]:
+    names = _header(reader, path, required, expected)
+    columns = list(required) + [column for column in optional if column in names]
     index = [names.index(column) for column in columns]
     stamps: List[int] = []
     rows: List[List[float]] = []
-    for cells in reader:
-        line = reader.line_num
-        if not any(cell.strip() for cell in cells):
-            continue  # blank lines, e.g. at the end of the file
-        row = len(rows) + 1
-        if len(cells) != len(names):
-            raise MotionError(f'{_where(path, row, line)}: {len(cells)} cells, but the header '
-                              f'has {len(names)} columns')
+    for row, line, cells in _rows(reader, path, names):
         values = [_number(path, row, line, column, cells[i]) for column, i in zip(columns, index)]
         ns = _nanoseconds(cells[index[0]])
         if stamps and ns <= stamps[-1]:
@@ -270,3 +299,109 @@ def read_loads(path) -> LoadSchedule:
                             f'{TIME}, {", ".join(LOAD_COLUMNS)}')
     return LoadSchedule(name, np.asarray(columns[TIME], dtype=float),
                         np.column_stack([columns[column] for column in LOAD_COLUMNS]))
+
+
+LINE = 'line'
+COMMAND = 'command'
+BOLLARD = 'bollard'
+COMMAND_COLUMNS = (TIME, LINE, COMMAND)
+
+
+@dataclass(frozen=True)
+class CommandSchedule:
+    """
+    COMMANDS.csv: line-handling commands at their times, checked against the mooring.
+
+    :ivar path: the file.
+    :ivar commands: the commands in time order (mooring/records.py ScheduledCommand).
+    :ivar rows: each command's data row in the file (1-based).
+    """
+
+    path: str
+    commands: Tuple[Any, ...]
+    rows: Tuple[int, ...]
+
+
+def read_commands(path, lines: Sequence[str], bollards: Sequence[str]) -> CommandSchedule:
+    """
+    Read COMMANDS.csv: t, line, command and optionally bollard (see the module docstring).
+
+    :param lines: the mooring's line names (a single line's: ['']).
+    :param bollards: the names of its bollards.
+    :raises MotionError: unreadable, a column missing, a time not a finite number >= 0 or
+        before the previous row's, an unknown command, line or bollard (the nearest name
+        said), a line named with let_go_all or none with another command, a bollard with
+        another command than make_fast; named with the file, row and column.
+    """
+    # here, not at the top: mooring.handling and mooring.records load numba (1.1 s), which
+    # every rope_sim command would pay for this module's MotionError
+    from ..mooring.handling import COMMANDS
+    from ..mooring.records import ScheduledCommand
+    expected = f'{", ".join(COMMAND_COLUMNS)} and optionally {BOLLARD}'
+
+    def parse(reader, name: str) -> CommandSchedule:
+        names = _header(reader, name, COMMAND_COLUMNS, expected)
+        index = {column: names.index(column) for column in COMMAND_COLUMNS + (BOLLARD,)
+                 if column in names}
+        commands: List[Any] = []
+        rows: List[int] = []
+        for row, line, cells in _rows(reader, name, names):
+            def cell(column: str) -> str:
+                return cells[index[column]].strip() if column in index else ''
+
+            t = _number(name, row, line, TIME, cells[index[TIME]])
+            if t < 0.0:
+                raise MotionError(f'{_where(name, row, line, TIME)}: {cell(TIME)} is before '
+                                  "the run's start: give seconds from it, >= 0")
+            if commands and t < commands[-1].t:
+                raise MotionError(
+                    f'{_where(name, row, line, TIME)}: {cell(TIME)} is before the previous '
+                    f"row's {commands[-1].t:g}; the commands are taken in time order: sort "
+                    'the rows by t')
+            command = _one_of(_where(name, row, line, COMMAND), cell(COMMAND), COMMAND,
+                              COMMANDS)
+            target = _line(_where(name, row, line, LINE), cell(LINE), command, lines)
+            bollard = cell(BOLLARD)
+            if bollard:
+                _bollard(_where(name, row, line, BOLLARD), bollard, command, bollards)
+            commands.append(ScheduledCommand(t, target, command, bollard))
+            rows.append(row)
+        if not commands:
+            raise MotionError(f'{name}: the header has no data rows after it')
+        return CommandSchedule(name, tuple(commands), tuple(rows))
+
+    return _read_csv(path, 'commands file', parse)
+
+
+def _one_of(where: str, name: str, what: str, names: Sequence[str]) -> str:
+    """Return name if it is one of names; else refuse it, naming the nearest one."""
+    if name in names:
+        return name
+    shown = repr(name) if name else 'an empty cell'
+    found = difflib.get_close_matches(name, list(names), n=1, cutoff=0.6)
+    near = f'; did you mean {found[0]!r}?' if found else ''
+    raise MotionError(f'{where}: {shown} is not a {what}: one of {", ".join(names)}{near}')
+
+
+def _line(where: str, name: str, command: str, lines: Sequence[str]) -> str:
+    if command == 'let_go_all':
+        if name:
+            raise MotionError(f'{where}: {name!r} with let_go_all, which lets every fast line '
+                              'go: leave the line empty')
+        return ''
+    if list(lines) == ['']:
+        if name:
+            raise MotionError(f'{where}: {name!r}, but the single line has no name: leave the '
+                              'line empty')
+        return ''
+    return _one_of(where, name, 'line', lines)
+
+
+def _bollard(where: str, name: str, command: str, bollards: Sequence[str]) -> None:
+    if command != 'make_fast':
+        raise MotionError(f'{where}: {name!r} with {command}: a bollard is named for make_fast '
+                          'only; leave it empty')
+    if not bollards:
+        raise MotionError(f'{where}: {name!r}, but the arrangement has no bollards; list them '
+                          f'in {BOLLARDS!r}, each with its position')
+    _one_of(where, name, 'bollard', bollards)

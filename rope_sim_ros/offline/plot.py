@@ -28,28 +28,35 @@ at the moment of the highest utilisation: the quay, the ship (outlined from its 
 every line coloured by its band (mooring/status.py: green below the WLL, amber past it, red
 past 90 % of the MBL) and labelled with its utilisation then and its peak, at rest in grey,
 and a passing ship (passing_ship.*) where it is then. event.png (draw_event: the berth
-demo's, and `rope_sim plot`'s of a bag holding a passing ship's load) is a passing ship's
-event on one time axis: its force on the moored ship
-(ship/passing_ship_wrench), the ship's motion from its first pose (surge, sway, yaw) and
+demo's, and `rope_sim plot`'s of a bag holding a passing ship's load) is an event on one
+time axis: the loads on the ship in its body axes (a passing ship's, ship/passing_ship_wrench;
+the tugs' sway push, ship/external_wrench as the node took it; the fenders' sway force, all
+together, <fender>/reaction), the ship's motion from its first pose (surge, sway, yaw) and
 every line's tension in % of its MBL against the WLL, with the passing ship's stagger on top.
-Times are the outputs' stamps (publish times), from the first output; the arrangement is
-the one the bag stores. No ROS.
+Every picture over time marks each line-handling command and each quick-release of the bag's
+events (the node's, or those of ``rope_sim run --commands``) with a dotted vertical line,
+labelled as 'head_1 make fast' or 'let go all' (a command a run refused as 'stern stow
+(refused)'). Times are the outputs' stamps (publish times), from the first output; the
+arrangement is the one the bag stores. No ROS.
 """
 
 from dataclasses import dataclass, field
 import math
 import os
 import textwrap
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .line_events import event_label
 from .resim import stored_setup
 from ..bag import bag_info, BagError, BagInfo, read_messages
-from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_wrench,
+from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_string, decode_wrench,
                        decode_wrench_stamped)
-from ..messages.topics import (BOLLARD_TENSION, FAIRLEAD_TENSION, MOORING_WRENCH, PARTICLES,
-                               PASSING_WRENCH, SHIP_POSE)
+from ..messages.topics import (BOLLARD_TENSION, EXTERNAL_WRENCH, FAIRLEAD_TENSION,
+                               FENDER_REACTION, LINE_NODE, MOORING_NODE, MOORING_WRENCH,
+                               PARTICLES, PASSING_WRENCH, SHIP_POSE)
+from ..mooring.events import decode_event
 from ..mooring.status import COLOURS, NEAR_BREAK_FRACTION, Rating, ratings
 from ..params.arrangement import ArrangementParams, single_line
 from ..params.ship import PassingShipParams
@@ -57,6 +64,11 @@ from ..params.table import LineParams
 
 WRENCH = f'/{MOORING_WRENCH}'
 PASSING = f'/{PASSING_WRENCH}'
+EXTERNAL = f'/{EXTERNAL_WRENCH}'
+EVENTS = f'/{MOORING_NODE.events}'
+# The events marked on the time axes: a line-handling command, a quick-release hook's release.
+MARKED = ('command', 'released')
+MARK_COLOUR = '0.25'
 ENDS = ('fairlead', 'bollard')
 _TENSION_TOPICS = {'fairlead': FAIRLEAD_TENSION, 'bollard': BOLLARD_TENSION}
 
@@ -114,6 +126,42 @@ def read_tensions(path, namespace: str = '') -> Dict[str, TensionSeries]:
 
 def _seconds(ns: int) -> str:
     return f'{ns / 1e9:.3f} s'
+
+
+def mark(text: str) -> Optional[str]:
+    """Return the label of an event to mark on a time axis (MARKED), else None."""
+    try:
+        event = decode_event(text)
+    except ValueError:
+        return None  # not an event of ours: nothing to mark
+    if event['event'] not in MARKED:
+        return None
+    return event_label(event['event'], str(event.get('line', '')), str(event.get('command', '')),
+                       bool(event.get('refused', False)))
+
+
+def read_marks(path, topic: str, start_ns: int) -> List[Tuple[float, str]]:
+    """
+    Return the commands and releases on a bag's events topic: (time [s], label), in order.
+
+    The time is the event's publish time from start_ns.
+    """
+    marks = []
+    for message in read_messages(path, [topic]):
+        label = mark(decode_string(message.data))
+        if label is not None:
+            marks.append(((message.publish_time_ns - start_ns) / 1e9, label))
+    return marks
+
+
+def draw_marks(marks: Sequence[Tuple[float, str]], axes: Sequence[Any], labelled: Any) -> None:
+    """Draw each mark as a dotted vertical line on every axis; its label on `labelled`."""
+    for t, label in marks:
+        for axis in axes:
+            axis.axvline(t, color=MARK_COLOUR, linestyle=':', linewidth=1.0)
+        labelled.annotate(label, (t, 1.0), xycoords=('data', 'axes fraction'),
+                          textcoords='offset points', xytext=(-2, -3), rotation=90, ha='right',
+                          va='top', fontsize='x-small', color=MARK_COLOUR)
 
 
 def describe(path) -> str:
@@ -221,6 +269,7 @@ def plot_bag(path, out_path, params: LineParams, namespace: Optional[str] = None
     else:
         top.set_ylabel('tension [kN]')
         top.set_ylim(bottom=0.0)
+    draw_marks(read_marks(path, f'{namespace}/{LINE_NODE.events}', start), [top], top)
     top.set_xlabel(f'time since bag start [s] (start at log time {start / 1e9:.3f} s)')
     folder = os.path.normpath(os.fspath(path))
     title = os.path.join(os.path.basename(os.path.dirname(folder)), os.path.basename(folder))
@@ -261,6 +310,12 @@ class ArrangementRecord:
     :ivar start_ns: the first output's stamp [ns].
     :ivar passing_times: [s], (q,); passing_force (q, 3) [N], passing_moment (q, 3) [N m]:
         a passing ship's load on the ship (body axes, about its origin); empty without one.
+    :ivar marks: (time [s], label) of every line-handling command and release (read_marks).
+    :ivar push_times: [s], (e,); push_force (e, 3) [N]: the external load on a free ship
+        (ship/external_wrench: tugs, thrusters) as the node took it, body axes; empty
+        without one.
+    :ivar fender_times: [s], (f,); fender_force (f, 3) [N]: the fenders' force on the ship,
+        all together, body axes; empty without fenders.
     """
 
     setup: ArrangementParams
@@ -277,6 +332,11 @@ class ArrangementRecord:
     passing_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
     passing_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     passing_moment: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    marks: Tuple[Tuple[float, str], ...] = ()
+    push_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    push_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    fender_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    fender_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
 
     def peak(self, k: int) -> Tuple[float, float]:
         """Return line k's largest tension [N] and its time [s]."""
@@ -296,9 +356,23 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
                        'by the mooring node)')
     series: Dict[str, List[Tuple[int, float]]] = {line: [] for line in setup.names}
     topics = {f'/{line}/{FAIRLEAD_TENSION}': line for line in setup.names}
-    wrench, ship, passing = [], [], []
-    for message in read_messages(path, [*topics, WRENCH, PASSING, f'/{SHIP_POSE}']):
-        if message.topic in topics:
+    fenders = {f'/{fender.name}/{FENDER_REACTION}' for fender in setup.fenders}
+    wrench, ship, passing, events, pushes = [], [], [], [], []
+    fender_sums: Dict[int, np.ndarray] = {}
+    for message in read_messages(path, [*topics, WRENCH, PASSING, f'/{SHIP_POSE}', EVENTS,
+                                        EXTERNAL, *fenders]):
+        if message.topic in fenders:
+            sec, nanosec, _, force, _ = decode_wrench_stamped(message.data)
+            stamp = sec * 1_000_000_000 + nanosec
+            fender_sums[stamp] = fender_sums.get(stamp, 0.0) + np.asarray(force)
+        elif message.topic == EXTERNAL:  # taken when the node logged it
+            _, _, frame, force, _ = decode_wrench_stamped(message.data)
+            pushes.append((message.publish_time_ns, force, frame == setup.ship_frame_id))
+        elif message.topic == EVENTS:
+            label = mark(decode_string(message.data))
+            if label is not None:
+                events.append((message.publish_time_ns, label))
+        elif message.topic in topics:
             force, _ = decode_wrench(message.data)
             series[topics[message.topic]].append(
                 (message.publish_time_ns, float(np.linalg.norm(force))))
@@ -321,6 +395,21 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
     def seconds(ns):
         return (np.asarray(ns, dtype=np.int64) - start) / 1e9
 
+    ship_times = seconds([s[0] for s in ship])
+    yaws = np.unwrap([s[2] for s in ship])
+
+    def body(times, forces, turn=True):
+        """Return frame_id forces at these times [s] in the ship's body axes then."""
+        forces = np.array(forces, dtype=float).reshape(-1, 3)
+        if not len(ship_times):
+            return forces
+        yaw = np.interp(times, ship_times, yaws) * turn
+        c, s = np.cos(yaw), np.sin(yaw)
+        return np.column_stack([c * forces[:, 0] + s * forces[:, 1],
+                                -s * forces[:, 0] + c * forces[:, 1], forces[:, 2]])
+
+    push_times = seconds([p[0] for p in pushes])
+    fender_times = seconds(sorted(fender_sums))
     return ArrangementRecord(
         setup, ratings(setup), seconds(stamps), tensions,
         seconds([w[0] for w in wrench]), np.array([w[1] for w in wrench]).reshape(-1, 3),
@@ -328,7 +417,11 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
         seconds([s[0] for s in ship]), np.array([s[1] for s in ship]).reshape(-1, 3),
         np.array([s[2] for s in ship]), start,
         seconds([p[0] for p in passing]), np.array([p[1] for p in passing]).reshape(-1, 3),
-        np.array([p[2] for p in passing]).reshape(-1, 3))
+        np.array([p[2] for p in passing]).reshape(-1, 3),
+        tuple((float(seconds(ns)), label) for ns, label in events),
+        push_times, body(push_times, [p[1] for p in pushes], np.array([not p[2] for p in pushes],
+                                                                      dtype=bool)),
+        fender_times, body(fender_times, [fender_sums[k] for k in sorted(fender_sums)]))
 
 
 def _shapes_at(path, record: ArrangementRecord, t: float) -> List[np.ndarray]:
@@ -473,7 +566,7 @@ def _zero_in_the_middle(*axes) -> None:
 
 
 def draw_event(record: ArrangementRecord, out_path, story: str = '') -> None:
-    """Draw a passing ship's force, the ship's motion and the lines' tensions (module)."""
+    """Draw the loads on the ship, its motion and the lines' tensions (module)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -486,30 +579,40 @@ def draw_event(record: ArrangementRecord, out_path, story: str = '') -> None:
     passing = record.setup.passing
     if len(record.passing_times):
         force.plot(record.passing_times, record.passing_force[:, 0] / 1e3, color='tab:blue',
-                   label='surge force Fx (+ ahead)')
+                   label='passing ship: surge force Fx (+ ahead)')
         force.plot(record.passing_times, record.passing_force[:, 1] / 1e3, color='tab:purple',
-                   label='sway force Fy (+ to port)')
+                   label='passing ship: sway force Fy (+ to port)')
+    if len(record.push_times):  # each load holds until the next
+        force.step(np.append(record.push_times, record.times[-1]),
+                   np.append(record.push_force[:, 1], record.push_force[-1, 1]) / 1e3,
+                   where='post', color='tab:green', label="tugs' sway push (ship/external_wrench)")
+    if np.any(record.fender_force):
+        force.plot(record.fender_times, record.fender_force[:, 1] / 1e3, color='tab:brown',
+                   linewidth=0.9, label="fenders' sway force, all")
+    handles = force.get_lines()
+    if len(record.passing_times):
         moment = force.twinx()
         moment.plot(record.passing_times, record.passing_moment[:, 2] / 1e6, color='0.45',
-                    linestyle=':', label='yaw moment Mz (+ bow to port)')
+                    linestyle=':', label='passing ship: yaw moment Mz (+ bow to port)')
         moment.set_ylabel('yaw moment [MN m]')
         _zero_in_the_middle(force, moment)
-        force.legend(handles=force.get_lines() + moment.get_lines(), loc='upper left',
-                     fontsize='small')
+        handles += moment.get_lines()
+    if handles:  # (the top is for the marks' labels)
+        force.legend(handles=handles, loc='lower left', fontsize='small')
     else:
-        force.text(0.5, 0.5, 'no passing ship recorded (ship/passing_ship_wrench)',
+        force.text(0.5, 0.5, 'no passing ship, tugs or fenders recorded',
                    transform=force.transAxes, ha='center', color='0.4')
     force.axhline(0.0, color='0.6', linewidth=0.8)
     force.set_ylabel('force [kN]')
-    force.set_title("The passing ship's load on the moored ship (ship/passing_ship_wrench, "
-                    'body axes)')
+    force.set_title("The loads on the ship, body axes: a passing ship's "
+                    "(ship/passing_ship_wrench), the tugs', the fenders'")
     if passing.present:
         v = passing.direction * passing.speed
         top = force.secondary_xaxis('top', functions=(lambda t: stagger(passing, t),
                                                       lambda x: (x - passing.start_x) / v))
         top.set_xlabel(f'passing ship ({passing.length:g} m at {passing.speed:g} m/s, '
-                       f'{passing.separation:g} m off): its midship ahead of the moored '
-                       "ship's [m]")
+                       f'{passing.separation:g} m off her start): its midship ahead of the '
+                       "moored ship's [m]")
 
     surge, sway, yaw = ship_offsets(record)
     if len(surge):
@@ -555,6 +658,7 @@ def draw_event(record: ArrangementRecord, out_path, story: str = '') -> None:
     if when is not None and when <= record.times[-1]:
         force.annotate('abeam', (when, 1.0), xycoords=('data', 'axes fraction'),
                        textcoords='offset points', xytext=(3, -12), fontsize='small')
+    draw_marks(record.marks, [force, motion, tension], force)
     figure.savefig(os.fspath(out_path))
 
 
@@ -595,8 +699,10 @@ def draw_tensions(record: ArrangementRecord, out_path, story: str = '') -> None:
     motion.legend(loc='upper right', fontsize='small')
     motion.grid(True, alpha=0.3)
     limit = max(rating.mbl for rating in record.ratings) * 1.05 / 1e3
+    timed = [motion]
     for k, name in enumerate(names):
         axis = figure.add_subplot(grid[1 + k // 2, k % 2], sharex=motion)
+        timed.append(axis)
         rating = record.ratings[k]
         axis.plot(record.times, record.tensions[:, k] / 1e3, color='tab:blue')
         axis.axhline(rating.wll / 1e3, color='tab:orange', linestyle='--',
@@ -627,6 +733,7 @@ def draw_tensions(record: ArrangementRecord, out_path, story: str = '') -> None:
                    'x forward, y to port)')
     load.legend(loc='upper right', fontsize='small')
     load.grid(True, alpha=0.3)
+    draw_marks(record.marks, timed + [load], motion)
     figure.savefig(os.fspath(out_path))
 
 
@@ -738,7 +845,7 @@ def _draw_passing(axis, record: ArrangementRecord, passer, left: float, right: f
     axis.plot(track[:, 0], track[:, 1], color='tab:cyan', linestyle='--', linewidth=0.8)
     inside = (outline[:, 0] >= left) & (outline[:, 0] <= right)
     label = (f'passing ship: {passing.length:g} m at {passing.speed:g} m/s, '
-             f'{passing.separation:g} m off, {abs(ahead):.0f} m '
+             f'{passing.separation:g} m off her start, {abs(ahead):.0f} m '
              f'{"ahead" if ahead >= 0.0 else "astern"}')
     if inside.any():  # on the plan (the axes clip what sticks out)
         axis.fill(outline[:, 0], outline[:, 1], color='tab:cyan', alpha=0.35, label=label)

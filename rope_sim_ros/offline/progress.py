@@ -85,6 +85,14 @@ class Progress:
         eta = f', ~{_clock(left)} left' if math.isfinite(left) and done < total else ''
         return f'[{"#" * filled}{"." * (self.width - filled)}] {what}, {_clock(elapsed)}{eta}'
 
+    def clear(self) -> None:
+        """Clear the bar's line, for a line of text; the next drawing draws it again."""
+        if self._drawn:
+            self.stream.write('\r\x1b[K')
+            self.stream.flush()
+            self._drawn = False
+            self._last = -math.inf
+
     def finish(self) -> None:
         """End the line if the bar was drawn."""
         if self._drawn:

@@ -26,8 +26,10 @@ for silent, a skip ahead, a reset, a clock jump back, a pose dropped for its sta
 parameter set and a winch commanded at run time). Such a bag is replayed in its recorded
 order: poses and events go to the driver as the node took them, and the ropes are stepped to
 each output the node recorded, so the outputs are the node's to round-off, across gaps and
-jumps too. A bag without events (``rope_sim run``), or a re-simulation at another --rate,
-runs the poses in stamp order as ``rope_sim run`` does.
+jumps too. A bag without events, a bag of ``rope_sim run`` (its metadata says so: its
+events are the line-handling commands it took or refused and the releases), or a
+re-simulation at another --rate, runs the poses in stamp order as ``rope_sim run`` does,
+the recorded commands taken again at their times (line_events.py).
 """
 
 from collections import deque
@@ -39,15 +41,17 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
+from .line_events import BagEvents, RECORDED_BY, recorded_commands
 from .motion import Streams
-from .run import DEFAULT_RATE, driver_for, RunSummary, simulate, Tally
+from .run import (bag_events, DEFAULT_RATE, driver_for, layout_of, run_bag, RunSummary,
+                  simulate, Tally)
 from .sinks import BagSink
 from ..bag import bag_info, BagError, read_messages
 from ..bag.cdr import decode_pose_array, decode_pose_stamped, decode_string
 from ..bag.metadata import load_metadata, METADATA_FILE
 from ..messages import topics
 from ..messages.encode import encoder_for
-from ..messages.topics import Layout, LINE_NODE, MOORING_NODE, stream_of_event
+from ..messages.topics import Layout, stream_of_event
 from ..model.frames import pose_point, PoseError, stamp_ns
 from ..mooring.driver import Driver, SHIP
 from ..mooring.events import decode_event
@@ -73,9 +77,16 @@ class ResimSummary:
     skipped: List[str] = field(default_factory=list)
 
 
-def layout_of(setup: ArrangementParams) -> Layout:
-    """Return the topics of the node kind these parameters are for."""
-    return LINE_NODE if setup.single else MOORING_NODE
+def custom_data(path) -> dict:
+    """Return the custom_data of a bag's metadata.yaml, or {} without that file."""
+    metadata_path = os.path.join(os.fspath(path), METADATA_FILE)
+    if not os.path.isfile(metadata_path):
+        return {}
+    try:
+        custom = load_metadata(metadata_path).get('custom_data') or {}
+    except BagError:
+        return {}
+    return custom if isinstance(custom, dict) else {}
 
 
 def stored_setup(path, overrides: Optional[dict] = None) -> Optional[ArrangementParams]:
@@ -87,14 +98,8 @@ def stored_setup(path, overrides: Optional[dict] = None) -> Optional[Arrangement
 
     :raises ParameterError: stored parameters that are not allowed (with the overrides).
     """
-    metadata_path = os.path.join(os.fspath(path), METADATA_FILE)
-    if not os.path.isfile(metadata_path):
-        return None
-    try:
-        custom = load_metadata(metadata_path).get('custom_data') or {}
-    except BagError:
-        return None
-    return from_stored(custom, overrides) if isinstance(custom, dict) else None
+    custom = custom_data(path)
+    return from_stored(custom, overrides) if custom else None
 
 
 def namespaces(path, layout: Layout) -> List[str]:
@@ -156,9 +161,16 @@ def recorded_rate(path, setup: ArrangementParams, namespace: str = '') -> Option
 
 
 def has_events(path, setup: ArrangementParams, namespace: str = '') -> bool:
-    """Tell whether a bag holds a node's decisions (its events topic): a node recording."""
+    """Tell whether a bag holds an events topic (a node's decisions, or a run's events)."""
     topic = bag_info(path).topics.get(f'{namespace}/{layout_of(setup).events}')
     return topic is not None and topic.type_name == topics.STRING
+
+
+def is_node_recording(path, setup: ArrangementParams, namespace: str = '') -> bool:
+    """Tell whether a bag is a node's recording: its events topic, and not a run's bag."""
+    if custom_data(path).get(RECORDED_BY[0]) == RECORDED_BY[1]:
+        return False
+    return has_events(path, setup, namespace)
 
 
 def read_streams(path, setup: ArrangementParams, namespace: str,
@@ -237,16 +249,20 @@ def resim(path, out_path, setup: ArrangementParams, rate: Optional[float] = None
     """
     layout = layout_of(setup)
     namespace = choose_namespace(path, layout, namespace)
-    if rate is None and has_events(path, setup, namespace):
+    if rate is None and is_node_recording(path, setup, namespace):
         return _replay(path, out_path, setup, namespace, progress)
     skipped: List[str] = []
     streams, inputs, types = read_streams(path, setup, namespace, skipped)
+    commands = (recorded_commands(path, f'{namespace}/{layout.events}')
+                if has_events(path, setup, namespace) else [])
     if rate is None:
         rate = recorded_rate(path, setup, namespace) or DEFAULT_RATE
     driver_for(setup, rate)  # a refused line leaves no bag behind
-    sink = BagSink(out_path, encoder_for(setup), namespace, inputs, types, stored(setup))
+    sink = run_bag(out_path, setup, namespace, inputs, types, bool(commands))
+    events = [BagEvents(sink, layout)] if bag_events(setup, bool(commands)) else []
     try:
-        summary = simulate(setup, streams, rate, [sink], progress)
+        summary = simulate(setup, streams, rate, [sink], progress, commands=commands,
+                           events=events)
     except BaseException:
         sink.abandon()
         raise
@@ -289,6 +305,7 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
     skipped: List[str] = []
     dropped: Dict[str, deque] = {stream: deque() for stream in driver.streams}
     restamped: Dict[str, deque] = {stream: deque() for stream in driver.streams}
+    ahead = Ahead(driver)
     first_ns = None
     try:
         for message in read_messages(path, list(resolved)):
@@ -297,8 +314,7 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
                 if not driver.started:
                     continue
                 output_ns = stamp_ns(*decode_pose_array(message.data)[:2])
-                report = driver.outputs_until(driver.seconds(output_ns))
-                for published in report.outputs:
+                for published in ahead.until(output_ns):
                     tally.add(published)
                     sink.write_output(published, message.log_time_ns)
                     first_ns = published.stamp_ns if first_ns is None else first_ns
@@ -307,7 +323,8 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
                 continue
             sink.write(topic, message.data, message.log_time_ns)
             if topic == layout.events:
-                _apply_event(driver, setup, decode_string(message.data), dropped, restamped)
+                _apply_event(driver, setup, decode_string(message.data), dropped, restamped,
+                             ahead)
                 continue
             stream = streams[topic]
             sec, nanosec, _, position, orientation = decode_pose_stamped(message.data)
@@ -337,6 +354,39 @@ def _replay(path, out_path, setup: ArrangementParams, namespace: str,
     return ResimSummary(summary, namespace, driver.rate, skipped)
 
 
+class Ahead:
+    """
+    The outputs the node reached before it published them, as the replay reaches them.
+
+    A live node reaches outputs ahead of the clock and holds them for their time
+    (mooring/pacing.py); a decision taken meanwhile (a command, a winch, a reset) is taken
+    at its state time, after the outputs it holds, which are recorded after it. The replay
+    steps to that time first (catch_up) and writes those outputs as their own recorded
+    messages come (until).
+    """
+
+    def __init__(self, driver: Driver):
+        """Start with nothing reached ahead."""
+        self.driver = driver
+        self.reached: deque = deque()
+
+    def catch_up(self, t: float) -> None:
+        """Step to the state time t [s] at which the node took a decision."""
+        self.reached.extend(self.driver.outputs_until(t).outputs)
+
+    def until(self, output_ns: int) -> list:
+        """Return the outputs up to a recorded one (stamp [ns]), reaching it if need be."""
+        self.reached.extend(self.driver.outputs_until(self.driver.seconds(output_ns)).outputs)
+        done = []
+        while self.reached and self.reached[0].stamp_ns <= output_ns:
+            done.append(self.reached.popleft())
+        return done
+
+    def drop(self) -> None:
+        """Forget the outputs reached ahead: the node never published them (a reset)."""
+        self.reached.clear()
+
+
 def _push(driver: Driver, setup: ArrangementParams, stream: str, ns: int, position,
           orientation) -> None:
     """Push one recorded pose as the node pushes it."""
@@ -348,8 +398,8 @@ def _push(driver: Driver, setup: ArrangementParams, stream: str, ns: int, positi
 
 
 def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: Dict[str, deque],
-                 restamped: Dict[str, deque]) -> None:
-    """Take one of the node's decisions, as the node took it."""
+                 restamped: Dict[str, deque], ahead: Ahead) -> None:
+    """Take one of the node's decisions, as the node took it (at its state time)."""
     try:
         event = decode_event(text)
         kind = event['event']
@@ -368,8 +418,11 @@ def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: D
                 driver.skip(float(event['t']))
         elif kind == 'reset':
             if driver.started:
+                ahead.catch_up(float(event['t']))
+                ahead.drop()  # the node's held outputs, of the lines before the reset
                 driver.reset()
         elif kind == 'clock_back':
+            ahead.drop()
             driver.clear()
         elif kind == 'start':  # a free ship's, at the node's first tick
             if not driver.started:
@@ -379,8 +432,14 @@ def _apply_event(driver: Driver, setup: ArrangementParams, text: str, dropped: D
         elif kind == 'set':
             driver.update(event.get('line'), dict(event['values']))  # None: every line
         elif kind == 'winch':
+            ahead.catch_up(float(event['t']))
             driver.command_winch(event.get('line', setup.names[0] if setup.single else None),
                                  float(event['speed']))
-        # 'parted' and 'ship_restart' say what the model did: replayed, it does it again
+        elif kind == 'command':  # taken by the node, so taken again (a refusal is an error)
+            ahead.catch_up(float(event['t']))
+            command = str(event['command'])
+            driver.command(None if command == 'let_go_all' else str(event['line']), command)
+        # 'parted', 'ship_restart' and 'released' say what the model did: replayed, it does
+        # it again
     except (ValueError, KeyError, TypeError, ParameterError) as e:
         raise BagError(f'{layout_of(setup).events}: cannot replay {text!r}: {e}') from None

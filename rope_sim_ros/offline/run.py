@@ -22,8 +22,16 @@ one sample behind the streams, which moves the ends exactly as if the whole moti
 known. The ropes start at the first ship pose and outputs follow every 1 / rate s up to the
 last one. Each output goes to the sinks (sinks.py: OUT.csv rows, a bag as the node records
 it, a study's summary).
+
+Line-handling commands (COMMANDS.csv, motion.py) go to the Driver's schedule: each is taken
+before the steps of the first output interval that starts at or after its time (so the
+first output to show it is the one after that), and what it did, or why it was refused, is
+a LineEvent, as is a line that its quick-release hook let go. The events go to the event
+sinks in time order with the outputs (the command line prints them) and, in a bag, on the
+node's events topic (line_events.py).
 """
 
+from collections import deque
 from dataclasses import dataclass, field
 import math
 import time
@@ -31,13 +39,14 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .line_events import BagEvents, EventSink, LineEvent, RECORDED_BY
 from .motion import LoadSchedule, MotionError, Streams
 from .sinks import BagSink, CsvSink
 from ..messages import topics
 from ..messages.encode import encoder_for, pose_stamped
-from ..messages.topics import LAYOUTS
+from ..messages.topics import Layout
 from ..mooring.driver import Driver, SHIP
-from ..mooring.records import Published
+from ..mooring.records import Handled, Published, Report, ScheduledCommand
 from ..mooring.ship import reports_ship_loads
 from ..mooring.status import ratings
 from ..params.arrangement import ArrangementParams, stored
@@ -62,6 +71,8 @@ class RunSummary:
         during which a line's ends were farther apart than its reach (its fairlead was held
         at the reach).
     :ivar reach: each line's reach, L (1 + max_strain) [m], by name.
+    :ivar events: the line events (commands taken or refused, releases), in time order.
+    :ivar not_taken: the scheduled commands the run ended before.
     :ivar dropped: bag messages not recorded.
     :ivar wall: wall-clock seconds.
     """
@@ -73,6 +84,8 @@ class RunSummary:
     restarts: List[Tuple[float, str, str]] = field(default_factory=list)
     beyond_reach: List[Tuple[float, str, float]] = field(default_factory=list)
     reach: Dict[str, float] = field(default_factory=dict)
+    events: List[LineEvent] = field(default_factory=list)
+    not_taken: List[ScheduledCommand] = field(default_factory=list)
     dropped: int = 0
     wall: float = 0.0
 
@@ -111,6 +124,66 @@ class Tally:
                 summary.beyond_reach.append((t, self.names[k], distance))
 
 
+class Delivery:
+    """
+    Hands a run's outputs to its sinks and its line events to theirs, in time order.
+
+    A command taken at an output's time comes after that output (it acts on the steps
+    after it); a release comes before the output whose steps it ended.
+    """
+
+    def __init__(self, driver: Driver, summary: RunSummary, origin: float,
+                 sinks: Sequence[Sink], events: Sequence[EventSink],
+                 progress: Optional[Callable[[int, int, float], None]], total: int) -> None:
+        """Deliver to these sinks, counting into `summary` (times from origin [s])."""
+        self.driver = driver
+        self.summary = summary
+        self.tally = Tally(summary, driver.names, origin)
+        self.sinks = list(sinks)
+        self.events = list(events)
+        self.progress = progress
+        self.total = total
+
+    def __call__(self, report: Report) -> None:
+        """Deliver what one call of the driver gave."""
+        pending = deque(report.handled)
+        for published in report.outputs:
+            while pending and pending[0].t < published.output.t:
+                self._send(self._taken(pending.popleft()))
+            if published.advance is not None:
+                for k, tension in published.advance.released.items():
+                    self._send(self._released(k, tension, published.output.t))
+            self.tally.add(published)
+            for sink in self.sinks:
+                sink(published)
+            if self.progress is not None:
+                rows = self.summary.rows
+                self.progress(rows, max(self.total, rows), published.output.t)
+        while pending:
+            self._send(self._taken(pending.popleft()))
+
+    def finish(self) -> None:
+        """Keep the commands the run ended before (summary.not_taken)."""
+        self.summary.not_taken = list(self.driver.command_schedule)
+
+    def _send(self, event: LineEvent) -> None:
+        self.summary.events.append(event)
+        for sink in self.events:
+            sink(event)
+
+    def _taken(self, handled: Handled) -> LineEvent:
+        scheduled = handled.scheduled
+        return LineEvent('command', handled.t, self.driver.stamp_ns(handled.t), scheduled.line,
+                         handled.text, scheduled.command, handled.refused, handled.bollard)
+
+    def _released(self, k: int, tension: float, t: float) -> LineEvent:
+        name = self.driver.names[k]
+        load = self.driver.arrangement.lines[k].params.release_load
+        text = (f'{"line " + name if name else "the line"} let go by its quick-release hook at '
+                f'{tension / 1e3:.1f} kN (release_load {load / 1e3:g} kN)')
+        return LineEvent('released', t, self.driver.stamp_ns(t), name, text, tension=tension)
+
+
 def driver_for(setup: ArrangementParams, rate: float, materials: Any = None) -> Driver:
     """
     Return the Driver of an offline run: no clock, so no skip ahead; the whole motion kept.
@@ -141,18 +214,22 @@ def free_driver(setup: ArrangementParams, loads: Optional[LoadSchedule], rate: f
 def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_RATE,
              sinks: Sequence[Sink] = (),
              progress: Optional[Callable[[int, int, float], None]] = None,
-             materials: Any = None) -> RunSummary:
+             materials: Any = None, commands: Sequence[ScheduledCommand] = (),
+             events: Sequence[EventSink] = ()) -> RunSummary:
     """
     Run the mooring through the streams and hand every output to the sinks.
 
     Simulated time 0 is the first stamp; outputs fall every 1 / rate s from the first ship
     pose to the last.
 
+    :param commands: line-handling commands at their simulated times, in time order.
+    :param events: where each LineEvent goes (also kept in the summary).
     :raises ParameterError: a bad rate, or a pretension no length gives at the first pose.
     :raises TrajectoryError, PoseError: a sample is not usable.
     """
     wall = time.monotonic()
     driver = driver_for(setup, rate, materials)
+    driver.command_schedule.extend(commands)
     names = driver.names
     first_ns = min([int(streams.t_ns[0])] + [int(s[0][0]) for s in streams.bollards.values()])
     for name, speeds in streams.winch.items():
@@ -166,16 +243,7 @@ def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_R
     total = int(math.floor((last_ns - int(streams.t_ns[0])) / 1e9 * rate + 1e-9)) + 1
     summary = RunSummary(time_step=driver.time_step,
                          reach=dict(zip(driver.names, driver.reaches)))
-    tally = Tally(summary, names, streams.origin)
-
-    def take(report) -> None:
-        for published in report.outputs:
-            tally.add(published)
-            for sink in sinks:
-                sink(published)
-            if progress is not None:
-                progress(summary.rows, max(total, summary.rows), published.output.t)
-
+    take = Delivery(driver, summary, streams.origin, sinks, events, progress, total)
     for ns, _, stream, i in order:
         if stream == SHIP:
             driver.push_ship(ns, streams.position[i], streams.orientation[i])
@@ -187,6 +255,7 @@ def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_R
         if driver.started:
             take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
     take(driver.advance(driver.seconds(last_ns), max_lag=math.inf))
+    take.finish()
     summary.wall = time.monotonic() - wall
     return summary
 
@@ -194,13 +263,15 @@ def simulate(setup: ArrangementParams, streams: Streams, rate: float = DEFAULT_R
 def simulate_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSchedule] = None,
                   rate: float = DEFAULT_RATE, sinks: Sequence[Sink] = (),
                   progress: Optional[Callable[[int, int, float], None]] = None,
-                  materials: Any = None) -> RunSummary:
+                  materials: Any = None, commands: Sequence[ScheduledCommand] = (),
+                  events: Sequence[EventSink] = ()) -> RunSummary:
     """
     Run a free ship from rest at its start pose for `duration` s under its loads.
 
     Outputs every 1 / rate s from 0 to duration, each to the sinks.
 
     :param loads: the external load over time (LOADS.csv); None: none.
+    :param commands, events: as simulate's.
     :raises ParameterError: not a free ship, a bad rate or duration, or a pretension no
         length gives at the start pose.
     """
@@ -212,34 +283,34 @@ def simulate_free(setup: ArrangementParams, duration: float, loads: Optional[Loa
         raise ParameterError(f'--duration {duration!r} is not allowed: must be a number of '
                              'seconds > 0')
     driver = free_driver(setup, loads, rate, materials)
+    driver.command_schedule.extend(commands)
     summary = RunSummary(time_step=driver.time_step,
                          reach=dict(zip(driver.names, driver.reaches)))
-    tally = Tally(summary, driver.names)
     total = int(math.floor(duration * rate + 1e-9)) + 1
+    take = Delivery(driver, summary, 0.0, sinks, events, progress, total)
     driver.start_free(0)
     chunk = max(1.0, 10.0 / rate)  # outputs in chunks, so that progress shows
     t = 0.0
     while True:
         t = min(t + chunk, duration)
-        for published in driver.outputs_until(t).outputs:
-            tally.add(published)
-            for sink in sinks:
-                sink(published)
-            if progress is not None:
-                progress(summary.rows, max(total, summary.rows), published.output.t)
+        take(driver.outputs_until(t))
         if t >= duration:
             break
+    take.finish()
     summary.wall = time.monotonic() - wall
     return summary
 
 
 def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSchedule] = None,
              out_path=None, rate: float = DEFAULT_RATE, progress=None,
-             materials: Any = None, sinks: Sequence[Sink] = ()) -> RunSummary:
+             materials: Any = None, sinks: Sequence[Sink] = (),
+             commands: Sequence[ScheduledCommand] = (),
+             events: Sequence[EventSink] = ()) -> RunSummary:
     """
     Run a free ship (simulate_free) into OUT.csv with its motion and fenders (sinks.py).
 
     :param sinks: more sinks every output goes to (a study's SummarySink).
+    :param commands, events: as simulate's.
     :raises ParameterError: as simulate_free, before any file exists.
     :raises OSError: OUT.csv cannot be written.
     """
@@ -252,7 +323,8 @@ def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSche
                          loads=True)
         outputs.insert(0, writer)
     try:
-        summary = simulate_free(setup, duration, loads, rate, outputs, progress, materials)
+        summary = simulate_free(setup, duration, loads, rate, outputs, progress, materials,
+                                commands, events)
     finally:
         if writer is not None:
             writer.close()
@@ -266,8 +338,7 @@ def input_messages(setup: ArrangementParams, streams: Streams) -> Tuple[list, di
     A bollard's pose is its point less its lever (its pose's origin), with identity
     orientation: a re-simulation that adds the bollard's offset finds the same point.
     """
-    layout = LAYOUTS[topics.LINE_NODE.node_name if setup.single else
-                     topics.MOORING_NODE.node_name]
+    layout = layout_of(setup)
     frame_id = setup.shared.frame_id
     rows = [(ns, layout.ship_pose, pose_stamped(ns, frame_id, p, q))
             for ns, p, q in zip(streams.t_ns.tolist(), streams.position, streams.orientation)]
@@ -282,11 +353,14 @@ def input_messages(setup: ArrangementParams, streams: Streams) -> Tuple[list, di
 
 def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                rate: float = DEFAULT_RATE, bag_path=None, progress=None,
-               materials: Any = None, sinks: Sequence[Sink] = ()) -> RunSummary:
+               materials: Any = None, sinks: Sequence[Sink] = (),
+               commands: Sequence[ScheduledCommand] = (),
+               events: Sequence[EventSink] = ()) -> RunSummary:
     """
     Run a motion: OUT.csv rows and/or a bag (sinks.py).
 
     :param sinks: more sinks every output goes to (a study's SummarySink).
+    :param commands, events: as simulate's; a bag records the events too.
     :raises ParameterError: a bad rate or line (before any file exists).
     :raises MotionError: a bag cannot hold negative times.
     :raises BagError: the bag directory exists and is not empty, or recording failed.
@@ -294,6 +368,7 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
     """
     driver = driver_for(setup, rate, materials)  # refuses a bad rate or line first
     outputs: List[Sink] = list(sinks)
+    listeners: List[EventSink] = list(events)
     bag = writer = None
     if bag_path is not None:
         if int(streams.t_ns[0]) < 0:
@@ -301,9 +376,10 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                 f'{streams.path}: data row 1, column {"t"!r}: {streams.origin!r} is negative; '
                 'a bag stamps messages with the simulated time, which must be >= 0')
         inputs, types = input_messages(setup, streams)
-        bag = BagSink(bag_path, encoder_for(setup), '', inputs, types,
-                      stored(setup))
+        bag = run_bag(bag_path, setup, '', inputs, types, bool(commands))
         outputs.insert(0, bag)
+        if bag_events(setup, bool(commands)):
+            listeners.insert(0, BagEvents(bag, layout_of(setup)))
     try:
         if out_path is not None:
             writer = CsvSink(out_path, driver.names, driver.ratings,
@@ -313,7 +389,8 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                                       for fender in setup.fenders],
                              loads=reports_ship_loads(setup))
             outputs.insert(0, writer)
-        summary = simulate(setup, streams, rate, outputs, progress, materials)
+        summary = simulate(setup, streams, rate, outputs, progress, materials, commands,
+                           listeners)
     except BaseException:
         # Ctrl-C or an error: keep what was computed, a complete bag up to here included.
         _close_quietly(writer, bag)
@@ -323,6 +400,28 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
     if bag is not None:
         summary.dropped = bag.close()
     return summary
+
+
+def layout_of(setup: ArrangementParams) -> Layout:
+    """Return the topics of the node kind these parameters are for."""
+    return topics.LINE_NODE if setup.single else topics.MOORING_NODE
+
+
+def bag_events(setup: ArrangementParams, commands: bool) -> bool:
+    """Tell whether a run's bag has an events topic: it has commands, or a hook may release."""
+    return commands or any(line.params.release_load > 0.0 for line in setup.lines)
+
+
+def run_bag(path, setup: ArrangementParams, namespace: str, inputs, input_topics,
+            commands: bool) -> BagSink:
+    """
+    Return the BagSink of a run, as the node records, marked as a run's (RECORDED_BY).
+
+    With the events topic if the run may have events (bag_events).
+    """
+    extra = {layout_of(setup).events: topics.STRING} if bag_events(setup, commands) else {}
+    return BagSink(path, encoder_for(setup), namespace, inputs, input_topics,
+                   {**stored(setup), RECORDED_BY[0]: RECORDED_BY[1]}, extra)
 
 
 def _close_quietly(writer, bag) -> None:

@@ -17,16 +17,18 @@ Where an offline run's outputs go: OUT.csv, a bag as the node records it, a run'
 
 OUT.csv has one row per output. A single line's (the mooring_line node's parameters) has
 LINE_COLUMNS: the forces of the line on both ends, the largest tension at each since the
-previous row, the unstretched length and whether the line has parted, and the payload's
-position (PAYLOAD_COLUMNS) when the line ends in a free payload. An arrangement's has
-ARRANGEMENT_COLUMNS, the total force and moment of the lines on the ship (body frame,
-about its origin), then each line's EACH_LINE_COLUMNS under its name (NAME_tension, ...);
-a free ship's adds its motion (SHIP_COLUMNS: its origin's pose as SHIP.csv names it and
-its velocity, frame_id axes) and each fender's FENDER_COLUMNS under its name; where wind,
-current or a passing ship act (or the ship is free), LOAD_COLUMNS: their loads on the ship,
-body axes about its origin.
+previous row, the unstretched length and whether the line has parted, the payload's
+position (PAYLOAD_COLUMNS) when the line ends in a free payload, and last the line's state
+(STATE_COLUMN). An arrangement's has ARRANGEMENT_COLUMNS, the total force and moment of the
+lines on the ship (body frame, about its origin), then each line's EACH_LINE_COLUMNS under
+its name (NAME_tension, ..., NAME_state); a free ship's adds its motion (SHIP_COLUMNS: its
+origin's pose as SHIP.csv names it and its velocity, frame_id axes) and each fender's
+FENDER_COLUMNS under its name; where wind, current or a passing ship act (or the ship is
+free), LOAD_COLUMNS: their loads on the ship, body axes about its origin.
 Times are in the motion file's own time base; every number is written with Python's
-shortest exact repr, so a row read back gives the very floats that were computed.
+shortest exact repr, so a row read back gives the very floats that were computed. A
+line's state is a word, fast, free or stowed (mooring/handling.py): the one column that is
+not a number, which a reader of numbers leaves out by its name.
 
 The bag holds the inputs (the poses, as the node received them) and every output on the
 topics, with the types and stamps, the node records (messages/encode.py), log time =
@@ -42,7 +44,7 @@ import csv
 import math
 import os
 import time
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -51,6 +53,8 @@ from ..messages.encode import OutputEncoder
 from ..mooring.records import Published
 from ..mooring.status import Rating
 
+# A line's state in OUT.csv: 'fast', 'free' or 'stowed' (a word among the numbers).
+STATE_COLUMN = 'state'
 LINE_COLUMNS = (
     't', 'fairlead_fx', 'fairlead_fy', 'fairlead_fz', 'fairlead_tension',
     'bollard_fx', 'bollard_fy', 'bollard_fz', 'bollard_tension', 'max_strain',
@@ -60,9 +64,9 @@ PAYLOAD_COLUMNS = ('payload_x', 'payload_y', 'payload_z')
 ARRANGEMENT_COLUMNS = ('t', 'force_x', 'force_y', 'force_z', 'moment_x', 'moment_y',
                        'moment_z')
 # Each line's columns in an arrangement's OUT.csv, after ARRANGEMENT_COLUMNS: its tensions,
-# its utilisation, and as a single line's, its peaks, its length and parted (0, 1).
+# its utilisation, and as a single line's, its peaks, its length, parted (0, 1) and state.
 EACH_LINE_COLUMNS = ('tension', 'bollard_tension', 'utilisation', 'fairlead_peak_tension',
-                     'bollard_peak_tension', 'line_length', 'parted')
+                     'bollard_peak_tension', 'line_length', 'parted', STATE_COLUMN)
 # A free ship's motion after the lines' columns: its origin's position [m] and orientation,
 # its origin's velocity [m/s] and its angular velocity [rad/s], frame_id axes.
 SHIP_COLUMNS = ('x', 'y', 'z', 'qx', 'qy', 'qz', 'qw', 'vx', 'vy', 'vz', 'wx', 'wy', 'wz')
@@ -75,6 +79,11 @@ LOAD_COLUMNS = tuple(f'{source}_{column}' for source in ('wind', 'current', 'pas
 # A run's summary per line (SummarySink), under its name, and a free ship's.
 LINE_RESULTS = ('max_tension', 'max_utilisation', 'time_of_max', 'mean_tension', 'parted')
 SHIP_RESULTS = ('max_surge', 'max_sway', 'max_yaw')
+
+
+def _numbers(*values) -> List[str]:
+    """Return numbers as OUT.csv writes them: Python's shortest exact repr of each float."""
+    return [repr(float(v)) for v in values]
 
 
 def row_time(origin: float, t: float) -> float:
@@ -113,7 +122,7 @@ class CsvSink:
         self._file = open(self.path, 'w', newline='', encoding='utf-8')
         self._writer = csv.writer(self._file, lineterminator='\n')
         if self.single:
-            header = LINE_COLUMNS + (PAYLOAD_COLUMNS if payload else ())
+            header = LINE_COLUMNS + (PAYLOAD_COLUMNS if payload else ()) + (STATE_COLUMN,)
         else:
             header = ARRANGEMENT_COLUMNS + tuple(f'{name}_{column}' for name in names
                                                  for column in EACH_LINE_COLUMNS)
@@ -129,19 +138,22 @@ class CsvSink:
         out = published.output
         t = row_time(self.origin, out.t)
         if self.single:
-            numbers = [t, *out.fairlead_forces[0], out.fairlead_tensions[0],
-                       *out.bollard_forces[0], out.bollard_tensions[0], out.max_strains[0],
-                       out.fairlead_peaks[0], out.bollard_peaks[0], out.line_lengths[0],
-                       float(out.parted[0])]
+            cells = _numbers(t, *out.fairlead_forces[0], out.fairlead_tensions[0],
+                             *out.bollard_forces[0], out.bollard_tensions[0], out.max_strains[0],
+                             out.fairlead_peaks[0], out.bollard_peaks[0], out.line_lengths[0],
+                             out.parted[0])
             if self.payload:
-                numbers += list(out.payload_positions[0])
+                cells += _numbers(*out.payload_positions[0])
+            cells.append(out.states[0])
         else:
-            numbers = [t, *published.force, *published.moment]
+            cells = _numbers(t, *published.force, *published.moment)
             for k, rating in enumerate(self.ratings):
                 fairlead, bollard = out.fairlead_tensions[k], out.bollard_tensions[k]
-                numbers += [fairlead, bollard, rating.utilisation(max(fairlead, bollard)),
-                            out.fairlead_peaks[k], out.bollard_peaks[k], out.line_lengths[k],
-                            float(out.parted[k])]
+                cells += _numbers(fairlead, bollard, rating.utilisation(max(fairlead, bollard)),
+                                  out.fairlead_peaks[k], out.bollard_peaks[k],
+                                  out.line_lengths[k], out.parted[k])
+                cells.append(out.states[k])
+            numbers = []
             if self.free:
                 ship = out.ship
                 numbers += [*ship.position, *ship.orientation, *ship.velocity, *ship.omega]
@@ -150,7 +162,8 @@ class CsvSink:
                                                                      normal))]
             if self.loads:
                 numbers += out.ship_loads.ravel().tolist()
-        self._writer.writerow([repr(float(v)) for v in numbers])
+            cells += _numbers(*numbers)
+        self._writer.writerow(cells)
         self.rows += 1
 
     def close(self) -> None:

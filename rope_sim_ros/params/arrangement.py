@@ -35,7 +35,6 @@ allowed. No ROS and no files here beyond reading a parameter file.
 from dataclasses import dataclass, replace
 import difflib
 import os
-import re
 from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 import yaml
@@ -43,6 +42,7 @@ import yaml
 from .bollards import (bollard_setup, BOLLARDS, BollardSetup, check_bollard_names,
                        check_bollard_value, find_bollard)
 from .files import read_params_file
+from .names import check_setting, NAME, NAME_RULE
 from .ship import (check_current_tables, check_fender_names, check_passing_clear,
                    CURRENT_TABLES, fender_setup, FENDER_SPECS, FENDERS, FenderSetup, field_name,
                    PASSING_SHIP, passing_ship, PASSING_SPECS, PassingShipParams, SHIP,
@@ -87,9 +87,7 @@ ARRANGEMENT_SPECS: Mapping[str, Spec] = {
 LINES_DESCRIPTION = ('names of the mooring lines; each line has its settings under its name '
                      '(head_1.material, head_1.fairlead_offset, ...) and its topics in its '
                      'namespace (head_1/fairlead/tension, ...)')
-LINE_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
-LINE_NAME_RULE = ('a name starts with a letter and holds letters, digits and _ (it becomes a '
-                  'parameter prefix and a topic namespace)')
+LINE_NAME_RULE = f'{NAME_RULE} (it becomes a parameter prefix and a topic namespace)'
 MAX_LINES = 64
 # Names a line or a fender cannot take: the prefixes of the ship's own parameters.
 RESERVED = (SHIP, PASSING_SHIP)
@@ -252,7 +250,7 @@ def check_line_names(value: Any) -> List[str]:
                              f'{MAX_LINES} are allowed')
     names = []
     for name in value:
-        if not isinstance(name, str) or not LINE_NAME.match(name):
+        if not isinstance(name, str) or not NAME.match(name):
             raise ParameterError(f'line name {name!r} in {LINES!r} is not allowed: '
                                  f'{LINE_NAME_RULE}')
         if name in names:
@@ -316,19 +314,8 @@ def check_top_value(name: str, value: Any) -> Any:
 
 
 def check_fender_value(fender: str, name: str, value: Any) -> Any:
-    """
-    Validate one setting of a fender; return it in its canonical type.
-
-    :raises ParameterError: an unknown setting or a bad value, named with the fender.
-    """
-    if name not in FENDER_SPECS:
-        raise ParameterError(f'unknown parameter {fender}.{name}; a fender takes: '
-                             f'{", ".join(FENDER_SPECS)}')
-    try:
-        return check(name, value, FENDER_SPECS)
-    except ParameterError as e:
-        raise ParameterError(str(e).replace(f'parameter {name!r}', f'parameter '
-                                            f'{fender + "." + name!r}', 1)) from None
+    """Validate one setting of a fender; return it in its canonical type."""
+    return check_setting('fender', fender, name, value, FENDER_SPECS)
 
 
 def from_values(values: Mapping[str, Any]) -> ArrangementParams:

@@ -23,14 +23,13 @@ the parameter and what is allowed.
 
 from dataclasses import dataclass
 import difflib
-import re
 from typing import Any, Dict, List, Mapping, Sequence, Tuple
 
-from .table import check, ParameterError, Spec
+from .names import check_names, check_setting
+from .table import ParameterError, Spec
 
 BOLLARDS = 'bollards'
 MAX_BOLLARDS = 64
-BOLLARD_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
 BOLLARDS_DESCRIPTION = ('names of the bollards on the quay; each has its settings under its '
                         'name (bollard_1.position, ...), and a line names the one it is made '
                         'fast to (head_1.bollard)')
@@ -57,44 +56,14 @@ class BollardSetup:
 
 
 def check_bollard_names(value: Any, taken: Sequence[str]) -> List[str]:
-    """
-    Validate the `bollards` parameter: up to MAX_BOLLARDS distinct names, none taken.
-
-    :param taken: names that are not allowed (the lines', the fenders').
-    :raises ParameterError: not a list of names, a bad or repeated or taken name.
-    """
-    if value is None:
-        return []
-    if isinstance(value, str) or not isinstance(value, (list, tuple)) or \
-            len(value) > MAX_BOLLARDS:
-        raise ParameterError(f'parameter {BOLLARDS!r} = {value!r} is not allowed: must be a '
-                             f'list of at most {MAX_BOLLARDS} bollard names')
-    names: List[str] = []
-    for name in value:
-        if not isinstance(name, str) or not BOLLARD_NAME.match(name):
-            raise ParameterError(f'bollard name {name!r} in {BOLLARDS!r} is not allowed: a '
-                                 'name starts with a letter and holds letters, digits and _')
-        if name in names or name in taken:
-            raise ParameterError(f'bollard name {name!r} in {BOLLARDS!r} is taken: a line, a '
-                                 'fender, a parameter or another bollard has it')
-        names.append(name)
-    return names
+    """Validate the `bollards` parameter (names.check_names); taken: lines', fenders'."""
+    return check_names(BOLLARDS, value, 'bollard', MAX_BOLLARDS, taken,
+                       'a line, a fender, a parameter')
 
 
 def check_bollard_value(bollard: str, name: str, value: Any) -> Any:
-    """
-    Validate one setting of a bollard; return it in its canonical type.
-
-    :raises ParameterError: an unknown setting or a bad value, named with the bollard.
-    """
-    if name not in BOLLARD_SPECS:
-        raise ParameterError(f'unknown parameter {bollard}.{name}; a bollard takes: '
-                             f'{", ".join(BOLLARD_SPECS)}')
-    try:
-        return check(name, value, BOLLARD_SPECS)
-    except ParameterError as e:
-        raise ParameterError(str(e).replace(f'parameter {name!r}', f'parameter '
-                                            f'{bollard + "." + name!r}', 1)) from None
+    """Validate one setting of a bollard; return it in its canonical type."""
+    return check_setting('bollard', bollard, name, value, BOLLARD_SPECS)
 
 
 def bollard_setup(name: str, values: Mapping[str, Any]) -> BollardSetup:

@@ -51,22 +51,36 @@ def load_yaml(text: str) -> Any:
     return yaml.load(text, Loader=RosLoader)  # noqa: S506 (a safe loader)
 
 
-def read_params_file(path, node_name: str = NODE_NAME) -> dict:
+def read_yaml_file(path, kind: str, error: type = ParameterError) -> Any:
+    """
+    Read a YAML file as load_yaml does.
+
+    :param kind: what the file is, for the errors ('parameter file', 'study file').
+    :raises error: unreadable or not YAML, in one line naming the file.
+    """
+    try:
+        with open(path, encoding='utf-8') as stream:
+            return load_yaml(stream.read())
+    except OSError as e:
+        raise error(f'cannot read {kind} {path}: {e.strerror or e}') from None
+    except yaml.YAMLError as e:
+        raise error(f'{kind} {path} is not valid YAML: {" ".join(str(e).split())}') from None
+
+
+def read_params_file(path, node_name: str = NODE_NAME, optional: bool = False) -> dict:
     """
     Read the `ros__parameters` of `node_name` from a ROS 2 parameter YAML file.
 
     Accepts the node name with or without a namespace and the `/**` wildcard, as the ROS
     parameter file format does.
 
-    :raises ParameterError: unreadable file or no parameters for the node.
+    :param optional: a file with no parameters for the node gives {} (one file may hold
+        several nodes' parameters, or some of them).
+    :raises ParameterError: unreadable file or (not optional) no parameters for the node.
     """
-    try:
-        with open(path, encoding='utf-8') as f:
-            data = load_yaml(f.read())
-    except OSError as e:
-        raise ParameterError(f'cannot read parameter file {path}: {e.strerror}') from None
-    except yaml.YAMLError as e:
-        raise ParameterError(f'parameter file {path} is not valid YAML: {e}') from None
+    data = read_yaml_file(path, 'parameter file')
+    if optional and not isinstance(data, dict):
+        return {}
     if not isinstance(data, dict):
         raise ParameterError(f'parameter file {path} has no "{node_name}:" section')
     values = {}
@@ -74,7 +88,7 @@ def read_params_file(path, node_name: str = NODE_NAME) -> dict:
         short = str(key).rstrip('/').split('/')[-1]
         if short in (node_name, '**') and isinstance(section, dict):
             values.update(section.get('ros__parameters') or {})
-    if not values:
+    if not values and not optional:
         raise ParameterError(
             f'parameter file {path} has no "{node_name}: ros__parameters:" section')
     values.pop('use_sim_time', None)

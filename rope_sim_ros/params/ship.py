@@ -31,10 +31,10 @@ start without further settings; a study of a real ship gives that ship's numbers
 from dataclasses import dataclass, field, fields
 import math
 import os
-import re
 from typing import Any, Dict, List, Mapping, Tuple
 
 from .materials import default_config_dir
+from .names import check_names
 from .table import ParameterError, Spec
 from ..model.ship.coefficients import CoefficientFileError, parse_coefficient_csv
 
@@ -49,7 +49,6 @@ FENDERS_DESCRIPTION = 'names of the fenders on the quay; each has its settings u
 WIND_SETTINGS = ('wind_speed', 'wind_direction')
 # What of the mooring's one environment a run may change, on its topics or as parameters.
 ENVIRONMENT_SETTINGS = ('current',) + WIND_SETTINGS
-FENDER_NAME = re.compile(r'[A-Za-z][A-Za-z0-9_]*\Z')
 
 # The ship as a whole: what the arrangement's top level takes (`ship.mass`, ...).
 SHIP_SPECS: Mapping[str, Spec] = {
@@ -331,28 +330,8 @@ class FenderSetup:
 
 
 def check_fender_names(value: Any, taken) -> List[str]:
-    """
-    Validate the `fenders` parameter: up to MAX_FENDERS distinct names, none taken.
-
-    :param taken: names that are not allowed (the lines', the parameters').
-    :raises ParameterError: not a list of names, a bad or repeated or taken name.
-    """
-    if value is None:
-        return []
-    if isinstance(value, str) or not isinstance(value, (list, tuple)) or \
-            len(value) > MAX_FENDERS:
-        raise ParameterError(f'parameter {FENDERS!r} = {value!r} is not allowed: must be a '
-                             f'list of at most {MAX_FENDERS} fender names')
-    names: List[str] = []
-    for name in value:
-        if not isinstance(name, str) or not FENDER_NAME.match(name):
-            raise ParameterError(f'fender name {name!r} in {FENDERS!r} is not allowed: a name '
-                                 'starts with a letter and holds letters, digits and _')
-        if name in names or name in taken:
-            raise ParameterError(f'fender name {name!r} in {FENDERS!r} is taken: a line, a '
-                                 'parameter or another fender has it')
-        names.append(name)
-    return names
+    """Validate the `fenders` parameter (names.check_names); taken: the lines', parameters'."""
+    return check_names(FENDERS, value, 'fender', MAX_FENDERS, taken, 'a line, a parameter')
 
 
 def fender_setup(name: str, values: Mapping[str, Any]) -> FenderSetup:

@@ -27,12 +27,11 @@ import time
 from geometry_msgs.msg import PoseArray, Wrench
 import numpy as np
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
-import rclpy
 from rclpy.clock import Clock, ClockType
 from rclpy.exceptions import ParameterException
 from rclpy.node import Node
 
-from .spinning import spin_until_shutdown
+from .spinning import run_node
 
 NODE_NAME = 'line_monitor'
 HEADER = f'{"t [s]":>8}  {"fairlead [N]":>12}  {"bollard [N]":>11}  {"max strain":>10}  {"RTF":>5}'
@@ -107,19 +106,7 @@ class LineMonitorNode(Node):
 
 def main(args=None) -> int:
     """Run the monitor until Ctrl-C."""
-    rclpy.init(args=args)
-    try:
-        node = LineMonitorNode()
-    except ParameterException as e:
-        rclpy.logging.get_logger(NODE_NAME).error(str(e))
-        rclpy.try_shutdown()
-        return 2
-    try:
-        spin_until_shutdown(node)
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return run_node(LineMonitorNode, NODE_NAME, (ParameterException,), args)
 
 
 if __name__ == '__main__':

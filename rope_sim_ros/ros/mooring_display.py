@@ -19,19 +19,28 @@ mooring/markers (visualization_msgs/MarkerArray), in frame_id:
 
 - ns 'lines', id k: line k as a LINE_STRIP through its particles, coloured by its band
   (mooring/status.py: green below the WLL, amber past it, red past 90 % of the MBL); a parted
-  line as a grey, dashed LINE_LIST (every other segment);
-- ns 'labels', id k: its name and utilisation above its middle particle (TEXT_VIEW_FACING);
-- ns 'fairleads', id 0 and ns 'bollards', id 0: the ends as SPHERE_LISTs, white and blue;
+  line as a grey, dashed LINE_LIST (every other segment); a line let go (free) light grey;
+  a stowed line is not drawn (its markers are deleted: it lies coiled at its fairlead);
+- ns 'labels', id k: its name and utilisation above its middle particle (TEXT_VIEW_FACING),
+  or its name and 'let go';
+- ns 'fairleads', id 0 and ns 'bollards', id 0: the ends as SPHERE_LISTs, white and blue
+  (the bollard ends of the lines fast on them);
 - ns 'fenders', id f: fender f as a CYLINDER at its contact point, its axis along its
   normal, green, amber past its rated compression; ns 'fender_labels', id f: its name and
-  reaction [kN].
+  reaction [kN];
+- ns 'quay_bollards', id b: named bollard b as an upright CYLINDER at its position, green,
+  amber past its safe working load; ns 'quay_bollard_labels', id b: its name and load [kN].
 
 /diagnostics (diagnostic_msgs/DiagnosticArray): one status per line, named
 '<node>: <line>' (the node's full name: 'mooring: head_1', 'ship_a/mooring:
 head_1'), hardware_id the line's name: OK below the WLL, WARN past it, ERROR once
-it has parted or was restarted since the last report; its values the tension, utilisation,
-peak since the last report, strain, WLL and MBL. One status per fender too, '<node>:
-<fender>': OK, WARN past its rated compression; its values the compression and reaction.
+it has parted or was restarted since the last report; a line let go says so first ('let
+go: ...'), a stowed one is OK, 'stowed'; its values the state, tension, utilisation, peak since
+the last report, strain, WLL and MBL. One status per fender too, '<node>: <fender>': OK,
+WARN past its rated compression; its values the compression and reaction. One per named
+bollard, '<node>: <bollard>': OK, WARN when its load at an output since the last report
+passed its safe working load; its values the load, that peak, the safe working load and the
+lines fast on it.
 """
 
 from typing import List, Optional, Sequence
@@ -44,7 +53,7 @@ from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
 from .conversions import ns_to_stamp
-from ..mooring.status import ABOVE_WLL, COLOURS, OK, PARTED, Rating, WORDS
+from ..mooring.status import ABOVE_WLL, BollardLoad, COLOURS, OK, PARTED, Rating, WORDS
 
 LINE_WIDTH = 0.25  # [m]: a 64 mm line drawn at its size is lost beside a 200 m hull
 END_SIZE = 1.0  # [m]: fairlead and bollard spheres
@@ -56,6 +65,8 @@ LIFETIME = Duration(sec=2)
 FAIRLEAD_COLOUR = (1.0, 1.0, 1.0)
 FENDER_SIZE = (2.0, 2.0, 1.5)  # [m]: diameter across, length along the normal
 BOLLARD_COLOUR = (0.2, 0.4, 1.0)
+FREE_COLOUR = (0.80, 0.80, 0.80)  # a line let go: lighter than a parted line's grey
+QUAY_BOLLARD_SIZE = (1.0, 1.0, 1.2)  # [m]: a bollard's diameter and height
 
 
 def _colour(rgb, alpha: float = 1.0) -> ColorRGBA:
@@ -91,18 +102,27 @@ class LineMarkers:
         marker.header.frame_id = frame_id
         marker.header.stamp = ns_to_stamp(stamp_ns)
         marker.type = kind
+        marker.action = Marker.ADD
         return marker
 
     def __call__(self, frame_id: str, stamp_ns: int, names: Sequence[str],
                  positions: Sequence[np.ndarray], tensions: Sequence[float],
                  ratings: Sequence[Rating], parted: Sequence[bool],
                  fairleads: np.ndarray, bollards: np.ndarray,
-                 fenders: Optional['Fenders'] = None) -> MarkerArray:
-        """Return the markers now (see line_markers), the fenders' too if given."""
+                 fenders: Optional['Fenders'] = None, states: Sequence[str] = (),
+                 bollard_loads: Sequence[BollardLoad] = ()) -> MarkerArray:
+        """
+        Return the markers now (see line_markers), the fenders' and bollards' too if given.
+
+        :param states: each line's state ('fast', 'free', 'stowed'); () = every line fast.
+        :param bollard_loads: each named bollard's load (mooring/status.py).
+        """
         array = _line_markers(self._marker, frame_id, stamp_ns, names, positions, tensions,
-                              ratings, parted, fairleads, bollards)
+                              ratings, parted, fairleads, bollards,
+                              states or ('fast',) * len(names))
         if fenders is not None:
             array.markers += fenders.markers(self._marker, frame_id, stamp_ns)
+        array.markers += _bollard_markers(self._marker, frame_id, stamp_ns, bollard_loads)
         return array
 
 
@@ -170,6 +190,59 @@ class Fenders:
         return statuses
 
 
+def _bollard_markers(_marker, frame_id: str, stamp_ns: int,
+                     loads: Sequence[BollardLoad]) -> List[Marker]:
+    """Return each named bollard's cylinder and label (see the module docstring)."""
+    markers = []
+    width, _, height = QUAY_BOLLARD_SIZE
+    for b, load in enumerate(loads):
+        rgb = COLOURS[ABOVE_WLL if load.over else OK]
+        x, y, z = (float(c) for c in load.position)
+        body = _marker(frame_id, stamp_ns, 'quay_bollards', b, Marker.CYLINDER)
+        body.pose.position = Point(x=x, y=y, z=z + 0.5 * height)  # standing on the quay
+        body.scale.x, body.scale.y, body.scale.z = QUAY_BOLLARD_SIZE
+        body.color = _colour(rgb)
+        label = _marker(frame_id, stamp_ns, 'quay_bollard_labels', b, Marker.TEXT_VIEW_FACING)
+        label.pose.position = Point(x=x, y=y, z=z + height + TEXT_LIFT)
+        label.scale.z = TEXT_SIZE
+        label.color = _colour(rgb)
+        label.text = f'{load.name} {load.load / 1e3:.0f} kN'
+        markers += [body, label]
+    return markers
+
+
+def bollard_statuses(loads: Sequence[BollardLoad], peaks: Sequence[float],
+                     node: str = 'mooring') -> List[DiagnosticStatus]:
+    """
+    Return one DiagnosticStatus per named bollard (see the module docstring).
+
+    :param loads: each bollard's load now; peaks: the largest at an output since the last
+        report [N].
+    """
+    statuses = []
+    for load, peak in zip(loads, peaks):
+        status = DiagnosticStatus(name=f'{node}: {load.name}', hardware_id=load.name)
+        limit = load.safe_working_load
+        if limit > 0.0 and peak > limit:
+            status.level = DiagnosticStatus.WARN
+            status.message = (f'past its safe working load: peak {peak / 1e3:.1f} kN, '
+                              f'{100.0 * peak / limit:.0f} % of it')
+        else:
+            status.level = DiagnosticStatus.OK
+            share = (f', {100.0 * load.load / limit:.0f} % of its safe working load'
+                     if limit > 0.0 else '')
+            status.message = (f'{load.load / 1e3:.1f} kN{share}' if load.lines
+                              else 'no line fast on it')
+        status.values = [KeyValue(key=key, value=value) for key, value in (
+            ('load [N]', f'{load.load:.1f}'),
+            ('peak since last report [N]', f'{peak:.1f}'),
+            ('safe working load [N]', f'{limit:.0f}'),
+            ('lines', ', '.join(load.lines)),
+        )]
+        statuses.append(status)
+    return statuses
+
+
 def _z_to(direction: np.ndarray) -> List[float]:
     """Return the unit quaternion (x, y, z, w) turning +z onto a unit direction."""
     d = direction / max(float(np.linalg.norm(direction)), 1e-12)
@@ -199,7 +272,7 @@ def line_markers(frame_id: str, stamp_ns: int, names: Sequence[str],
 
 
 def _line_markers(_marker, frame_id, stamp_ns, names, positions, tensions, ratings, parted,
-                  fairleads, bollards) -> MarkerArray:
+                  fairleads, bollards, states) -> MarkerArray:
     markers = []
     for k, name in enumerate(names):
         rating, points = ratings[k], np.asarray(positions[k], dtype=float)
@@ -212,19 +285,27 @@ def _line_markers(_marker, frame_id, stamp_ns, names, positions, tensions, ratin
         else:
             line = _marker(frame_id, stamp_ns, 'lines', k, Marker.LINE_STRIP)
             line.points = _points(points)
-            line.color = _colour(COLOURS[band])
+            line.color = _colour(FREE_COLOUR if states[k] == 'free' else COLOURS[band])
         line.scale.x = LINE_WIDTH
         label = _marker(frame_id, stamp_ns, 'labels', k, Marker.TEXT_VIEW_FACING)
         middle = points[len(points) // 2]
         label.pose.position = Point(x=float(middle[0]), y=float(middle[1]),
                                     z=float(middle[2]) + TEXT_LIFT)
         label.scale.z = TEXT_SIZE
-        label.color = _colour(COLOURS[band])
-        label.text = (f'{name} parted' if band == PARTED
-                      else f'{name} {100.0 * rating.utilisation(tensions[k]):.0f} %')
+        label.color = line.color
+        if band == PARTED:
+            label.text = f'{name} parted'
+        elif states[k] == 'free':
+            label.text = f'{name} let go'
+        else:
+            label.text = f'{name} {100.0 * rating.utilisation(tensions[k]):.0f} %'
+        if states[k] == 'stowed' and band != PARTED:  # aboard: not drawn
+            line.action = label.action = Marker.DELETE
         markers += [line, label]
+    fast = [k for k, state in enumerate(states) if state == 'fast']
     for ns, ends, rgb in (('fairleads', fairleads, FAIRLEAD_COLOUR),
-                          ('bollards', bollards, BOLLARD_COLOUR)):
+                          ('bollards', np.asarray(bollards).reshape(-1, 3)[fast],
+                           BOLLARD_COLOUR)):
         spheres = _marker(frame_id, stamp_ns, ns, 0, Marker.SPHERE_LIST)
         spheres.points = _points(ends)
         spheres.scale.x = spheres.scale.y = spheres.scale.z = END_SIZE
@@ -237,7 +318,7 @@ def line_diagnostics(stamp_ns: int, names: Sequence[str], tensions: Sequence[flo
                      peaks: Sequence[float], strains: Sequence[float],
                      ratings: Sequence[Rating], parted: Sequence[bool],
                      restarted: Sequence[Optional[str]],
-                     node: str = 'mooring') -> DiagnosticArray:
+                     node: str = 'mooring', states: Sequence[str] = ()) -> DiagnosticArray:
     """
     Return one DiagnosticStatus per line (see the module docstring).
 
@@ -247,7 +328,9 @@ def line_diagnostics(stamp_ns: int, names: Sequence[str], tensions: Sequence[flo
     :param tensions: each line's tension now [N]; peaks: the largest since the last report.
     :param strains: each line's largest strain now.
     :param restarted: why each line was restarted since the last report, or None.
+    :param states: each line's state ('fast', 'free', 'stowed'); () = every line fast.
     """
+    states = states or ('fast',) * len(names)
     statuses = []
     for k, name in enumerate(names):
         rating = ratings[k]
@@ -256,6 +339,8 @@ def line_diagnostics(stamp_ns: int, names: Sequence[str], tensions: Sequence[flo
         status = DiagnosticStatus(name=f'{node}: {name}', hardware_id=name)
         if parted[k]:
             status.level, status.message = DiagnosticStatus.ERROR, 'parted'
+        elif states[k] == 'stowed':  # aboard: nothing to grade
+            status.level, status.message = DiagnosticStatus.OK, 'stowed'
         elif restarted[k]:
             status.level = DiagnosticStatus.ERROR
             status.message = f'restarted at rest: {restarted[k]}'
@@ -266,7 +351,10 @@ def line_diagnostics(stamp_ns: int, names: Sequence[str], tensions: Sequence[flo
         else:
             status.level = DiagnosticStatus.OK
             status.message = f'{utilisation:.1f} % of MBL'
+        if states[k] == 'free' and not parted[k]:
+            status.message = f'let go: {status.message}'
         status.values = [KeyValue(key=key, value=value) for key, value in (
+            ('state', states[k]),
             ('tension [N]', f'{tensions[k]:.1f}'),
             ('utilisation [%]', f'{utilisation:.2f}'),
             ('peak since last report [N]', f'{peaks[k]:.1f}'),

@@ -48,7 +48,6 @@ after SIGKILL `rope_sim recover` completes it.
 """
 
 import functools
-import gc
 import math
 import os
 import re
@@ -62,7 +61,6 @@ from geometry_msgs.msg import PoseArray, PoseStamped, Vector3Stamped, Wrench, Wr
 from nav_msgs.msg import Odometry
 import numpy as np
 from rcl_interfaces.msg import SetParametersResult
-import rclpy
 from rclpy.clock import Clock, ClockType
 from rclpy.event_handler import QoSMessageLostInfo, SubscriptionEventCallbacks
 from rclpy.exceptions import ParameterException
@@ -76,11 +74,11 @@ from std_srvs.srv import Trigger
 from visualization_msgs.msg import MarkerArray
 
 from . import conversions
-from .mooring_display import Fenders, line_diagnostics, LineMarkers
+from .mooring_display import bollard_statuses, Fenders, line_diagnostics, LineMarkers
 from .outputs import OutputPublishers
 from .parameters import NodeParameters, plain, ROS_PARAMETERS, StartupError
 from .recorder import Recorder
-from .spinning import set_timer_period, spin_until_shutdown
+from .spinning import run_node, set_timer_period
 from ..bag import BagError
 from ..messages import topics
 from ..messages.encode import encoder_for, stiffness_message
@@ -88,6 +86,7 @@ from ..messages.topics import Layout, LINE_NODE, MOORING_NODE
 from ..model.statics.ship import StaticsError
 from ..mooring.driver import Driver, SHIP
 from ..mooring.events import encode_event
+from ..mooring.handling import LINE_COMMANDS
 from ..mooring.pacing import Pace, Pacer
 from ..mooring.records import Published
 from ..mooring.trajectory import TrajectoryError
@@ -183,6 +182,7 @@ class MooringNode(Node):
         # the newest output and what the diagnostics gather between reports
         self._latest: Optional[Published] = None
         self._peaks = np.zeros(len(self.names))
+        self._bollard_peaks = np.zeros(len(setup.bollards))  # each bollard's, at the outputs
         self._restarted: List[Optional[str]] = [None] * len(self.names)
         self._line_markers = LineMarkers()
 
@@ -236,6 +236,7 @@ class MooringNode(Node):
             self._stiffness_pub = self._publisher(Float64MultiArray, topics.STIFFNESS, 10)
             self._set_stiffness_rate(setup.ship.stiffness_rate)
         self._reset_srv = self.create_service(Trigger, '~/reset', self._on_reset)
+        self._command_srvs = self._command_services()
         if driver.free and self.get_parameter('use_sim_time').value:
             # a free ship starts at the first tick of a running clock: say what it waits for
             # (on the steady clock: without /clock no timer of the node clock runs)
@@ -736,6 +737,14 @@ class MooringNode(Node):
                 f'{parting.segment} of {segments} (0 at the bollard): its tension passed the '
                 f'break load of {parting.break_load / 1e3:.0f} kN. Both pieces go on; '
                 '~/reset restores every line')
+        for k, tension in advance.released.items():
+            name = self.names[k]
+            load = driver.arrangement.lines[k].params.release_load
+            self._line_event('released', name, tension=tension, t=published.output.t)
+            self.get_logger().warning(
+                f'{name or "the line"}: its quick-release hook let go at t = '
+                f'{published.output.t:.3f} s: {tension / 1e3:.1f} kN at the bollard, past its '
+                f'release_load of {load / 1e3:.1f} kN')
         for k, distance in advance.beyond_reach.items():
             if driver.partings[k] is not None:
                 continue  # it parted in these steps: its error says what became of it
@@ -776,6 +785,43 @@ class MooringNode(Node):
         self.get_logger().info(response.message)
         return response
 
+    def _command_services(self) -> list:
+        """
+        Create the line-handling services (std_srvs/Trigger, the services' default QoS).
+
+        Each line's make_fast, let_go and stow in its namespace, as its topics are (the single
+        line's at the root), and the mooring node's mooring/let_go_all.
+        """
+        services = [self.create_service(Trigger, self.layout.line_topic(name, command),
+                                        functools.partial(self._on_command, name, command))
+                    for name in self.names for command in LINE_COMMANDS]
+        if self.layout.ship_outputs:
+            services.append(self.create_service(
+                Trigger, topics.LET_GO_ALL,
+                functools.partial(self._on_command, None, 'let_go_all')))
+        return services
+
+    def _on_command(self, name: Optional[str], command: str, request: Trigger.Request,
+                    response: Trigger.Response) -> Trigger.Response:
+        """
+        Take a line-handling command at the present simulated time (the state time).
+
+        Between two advances of the ropes, as ~/reset and winch commands are: the outputs
+        reached before it are of the lines before it. One taken is logged, published and
+        recorded as a 'command' event (resim takes it again there); one refused changed
+        nothing and is logged only.
+        """
+        try:
+            text = self.driver.command(name, command)
+        except ValueError as e:  # CommandError: the line's state or the numbers say why
+            response.success, response.message = False, str(e)
+            self.get_logger().warning(f'{command} refused: {e}')
+            return response
+        self._line_event('command', name, command=command, t=self.driver.time, text=text)
+        self.get_logger().info(text)
+        response.success, response.message = True, text
+        return response
+
     # -- outputs --------------------------------------------------------------------------
 
     def _publish(self, published: Published) -> None:
@@ -797,6 +843,9 @@ class MooringNode(Node):
         self._publish_parted(published.output.parted)
         self._latest = published
         self._peaks = np.maximum(self._peaks, published.output.peaks)  # every step's
+        if published.bollard_loads:
+            self._bollard_peaks = np.maximum(self._bollard_peaks,
+                                             [load.load for load in published.bollard_loads])
 
     def _publish_parted(self, parted) -> None:
         """Publish (and record) on each line's parted topic whether it has parted, if new."""
@@ -815,11 +864,12 @@ class MooringNode(Node):
             self.driver.arrangement.shared.frame_id, published.stamp_ns, self.names,
             out.positions, np.maximum(out.fairlead_tensions, out.bollard_tensions),
             self.ratings, out.parted, np.array([p[-1] for p in out.positions]),
-            np.array([p[0] for p in out.positions]), self._fenders(published))
+            np.array([p[0] for p in out.positions]), self._fenders(published), out.states,
+            published.bollard_loads)
         self._markers_pub.publish(msg)
 
     def _on_diagnostics(self) -> None:
-        """Publish one status per line; its peak and restarts count from the last report."""
+        """Publish one status per line, fender and bollard; peaks count from the last report."""
         published = self._latest
         prefix = self.get_fully_qualified_name().lstrip('/')
         if published is None:
@@ -833,12 +883,14 @@ class MooringNode(Node):
             msg = line_diagnostics(
                 published.stamp_ns, self.names,
                 np.maximum(out.fairlead_tensions, out.bollard_tensions), self._peaks,
-                out.max_strains, self.ratings, out.parted, self._restarted, prefix)
+                out.max_strains, self.ratings, out.parted, self._restarted, prefix, out.states)
             self._peaks = np.zeros(len(self.names))
             self._restarted = [None] * len(self.names)
             fenders = self._fenders(published)
             if fenders is not None:
                 msg.status += fenders.statuses(prefix)
+            msg.status += bollard_statuses(published.bollard_loads, self._bollard_peaks, prefix)
+            self._bollard_peaks = np.zeros(len(self._bollard_peaks))
         self._diagnostics_pub.publish(msg)
 
     def _fenders(self, published: Published) -> Optional[Fenders]:
@@ -857,7 +909,19 @@ class MooringNode(Node):
             fields.update(self.layout.event_stream(stream))
         if line != ():
             fields.update(self.layout.line_field(line))
-        msg = String(data=encode_event(kind, **fields))
+        self._send_event(encode_event(kind, **fields))
+
+    def _line_event(self, kind: str, line: Optional[str], **fields: Any) -> None:
+        """
+        Publish and record a line-handling event ('command', 'released').
+
+        Its line is always named: '' for let_go_all and for the single line (the fields
+        mooring/events.py gives them).
+        """
+        self._send_event(encode_event(kind, line=line or '', **fields))
+
+    def _send_event(self, text: str) -> None:
+        msg = String(data=text)
         self._events_pub.publish(msg)
         self.record(self.layout.events, msg)
 
@@ -1028,31 +1092,7 @@ def run(layout: Layout, args=None) -> int:
     if help_asked(sys.argv if args is None else args):
         print(usage(layout), end='')
         return 0
-    rclpy.init(args=args)
-    try:
-        node = MooringNode(layout)
-    except StartupError as e:
-        rclpy.logging.get_logger(layout.node_name).error(str(e))
-        rclpy.try_shutdown()
-        return 2
-    except KeyboardInterrupt:
-        rclpy.try_shutdown()
-        return 0
-    except Exception:
-        if rclpy.ok():
-            raise
-        return 0  # SIGTERM during start-up: rclpy shut the context down under us
-    # What start-up allocated (rclpy, numpy, numba: ~1e5 objects) lives as long as the node:
-    # keep it out of the cyclic collector, whose full passes over it took ~45 ms mid-run.
-    gc.freeze()
-    try:
-        # from here to the end, SIGINT and SIGTERM only stop the spin: the node's teardown
-        # and its bag's closing run whatever signals come (a terminal's and ros2 launch's)
-        spin_until_shutdown(node)
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return run_node(lambda: MooringNode(layout), layout.node_name, (StartupError,), args)
 
 
 def main_line(args=None) -> int:

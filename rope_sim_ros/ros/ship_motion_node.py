@@ -29,11 +29,10 @@ import sys
 
 from geometry_msgs.msg import PoseStamped
 from rcl_interfaces.msg import FloatingPointRange, ParameterDescriptor
-import rclpy
 from rclpy.exceptions import ParameterException
 from rclpy.node import Node
 
-from .spinning import spin_until_shutdown
+from .spinning import run_node
 
 NODE_NAME = 'ship_motion'
 
@@ -140,19 +139,7 @@ def main(args=None) -> int:
            (argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv)[1:]):
         print(USAGE, end='')
         return 0
-    rclpy.init(args=args)
-    try:
-        node = ShipMotionNode()
-    except ParameterException as e:
-        rclpy.logging.get_logger(NODE_NAME).error(str(e))
-        rclpy.try_shutdown()
-        return 2
-    try:
-        spin_until_shutdown(node)
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return run_node(ShipMotionNode, NODE_NAME, (ParameterException,), args)
 
 
 if __name__ == '__main__':

@@ -22,6 +22,7 @@ fraction is the mean over the segment of the ramp r(z) = clip((level - z) / dv +
 piecewise smooth in both particles' heights, so a segment crossing the surface feels no jump.
 (MoorDyn's Line::calcSubSeg takes the fraction of the segment's length below the surface,
 with a small correction of d/2 at the surface: the same almost everywhere, with a kink.)
+A parted segment joins nothing: each half of it is wetted at its own particle's height, r(z_i).
 
 With A_v = pi dv^2 / 4 and the displaced mass D_i = A_v (rho_w sub_i + rho_a (len_i - sub_i)):
 
@@ -47,7 +48,7 @@ added mass Ca_p rho V, isotropic, with rho blended between water and air as for 
 import numba
 import numpy as np
 
-from ..layout import REST
+from ..layout import LENGTH, REST, STIFFNESS
 
 
 @numba.njit(cache=True, inline='always')
@@ -111,16 +112,29 @@ def line_pass(x, particles, first, last, level, width, wet, tangents, sub, tange
 
     :param first, last: the line's particle rows (inclusive).
     :param level, width: the water level and the ramp's width dv [m].
-    :param wet: compute sub (else it is left as it is: zero when there is no water).
+    :param wet: compute sub (else it is left as it is: zero when there is no water); a
+        parted segment's halves each at their own particle's height (point_fraction).
     :param tangents: compute the tangents: interior unit(x[i+1] - x[i-1]), an end its
         segment's direction.
     """
     if wet:
         before = 0.0  # wetted length of the segment before particle i
         for i in range(first, last):
-            s = wetted_fraction(x[i, 2], x[i + 1, 2], level, width) * particles[i, REST]
-            sub[i] = 0.5 * (before + s)
-            before = s
+            if particles[i, STIFFNESS] > 0.0:  # whole
+                s = wetted_fraction(x[i, 2], x[i + 1, 2], level, width) * particles[i, REST]
+                sub[i] = 0.5 * (before + s)
+                before = s
+            else:
+                # parted (parting.py): its REST, PARTED_REST = 1e300 m, is no length of
+                # rope (times a wetted fraction of 6.5e-6 it displaced D = 8e294 kg, and
+                # accelerate's mass along the line, a + b = m + Ca D + (CaAx - Ca) D,
+                # rounded to 0: a division by zero). Half of its rope hangs at each piece's
+                # end, wetted at that particle's own height: the particle's lumped length
+                # less the half segment on its other side.
+                half = particles[i, LENGTH] - (0.5 * particles[i - 1, REST] if i > first
+                                               else 0.0)
+                sub[i] = 0.5 * before + point_fraction(x[i, 2], level, width) * half
+                before = 2.0 * point_fraction(x[i + 1, 2], level, width) * half
         sub[last] = 0.5 * before
     if tangents:
         _unit(x, first, first + 1, tangent, first)

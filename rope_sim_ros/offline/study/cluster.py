@@ -91,6 +91,7 @@ class Job:
     :ivar loads: the free ship's loads file (None: none).
     :ivar seed: the seed of its random inputs.
     :ivar csv, bag: send back its OUT.csv, its bag.
+    :ivar commands: its line-handling commands (ScheduledCommand), in time order.
     """
 
     index: int
@@ -102,6 +103,7 @@ class Job:
     seed: int
     csv: bool
     bag: bool
+    commands: Tuple[Any, ...] = ()
 
 
 @dataclass
@@ -242,7 +244,7 @@ def run_case(job: Job, streams: Optional[Streams]) -> Outcome:
                                       free=streams is None)
                 if streams is not None:
                     run_motion(job.setup, streams, out_path, job.rate, bag_path,
-                               sinks=[summary])
+                               sinks=[summary], commands=job.commands)
                 else:
                     _free_ship(job, out_path, summary)
                 outcome.summary = summary.summary()
@@ -273,7 +275,8 @@ def _free_ship(job: Job, out_path: Optional[str], summary: SummarySink) -> None:
     if setup.ship.wind_seed == SHIP_SPECS['wind_seed'].default:
         setup = replace(setup, ship=replace(setup.ship, wind_seed=job.seed))
     loads = read_loads(job.loads) if job.loads else None
-    run_free(setup, job.duration, loads, out_path, job.rate, sinks=[summary])
+    run_free(setup, job.duration, loads, out_path, job.rate, sinks=[summary],
+             commands=job.commands)
 
 
 def check_runnable(study: Study, prepared: List[PreparedCase]) -> None:
@@ -292,7 +295,7 @@ def job_of(study: Study, item: PreparedCase) -> Job:
     """Return the job of a prepared case."""
     return Job(item.case.index, item.key, item.setup, study.duration, study.rate,
                item.case.loads, item.case.seed, study.keep in ('csv', 'both'),
-               study.keep in ('bag', 'both'))
+               study.keep in ('bag', 'both'), item.commands)
 
 
 def default_workers() -> int:

@@ -21,6 +21,7 @@ A study is a mapping under ``study:``::
       arrangement: ../../config/berth.yaml   # the base parameter file (relative to this file)
       duration: 60.0                         # [s] every case's simulated time
       motion: passing.csv                    # SHIP.csv of a driven ship (or loads: LOADS.csv)
+      # commands: lines.csv                  # COMMANDS.csv: lines made fast, let go, stowed
       rate: 10.0                             # [Hz] rows of each case's OUT.csv (default 10)
       set: {segments: 20}                    # fixed overrides of every case, as --set
       factors:                               # every combination is a case ...
@@ -32,15 +33,17 @@ A study is a mapping under ``study:``::
 
 A factor (or a key of a case) is any parameter `--set` takes (top-level, `head_1.pretension`,
 `head_1.material`, `passing_ship.speed`, ...) or one of CASE_FILES (`arrangement`, `motion`,
-`loads`: a file per case, relative to the study file) or `seed`. Full factorial: the last
-factor varies fastest; case k is the k-th combination (0-based). Every case's parameters are
-validated here, before anything runs: a study with a bad value refuses at once, in one line
-naming the case; what only a run can find (a pretension no length gives, a blow-up) is the
-case's failure, recorded in the results (cluster.py).
+`loads`, `commands`: a file per case, relative to the study file) or `seed`. Full factorial:
+the last factor varies fastest; case k is the k-th combination (0-based). Every case's
+parameters are validated here, before anything runs, and its commands against its lines
+and bollards: a study with a bad value refuses at once, in one line naming the case; what
+only a run can find (a pretension no length gives, a blow-up, a refused command) is the
+case's failure or its run's business, recorded in the results (cluster.py).
 
 Each case has a key: a hash of everything its results depend on (its validated parameters,
-the motion it runs, its duration, rate, seed and kept files). A study started again skips
-the cases whose stored key matches, and runs a case again whose inputs changed.
+the motion and the commands it runs, its duration, rate, seed and kept files). A study
+started again skips the cases whose stored key matches, and runs a case again whose inputs
+changed.
 """
 
 from dataclasses import dataclass, field
@@ -52,24 +55,24 @@ import os
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
-import yaml
 
-from ..motion import read_ship_motion, Streams
+from ..motion import MotionError, read_commands, read_ship_motion, Streams
 from ...params.arrangement import (ArrangementParams, flatten, from_values,
                                    is_arrangement_file, NODE_NAME)
-from ...params.files import load_yaml, read_params_file
+from ...params.files import read_params_file, read_yaml_file
 from ...params.table import ParameterError
 
 STUDY = 'study'
 ARRANGEMENT = 'arrangement'
 MOTION = 'motion'
 LOADS = 'loads'
+COMMANDS = 'commands'
 SEED = 'seed'
 # Keys naming a file per case (relative to the study file): the case's inputs, not parameters.
-CASE_FILES = (ARRANGEMENT, MOTION, LOADS)
+CASE_FILES = (ARRANGEMENT, MOTION, LOADS, COMMANDS)
 KEEP_CHOICES = ('csv', 'bag', 'both', 'none')
-KEYS = (ARRANGEMENT, 'duration', MOTION, LOADS, 'factors', 'cases', SEED, 'rate', 'set', 'keep',
-        'heatmap')
+KEYS = (ARRANGEMENT, 'duration', MOTION, LOADS, COMMANDS, 'factors', 'cases', SEED, 'rate',
+        'set', 'keep', 'heatmap')
 DEFAULT_RATE = 10.0
 MAX_RATE = 1000.0
 MAX_DURATION = 1.0e6
@@ -89,7 +92,8 @@ class Case:
     :ivar index: its number (0-based), the `case` column of the results.
     :ivar values: its factors: (name as in the study, value as written), in column order.
     :ivar overrides: its parameter values (the values less CASE_FILES and seed), flat.
-    :ivar arrangement, motion, loads: its files (absolute paths; motion and loads may be None).
+    :ivar arrangement, motion, loads, commands: its files (absolute paths; all but the
+        arrangement may be None).
     :ivar seed: the seed of its random inputs.
     """
 
@@ -100,6 +104,7 @@ class Case:
     motion: Optional[str]
     loads: Optional[str]
     seed: int
+    commands: Optional[str] = None
 
     def describe(self, limit: int = 160) -> str:
         """Return its values as name=value, ..., cut at `limit` characters."""
@@ -151,12 +156,15 @@ class PreparedCase:
     :ivar setup: its parameters, validated.
     :ivar streams: the ship's motion cut to the duration (None for a free ship).
     :ivar key: hash of everything its results depend on (see the module docstring).
+    :ivar commands: its line-handling commands (mooring/records.py ScheduledCommand), checked
+        against its lines and bollards; () without a commands file.
     """
 
     case: Case
     setup: ArrangementParams
     streams: Optional[Streams]
     key: str
+    commands: Tuple[Any, ...] = ()
 
 
 def format_value(value: Any) -> str:
@@ -217,14 +225,7 @@ def read_study(path) -> Study:
         or bad arrangement, duration, rate, seed, keep, set, factors or cases (one line).
     """
     path = os.fspath(path)
-    try:
-        with open(path, encoding='utf-8') as stream:
-            data = load_yaml(stream.read())
-    except OSError as e:
-        raise StudyError(f'cannot read study file {path}: {e.strerror or e}') from None
-    except yaml.YAMLError as e:
-        raise StudyError(f'study file {path} is not valid YAML: '
-                         f'{" ".join(str(e).split())}') from None
+    data = read_yaml_file(path, 'study file', StudyError)
     if not isinstance(data, dict) or not isinstance(data.get(STUDY), dict):
         raise StudyError(f'{path}: expected a mapping `{STUDY}:` with {ARRANGEMENT}, duration '
                          'and factors or cases')
@@ -256,7 +257,7 @@ def read_study(path) -> Study:
             raise StudyError(f'{_where(path, "set")}: {name!r} is the study\'s own key: give it '
                              f'as {STUDY}.{name}')
     defaults = {ARRANGEMENT: spec[ARRANGEMENT], MOTION: spec.get(MOTION),
-                LOADS: spec.get(LOADS), SEED: seed}
+                LOADS: spec.get(LOADS), COMMANDS: spec.get(COMMANDS), SEED: seed}
     has_factors, has_cases = 'factors' in spec, 'cases' in spec
     if has_factors == has_cases:
         raise StudyError(f'{path}: give either {STUDY}.factors (a mapping of parameter name to '
@@ -328,7 +329,8 @@ def _case(path: str, index: int, names: Sequence[str], row: Mapping[str, Any],
     overrides = {name: value for name, value in row.items()
                  if name not in CASE_FILES and name != SEED}
     values = tuple((name, row[name]) for name in names if name in row)
-    return Case(index, values, overrides, files[ARRANGEMENT], files[MOTION], files[LOADS], seed)
+    return Case(index, values, overrides, files[ARRANGEMENT], files[MOTION], files[LOADS], seed,
+                files[COMMANDS])
 
 
 def _heatmap(path: str, value: Any, names: Sequence[str]) -> Optional[Tuple[str, str]]:
@@ -413,6 +415,7 @@ def prepare(study: Study) -> List[PreparedCase]:
     bases: Dict[str, Dict[str, Any]] = {}
     motions: Dict[str, Tuple[Streams, str]] = {}
     loads: Dict[str, str] = {}
+    commands: Dict[Tuple[str, Tuple[str, ...], Tuple[str, ...]], Tuple[Any, ...]] = {}
     prepared = []
     for case in study.cases:
         if case.arrangement not in bases:
@@ -440,10 +443,43 @@ def prepare(study: Study) -> List[PreparedCase]:
         if case.loads is not None and case.loads not in loads:
             loads[case.loads] = _file_digest(case.loads)
         streams, motion_digest = motions[case.motion] if case.motion else (None, '')
+        scheduled = _commands(study, case, setup, commands)
         key = _digest(json.dumps({
             'parameters': setup.values(), 'motion': motion_digest,
             'loads': loads.get(case.loads, ''), 'duration': repr(study.duration),
             'rate': repr(study.rate), 'seed': case.seed, 'keep': study.keep,
+            # only with commands: a case without keeps the key it had before they existed
+            **({'commands': [[c.t, c.line, c.command, c.bollard] for c in scheduled]}
+               if scheduled else {}),
         }, sort_keys=True, default=repr).encode())
-        prepared.append(PreparedCase(case, setup, streams, key))
+        prepared.append(PreparedCase(case, setup, streams, key, scheduled))
     return prepared
+
+
+def _commands(study: Study, case: Case, setup: ArrangementParams,
+              read: Dict[Tuple[str, Tuple[str, ...], Tuple[str, ...]], Tuple[Any, ...]]
+              ) -> Tuple[Any, ...]:
+    """
+    Return a case's commands, read once per file and set of line and bollard names.
+
+    A command at or after the study's duration would never be taken: refused, as a bad row.
+    """
+    if case.commands is None:
+        return ()
+    names = tuple(setup.names)
+    bollards = tuple(bollard.name for bollard in setup.bollards)
+    key = (case.commands, names, bollards)
+    if key not in read:
+        try:
+            schedule = read_commands(case.commands, names, bollards)
+        except MotionError as e:
+            raise StudyError(f'{study.path}: case {case.index} ({case.describe()}): {e}') \
+                from None
+        for command, row in zip(schedule.commands, schedule.rows):
+            if command.t >= study.duration:
+                raise StudyError(
+                    f'{study.path}: case {case.index} ({case.describe()}): {schedule.path}: '
+                    f"data row {row}, column 't': {command.t:g} s is not before the study's "
+                    f'duration of {study.duration:g} s: the command would never be taken')
+        read[key] = schedule.commands
+    return read[key]
