@@ -216,8 +216,8 @@ class Client:
     A test node beside an installed node: its poses (and /clock) out, its outputs kept.
 
     In sim time (sim_time True) the client publishes /clock and is the node's only clock:
-    the node's time is what the test says (drive_sim_time). On the wall clock its poses are
-    stamped when they are sent (drive). It publishes each pose stream's `<stream>/pose`
+    the node's time is what the test says (drive). On the wall clock its poses are
+    stamped when they are sent (drive_wall). It publishes each pose stream's `<stream>/pose`
     (client.publishers, by topic), keeps each topic of `keep` as an Inbox named
     `client.<name>` (a dict of Keep: a dict of Inboxes), and calls the node's parameter and
     ~/reset services (client.parameters, client.reset). Topics are relative to `namespace`.
@@ -369,8 +369,8 @@ class Client:
                     time.monotonic())
 
     @no_gc_pauses()
-    def drive_sim_time(self, start_ns: int, seconds: float, fairlead=None, bollard=None,
-                       rate=50.0, speed=1.0, at=None, ship=None) -> List[Sent]:
+    def drive(self, start_ns: int, seconds: float, fairlead=None, bollard=None,
+              rate=50.0, speed=1.0, at=None, ship=None) -> List[Sent]:
         """
         Publish /clock and the poses of sim time [start_ns, start_ns + seconds] at `rate`.
 
@@ -388,13 +388,13 @@ class Client:
                           {'fairlead': fairlead, 'bollard': bollard, 'ship': ship})
 
     @no_gc_pauses()
-    def drive(self, seconds: float, fairlead=None, bollard=None, rate=50.0, at=None,
-              ship=None) -> List[Sent]:
+    def drive_wall(self, seconds: float, fairlead=None, bollard=None, rate=50.0, at=None,
+                   ship=None) -> List[Sent]:
         """
         Publish poses at `rate` for [0, seconds] of the wall clock, each stamped as it is made.
 
-        As drive_sim_time, without /clock: t [s] is when a pose is due (k / rate from the
-        first); a late one (this process stalled) has the position of its due time.
+        As drive, without /clock: t [s] is when a pose is due (k / rate from the first);
+        a late one (this process stalled) has the position of its due time.
         """
         return self._send(seconds, rate, 1.0, at, None,
                           {'fairlead': fairlead, 'bollard': bollard, 'ship': ship})

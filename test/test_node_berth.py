@@ -48,7 +48,7 @@ def wrenches(client: Client) -> dict:
 
 def drive(client: Client, seconds: float) -> None:
     """Publish /clock and the ship at rest at 50 Hz of sim time from START."""
-    client.drive_sim_time(START, seconds, ship=lambda t: REST)
+    client.drive(START, seconds, ship=lambda t: REST)
 
 
 def dump_parameters(client: Client) -> dict:

@@ -82,7 +82,7 @@ def sim_node(colcon_install, colcon_env, tmp_path):
         client.wait_for_node(node)
         # The node's clock: /clock for 0.5 s before START. Meanwhile the node's side of
         # discovery settles too (a pose sent at once after wait_for_node may be lost).
-        client.drive_sim_time(START - 500_000_000, 0.5, fairlead=None)
+        client.drive(START - 500_000_000, 0.5, fairlead=None)
         return node, client
 
     yield start
@@ -111,7 +111,7 @@ def test_poses_stamped_far_from_the_clock_are_dropped_and_the_stream_goes_on(sim
         if offset is not None:
             client.pose(motion(t) + [0.0, 0.0, 2.0], START + round((t + offset) * 1e9))
 
-    client.drive_sim_time(START, 5.0, motion, at=send_stray)
+    client.drive(START, 5.0, motion, at=send_stray)
     # the rope stays one sample behind the stream: outputs every 20 ms from 0 to 4.98 s
     client.wait_for(lambda: len(client.outputs()) >= 250, 30.0, '250 outputs')
     assert node.interrupt() == 0
@@ -164,8 +164,8 @@ def test_a_jump_of_either_end_restarts_the_rope_at_the_new_place(sim_node):
             return up
         return b1 + [0.0, smooth_step(t, 2.0, 1.0), 0.0]
 
-    client.drive_sim_time(START, 7.0, lambda t: FAIRLEAD if t < 6.0 else f2,
-                          bollard=lambda t: bollard(t) if t >= 1.0 else None)
+    client.drive(START, 7.0, lambda t: FAIRLEAD if t < 6.0 else f2,
+                 bollard=lambda t: bollard(t) if t >= 1.0 else None)
     client.wait_for(lambda: len(client.outputs()) >= 350, 30.0, '350 outputs')
     assert node.interrupt() == 0
     jumps = log_lines(node, ' jumped ')
@@ -264,11 +264,11 @@ def test_publish_rate_changes_take_effect_with_the_next_output(sim_node):
             raise AssertionError(f'{e}; the last is at {(last - START) * 1e-9:.4f} s, '
                                  f'{len(client.outputs())} outputs') from None
 
-    client.drive_sim_time(START, 1.0, stay)
+    client.drive(START, 1.0, stay)
     caught_up(START + SECOND, 50.0)
     result = client.set_parameter('publish_rate', 137.0)
     assert result.successful, result.reason
-    client.drive_sim_time(START + SECOND + 20_000_000, 0.98, stay)
+    client.drive(START + SECOND + 20_000_000, 0.98, stay)
     caught_up(START + 2 * SECOND, 137.0)
     assert node.interrupt() == 0
     assert '[WARN]' not in node.text() and '[ERROR]' not in node.text(), node.text()

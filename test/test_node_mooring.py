@@ -101,10 +101,13 @@ def rotation_matrix(q):
         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
-def mooring_process(install, env, log, params_file, *ros_args) -> Executable:
-    """Start the installed mooring executable with a parameter file, its log in a file."""
-    return Executable(install, env, log, 'mooring', '--ros-args', '--params-file',
-                      str(params_file), *ros_args)
+class MooringProcess(Executable):
+    """The installed mooring executable with a parameter file, its log in a file."""
+
+    def __init__(self, install, env, log, params_file, *ros_args):
+        """Start it with params_file and extra --ros-args (e.g. '-p', 'use_sim_time:=true')."""
+        super().__init__(install, env, log, 'mooring', '--ros-args', '--params-file',
+                         str(params_file), *ros_args)
 
 
 def mooring_client() -> Client:
@@ -131,8 +134,8 @@ def drive(client: Client, start: float, seconds: float) -> None:
     back outputs that one pose let through together (at publish_rate 100 Hz) up to a pose
     period for their time on the clock, which stops here.
     """
-    sent = client.drive_sim_time(SIM_START + round(start * 1e9), seconds - 1.0 / RATE,
-                                 ship=lambda t: ship_pose(start + t), rate=RATE)
+    sent = client.drive(SIM_START + round(start * 1e9), seconds - 1.0 / RATE,
+                        ship=lambda t: ship_pose(start + t), rate=RATE)
     due = sent[-3].stamp_ns
 
     def out():
@@ -164,8 +167,8 @@ def mooring(colcon_install, colcon_env, tmp_path_factory):
     folder = tmp_path_factory.mktemp('mooring')
     params_file = folder / 'three_lines.yaml'
     params_file.write_text(yaml.safe_dump({'mooring': {'ros__parameters': line_values()}}))
-    node = mooring_process(colcon_install, colcon_env, folder / 'mooring.log', params_file,
-                           '-p', 'use_sim_time:=true')
+    node = MooringProcess(colcon_install, colcon_env, folder / 'mooring.log', params_file,
+                          '-p', 'use_sim_time:=true')
     client = mooring_client()
     try:
         client.wait_for_node(node)
@@ -402,7 +405,7 @@ def test_bad_arrangement_exits_with_one_error_line(colcon_install, colcon_env, t
     values.update(change)
     params_file = tmp_path / 'bad.yaml'
     params_file.write_text(yaml.safe_dump({'mooring': {'ros__parameters': values}}))
-    node = mooring_process(colcon_install, colcon_env, tmp_path / 'bad.log', params_file)
+    node = MooringProcess(colcon_install, colcon_env, tmp_path / 'bad.log', params_file)
     assert node.process.wait(60) == 2
     errors = [line for line in node.text().splitlines() if '[ERROR]' in line]
     assert len(errors) == 1, node.text()

@@ -130,7 +130,7 @@ def test_static_fairlead_gives_catenary_tension(line_node):
     assert client.particles == [] and client.fairlead == []
     assert len(log_lines(node, 'waiting for the first pose on /line/fairlead/pose')) == 1
 
-    client.drive(4.0, lambda t: FAIRLEAD, rate=20.0)
+    client.drive_wall(4.0, lambda t: FAIRLEAD, rate=20.0)
     line = OneLine(default_line())
     expected = catenary.solve_catenary(
         math.hypot(FAIRLEAD[0], FAIRLEAD[1]), FAIRLEAD[2], line.props.length,
@@ -163,7 +163,7 @@ def test_static_fairlead_gives_catenary_tension(line_node):
 def test_reset_restarts_the_rope_at_rest(line_node):
     node, client = line_node
     # shake the line (0.4 m along the chord and back), then hold the fairlead still
-    client.drive(1.5, lambda t: FAIRLEAD + 0.4 * CHORD * (
+    client.drive_wall(1.5, lambda t: FAIRLEAD + 0.4 * CHORD * (
         smooth_step(t, 0.0, 0.3) - smooth_step(t, 0.3, 0.3)))
     chain = chain_at(FAIRLEAD)
     before = np.abs(particle_array(client.particles[-1][1]) - chain.positions).max()
@@ -175,7 +175,7 @@ def test_reset_restarts_the_rope_at_rest(line_node):
     asked = time.monotonic()
     client.clear()
     for _ in range(25):  # 0.2 s is plenty on a quiet machine
-        assert client.drive(0.2, lambda t: FAIRLEAD)
+        assert client.drive_wall(0.2, lambda t: FAIRLEAD)
         after = [(t, msg) for t, msg in client.particles if t > asked]
         if after:
             break
@@ -190,11 +190,11 @@ def _ringing(client: Client) -> float:
     response = client.call(client.reset.call_async(Trigger.Request()))
     assert response.success
     client.clear()
-    client.drive(2.4, lambda t: FAIRLEAD + 0.3 * CHORD * smooth_step(t, 0.5, 0.4))
+    client.drive_wall(2.4, lambda t: FAIRLEAD + 0.3 * CHORD * smooth_step(t, 0.5, 0.4))
     start = client.fairlead[0][0]
     window = [fairlead_tension(w) for t, w in client.fairlead if start + 1.1 < t < start + 2.3]
     assert len(window) > 30
-    client.drive(0.3, lambda t: FAIRLEAD + 0.3 * CHORD * (1.0 - smooth_step(t, 0.0, 0.3)))
+    client.drive_wall(0.3, lambda t: FAIRLEAD + 0.3 * CHORD * (1.0 - smooth_step(t, 0.0, 0.3)))
     return float(np.std(window))
 
 
@@ -244,7 +244,7 @@ def test_parameters(line_node):
 
 def test_bad_input_is_dropped_and_output_stays_finite(line_node):
     node, client = line_node
-    client.drive(0.3, lambda t: FAIRLEAD)
+    client.drive_wall(0.3, lambda t: FAIRLEAD)
     client.clear()
     now = time.time_ns
     nan, inf = float('nan'), float('inf')
@@ -262,7 +262,7 @@ def test_bad_input_is_dropped_and_output_stays_finite(line_node):
     client.spin(0.05)
     client.pose(FAIRLEAD + [0.0, 0.0, 6.0])  # a teleport: restart there
     client.spin(0.3)
-    client.drive(1.0, lambda t: FAIRLEAD)  # and back (another teleport)
+    client.drive_wall(1.0, lambda t: FAIRLEAD)  # and back (another teleport)
     assert len(client.fairlead) > 40, 'the node stopped publishing'
     assert all_finite(client)
     # back on the catenary at the fairlead (mean over the restart's ringing)
@@ -278,13 +278,13 @@ def test_bad_input_is_dropped_and_output_stays_finite(line_node):
 
 def test_a_stalled_node_skips_ahead_instead_of_spiralling(line_node):
     node, client = line_node
-    client.drive(0.5, lambda t: FAIRLEAD, rate=20.0)
+    client.drive_wall(0.5, lambda t: FAIRLEAD, rate=20.0)
     client.spin(0.8)  # the poses stop: the node warns and goes on with the clock
     assert log_lines(node, 'fairlead/pose: no new pose for 0.5 s: the fairlead coasts to a stop')
     skips = log_lines(node, 's behind the clock: skipped ahead')
     _frozen(node, 1.5, lambda: client.spin(1.5))  # too far behind: skip
     client.clear()
-    client.drive(1.0, lambda t: FAIRLEAD, rate=20.0)
+    client.drive_wall(1.0, lambda t: FAIRLEAD, rate=20.0)
     # every skip is logged (each restarts the rope), with a count
     new = log_lines(node, 's behind the clock: skipped ahead')[len(skips):]
     assert len(new) == 1, new
@@ -357,7 +357,7 @@ def test_moving_fairlead_matches_the_offline_simulator(colcon_install, colcon_en
     try:
         client.wait_for_node(node)
         client.spin(0.5)  # let discovery settle both ways: the first pose must not be lost
-        sent = client.drive_sim_time(SIM_START, seconds, motion)
+        sent = client.drive(SIM_START, seconds, motion)
         assert node.interrupt() == 0
         client.spin(0.3)  # everything the node published has arrived
     finally:
@@ -450,7 +450,7 @@ def test_sigint_ends_the_node_cleanly(line_node):
     try:
         # a live node, not just a started one (a loaded machine may take a while to answer)
         for _ in range(30):
-            client.drive(0.3, lambda t: FAIRLEAD)
+            client.drive_wall(0.3, lambda t: FAIRLEAD)
             if client.fairlead:
                 break
         assert client.fairlead

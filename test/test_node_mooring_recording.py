@@ -21,7 +21,7 @@ Its own module: the shared node of test_node_mooring, on the same topics, is gon
 from geometry_msgs.msg import WrenchStamped
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
-from test_node_mooring import drive, line_values, mooring_client, mooring_process
+from test_node_mooring import drive, line_values, mooring_client, MooringProcess
 import yaml
 
 
@@ -32,8 +32,8 @@ def test_the_bag_holds_the_wrenches_a_subscriber_received(colcon_install, colcon
     values = dict(line_values(), record_path=str(tmp_path / 'bag'))
     params_file = tmp_path / 'recording.yaml'
     params_file.write_text(yaml.safe_dump({'mooring': {'ros__parameters': values}}))
-    node = mooring_process(colcon_install, colcon_env, tmp_path / 'recording.log', params_file,
-                           '-p', 'use_sim_time:=true')
+    node = MooringProcess(colcon_install, colcon_env, tmp_path / 'recording.log', params_file,
+                          '-p', 'use_sim_time:=true')
     client = mooring_client()
     world = client.subscribe('ship/mooring_wrench_world', WrenchStamped, 2000, lambda m: m)
     try:

@@ -118,7 +118,7 @@ def drive(client: Client, seconds: float, rate: float = 50.0, bollard_every: int
         return (0.0, 0.0, 0.0) if round(t * rate) % bollard_every == 0 else None
 
     sent = {'fairlead/pose': [], 'bollard/pose': []}
-    for pose in client.drive(seconds, fairlead_motion, bollard, rate=rate):
+    for pose in client.drive_wall(seconds, fairlead_motion, bollard, rate=rate):
         sent[f'{pose.stream}/pose'].append(recorded(pose))
     return sent
 

@@ -78,7 +78,7 @@ def record(colcon_install, colcon_env, tmp_path, namespace, drive, *ros_args):
     try:
         client.wait_for_node(node)
         # the clock; discovery settles meanwhile
-        client.drive_sim_time(START - 500_000_000, 0.5, fairlead=None)
+        client.drive(START - 500_000_000, 0.5, fairlead=None)
         drive(client, node)
         assert node.interrupt() == 0, node.text()
     finally:
@@ -109,7 +109,7 @@ def compare(node_bag, tmp_path, namespace: str) -> tuple:
 def test_resim_of_a_rolling_ship_gives_the_node_forces_and_torques(
         colcon_install, colcon_env, tmp_path):
     def drive(client, node):
-        client.drive_sim_time(START, 4.0, ship)
+        client.drive(START, 4.0, ship)
         client.wait_for(lambda: len(client.outputs()) >= 199, 30.0, '199 outputs')
 
     bag, node = record(colcon_install, colcon_env, tmp_path, '/resim_roll', drive)
@@ -139,18 +139,18 @@ def test_resim_reproduces_the_node_across_a_gap_a_jump_a_skip_and_a_reset(
         return position + [3.6, 0.0, 0.0], orientation
 
     def drive(client, node):
-        client.drive_sim_time(START, 2.0, ship)
-        client.drive_sim_time(START + 2_020_000_000, 0.98, fairlead=None)
-        client.drive_sim_time(START + 3_000_000_000, 1.5, lambda t: moved(3.0 + t))
+        client.drive(START, 2.0, ship)
+        client.drive(START + 2_020_000_000, 0.98, fairlead=None)
+        client.drive(START + 3_000_000_000, 1.5, lambda t: moved(3.0 + t))
         client.wait_for(lambda: client.outputs()[-1][0] >= START + 4_460_000_000, 30.0,
                         'the outputs up to 4.46 s')
-        client.drive_sim_time(START + 6_500_000_000, 1.0, lambda t: moved(6.5 + t))
+        client.drive(START + 6_500_000_000, 1.0, lambda t: moved(6.5 + t))
         client.wait_for(lambda: client.outputs()[-1][0] >= START + 7_460_000_000, 30.0,
                         'the outputs up to 7.46 s')
         future = client.reset.call_async(Trigger.Request())
         client.wait_for(future.done, 10.0, 'the reset')
         assert future.result().success
-        client.drive_sim_time(START + 7_520_000_000, 0.5, lambda t: moved(7.52 + t))
+        client.drive(START + 7_520_000_000, 0.5, lambda t: moved(7.52 + t))
 
     bag, node = record(colcon_install, colcon_env, tmp_path, '/resim_gap', drive)
     recorded = events(bag, '/resim_gap')
@@ -177,7 +177,7 @@ def test_a_payload_node_publishes_and_records_its_pose(colcon_install, colcon_en
     def drive(client, node):
         client.node.create_subscription(
             PoseStamped, 'payload/pose', lambda m: received.append(m), 1000)
-        client.drive_sim_time(START, 2.0, ship, bollard=lambda t: [0.0, 0.0, 0.0])
+        client.drive(START, 2.0, ship, bollard=lambda t: [0.0, 0.0, 0.0])
         client.wait_for(lambda: len(client.outputs()) >= 99 and len(received) >= 50, 30.0,
                         '99 outputs')
 

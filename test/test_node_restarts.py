@@ -47,7 +47,7 @@ def line_node(colcon_install, colcon_env, tmp_path):
         client.wait_for_node(node)
         client.wait_for(lambda: all(s.get_publisher_count() for s in subscriptions), 30.0,
                         'the peak topics')
-        client.drive_sim_time(START - 500_000_000, 0.5, fairlead=None)
+        client.drive(START - 500_000_000, 0.5, fairlead=None)
         yield node, client, peaks, parted
     finally:
         client.close()
@@ -60,9 +60,9 @@ def test_a_bollard_teleport_past_the_reach_parts_the_line_without_a_peak(line_no
     # stretch to (issue: 4.4 MN on bollard/peak_tension, EA x max_strain, on a line that
     # never parted). It parts as it restarts; no number of the jump reaches an output.
     node, client, peaks, parted = line_node
-    client.drive_sim_time(START, 2.0, lambda t: FAIRLEAD,
-                          bollard=lambda t: (None if t < 0.5 else [0.0, 0.0, 0.0] if t < 1.0
-                                             else [-20.0, 0.0, 0.0]))
+    client.drive(START, 2.0, lambda t: FAIRLEAD,
+                 bollard=lambda t: (None if t < 0.5 else [0.0, 0.0, 0.0] if t < 1.0
+                                    else [-20.0, 0.0, 0.0]))
     client.wait_for(lambda: len(client.outputs()) >= 99, 30.0, 'the outputs')
     assert node.interrupt() == 0
     outputs = client.outputs()
@@ -87,7 +87,7 @@ def test_a_line_pulled_apart_parts_without_reach_logs_after(line_node):
     def fairlead(t):
         return FAIRLEAD + [26.0 * min(max(t - 0.5, 0.0) / 3.0, 1.0), 0.0, 0.0]
 
-    client.drive_sim_time(START, 5.0, fairlead)
+    client.drive(START, 5.0, fairlead)
     client.wait_for(lambda: len(client.outputs()) >= 249, 30.0, 'the outputs')
     assert node.interrupt() == 0
     text = node.text()

@@ -94,7 +94,7 @@ def test_a_steady_stream_is_never_silent_beside_calls_stalls_and_late_deliveries
 
     try:
         client.wait_for_node(node)
-        first = client.drive(1.98, ship=rest)[0].made  # started, settled
+        first = client.drive_wall(1.98, ship=rest)[0].made  # started, settled
         stopped = []
 
         def scenario(t):
@@ -112,7 +112,7 @@ def test_a_steady_stream_is_never_silent_beside_calls_stalls_and_late_deliveries
                 return 'hold'  # a late delivery: the poses made, sent together later
             return not 15.0 <= t < 15.9  # the real gap
 
-        sent = np.array([s.made for s in client.drive(17.98, ship=rest, at=scenario)]) - first
+        sent = np.array([s.made for s in client.drive_wall(17.98, ship=rest, at=scenario)]) - first
         for poke in pokes:
             poke.wait(30)
         assert node.interrupt() == 0
@@ -192,7 +192,7 @@ def test_outputs_between_slower_poses_go_out_evenly(colcon_install, colcon_env, 
                     keep={'tensions': Keep('fairlead/tension', Wrench)})
     try:
         client.wait_for_node(node)
-        client.drive(9.95, lambda t: FAIRLEAD, rate=20.0)
+        client.drive_wall(9.95, lambda t: FAIRLEAD, rate=20.0)
         stream_end = time.monotonic()
         client.spin(0.5)
         assert node.interrupt() == 0
@@ -230,7 +230,7 @@ def test_a_bag_logs_on_the_node_clock_from_its_first_message(
         assert client.set_parameter('axial_damping', 1000.0).successful
         client.pose(FAIRLEAD, START)  # before any /clock
         client.wait_for(lambda: len(client.outputs()) >= 1, 20.0, 'the first output')
-        client.drive_sim_time(START + 20_000_000, 1.0, lambda t: FAIRLEAD)
+        client.drive(START + 20_000_000, 1.0, lambda t: FAIRLEAD)
         client.wait_for(lambda: len(client.outputs()) >= 50, 20.0, 'the outputs')
         assert node.interrupt() == 0
     finally:
