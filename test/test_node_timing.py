@@ -71,16 +71,15 @@ def log_lines(node, word: str) -> list:
     return [line for line in node.text().splitlines() if word in line]
 
 
-def test_a_steady_stream_is_never_silent_beside_calls_stalls_and_late_deliveries(
+def test_a_steady_stream_is_never_silent_beside_calls_and_a_stall(
         colcon_install, colcon_env, tmp_path):
-    # The berth's eight lines, 50 Hz ship poses on the wall clock for 20 s, recorded. From
+    # The berth's eight lines, 50 Hz ship poses on the wall clock for 15 s, recorded. From
     # 4 s to 11 s, every 1.5 s a process does what `ros2 param list/get/describe` and `ros2
-    # topic echo --once` do (issue: 4-12 false `silent` events a minute, on a 3 s grid); at
-    # 7 s the node is stopped for 0.4 s (SIGSTOP: its timer late, its poses queued); at
-    # 13.5 s and 15 s the poses come 0.35 s late, all at once, as when DDS discovers a new
-    # participant (issue: 1-4 false `silent` events a minute with the ros2 daemon beside
-    # the node, 0.30-0.33 s without a pose taken); at 17 s the poses stop for 0.9 s: the one
-    # real silence.
+    # topic echo --once` do (issue: 4-12 false `silent` events a minute, on a 3 s grid; and
+    # 1-4 a minute with the ros2 daemon beside the node: 0.30-0.33 s without a pose taken
+    # while DDS discovered a new participant); at 7 s the node is stopped for 0.4 s
+    # (SIGSTOP: its timer late, its poses queued); at 12 s the poses stop for 0.9 s: the one
+    # real silence. (test_pacing.py plays this with poses delivered 0.35 s late, twice.)
     bag = tmp_path / 'bag'
     node = Executable(colcon_install, colcon_env, tmp_path / 'mooring.log', 'mooring',
                       '--ros-args', '--params-file', str(berth_file(tmp_path / 'berth.yaml')),
@@ -108,11 +107,9 @@ def test_a_steady_stream_is_never_silent_beside_calls_stalls_and_late_deliveries
             if 5.4 <= t and len(stopped) == 1:
                 os.kill(node.process.pid, signal.SIGCONT)
                 stopped.append(t)
-            if 11.5 <= t < 11.85 or 13.0 <= t < 13.35:
-                return 'hold'  # a late delivery: the poses made, sent together later
-            return not 15.0 <= t < 15.9  # the real gap
+            return not 10.0 <= t < 10.9  # the real gap
 
-        sent = np.array([s.made for s in client.drive_wall(17.98, ship=rest, at=scenario)]) - first
+        sent = np.array([s.made for s in client.drive_wall(12.98, ship=rest, at=scenario)]) - first
         for poke in pokes:
             poke.wait(30)
         assert node.interrupt() == 0
@@ -135,14 +132,14 @@ def test_a_steady_stream_is_never_silent_beside_calls_stalls_and_late_deliveries
     print(f'{len(pokes)} probes; gaps over {live} s as sent: {real}; the longest others: '
           f'{np.sort(gaps[gaps <= live])[-3:]}')
     assert len(pokes) == 5
-    assert any(16.9 < start < 17.1 and 17.8 < end < 18.1 for start, end in real[:-1]), real
+    assert any(11.9 < start < 12.1 and 12.8 < end < 13.1 for start, end in real[:-1]), real
     silent = [e for e in bag_events(bag) if e['event'] == 'silent']
     warnings = log_lines(node, f'no new pose for {Pacer.LIVE_INPUT:g} s')
     # Silent only in a real gap (t: how far the ropes had gone when the node took it for
     # silent, at most a pose period past the last pose), and in the planned one.
     assert all(any(start - 0.05 < e['t'] < end + 0.05 for start, end in real)
                for e in silent), (silent, real)
-    assert any(16.8 < e['t'] < 17.9 for e in silent), silent
+    assert any(11.8 < e['t'] < 12.9 for e in silent), silent
     assert 1 <= len(warnings) <= len(silent) <= len(real), (silent, warnings, node.text())
     assert 'skipped ahead' not in node.text() and '[ERROR]' not in node.text()
 

@@ -266,7 +266,8 @@ def test_a_free_ship_starts_at_the_first_tick_of_a_running_clock(repo_root):
 
 
 def test_a_stream_beside_stalls_and_late_deliveries_is_silent_only_in_its_real_gap():
-    # test_node_timing.py's scenario: 50 Hz poses for 20 s, each 1 ms on its way; the node
+    # test_node_timing.py's steady stream (over DDS: calls beside it, a stall, a real gap)
+    # with late deliveries besides: 50 Hz poses for 20 s, each 1 ms on its way; the node
     # stopped for 0.4 s at 7 s (SIGSTOP); the poses of 13.5-13.85 s and of 15-15.35 s held
     # back and delivered with the next one (as while DDS discovers a new participant); none
     # in 17-17.9 s: the one real silence.
