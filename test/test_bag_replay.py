@@ -15,7 +15,7 @@
 """
 bag_replay + the installed mooring_line node (use_sim_time) re-run a recording.
 
-The recording is made offline with ``rope_sim run --bag`` on a smooth 9 s surge after 1 s
+The recording is made offline with ``rope_sim run --bag`` on a smooth 5 s surge after 1 s
 at rest; the replayed fairlead tension, taken at the stamps of the node's rope/particles
 published with it, must match the recorded one within 2 % NRMSE (RMS difference / RMS of
 the recorded series minus its mean). Both sides use the same fixed time step.
@@ -40,7 +40,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
 
 NAMESPACE = '/replay_test'
-SECONDS = 10.0
+SECONDS = 6.0
 REST = 1.0  # seconds at rest before the surge
 TIME_STEP = 1.0 / 3200.0  # divides 10 ms: the runner's and the node's steps coincide
 TIMEOUT = 60.0
@@ -79,17 +79,25 @@ def stop(process, log):
         raise AssertionError(f'{process.args[0]} ignored SIGINT:\n{log.read_text()}')
 
 
-def test_replay_through_the_node_reproduces_the_recorded_tension(
-        colcon_install, colcon_env, tmp_path):
-    bin_dir = colcon_install / 'lib' / 'rope_sim_ros'
-    write_inputs(tmp_path)
-    params, bag = tmp_path / 'params.yaml', tmp_path / 'recorded'
+@pytest.fixture(scope='module')
+def recording(colcon_install, colcon_env, tmp_path_factory):
+    """Record the inputs once with `rope_sim run`: a folder with params.yaml, out.csv, the bag."""
+    base = tmp_path_factory.mktemp('recording')
+    write_inputs(base)
     result = subprocess.run(
-        [str(bin_dir / 'rope_sim'), 'run', '--params', str(params), '--motion',
-         str(tmp_path / 'motion.csv'), '--out', str(tmp_path / 'out.csv'), '--bag', str(bag)],
+        [str(colcon_install / 'lib' / 'rope_sim_ros' / 'rope_sim'), 'run', '--params',
+         str(base / 'params.yaml'), '--motion', str(base / 'motion.csv'), '--out',
+         str(base / 'out.csv'), '--bag', str(base / 'recorded')],
         env=colcon_env, capture_output=True, text=True, timeout=TIMEOUT)
     assert result.returncode == 0, result.stderr
-    with open(tmp_path / 'out.csv', newline='') as f:
+    return base
+
+
+def test_replay_through_the_node_reproduces_the_recorded_tension(
+        colcon_install, colcon_env, recording, tmp_path):
+    bin_dir = colcon_install / 'lib' / 'rope_sim_ros'
+    params, bag = recording / 'params.yaml', recording / 'recorded'
+    with open(recording / 'out.csv', newline='') as f:
         rows = list(csv.DictReader(f))
     t_ref = np.array([float(r['t']) for r in rows])
     tension_ref = np.array([float(r['fairlead_tension']) for r in rows])
@@ -168,15 +176,9 @@ def test_replay_through_the_node_reproduces_the_recorded_tension(
      '/bollard/tension, /fairlead/peak_tension, /fairlead/pose'),
 ])
 def test_bad_arguments_are_named_with_exit_code_2(
-        colcon_install, colcon_env, tmp_path, arguments, complaint):
-    write_inputs(tmp_path)
-    bag = tmp_path / 'recorded'
+        colcon_install, colcon_env, recording, arguments, complaint):
     bin_dir = colcon_install / 'lib' / 'rope_sim_ros'
-    subprocess.run(
-        [str(bin_dir / 'rope_sim'), 'run', '--params', str(tmp_path / 'params.yaml'),
-         '--motion', str(tmp_path / 'motion.csv'), '--bag', str(bag), '--quiet'],
-        env=colcon_env, check=True, capture_output=True, timeout=TIMEOUT)
-    result = subprocess.run([str(bin_dir / 'bag_replay'), str(bag), *arguments],
+    result = subprocess.run([str(bin_dir / 'bag_replay'), str(recording / 'recorded'), *arguments],
                             env=colcon_env, capture_output=True, text=True, timeout=TIMEOUT)
     assert result.returncode == 2, result.stderr
     assert result.stderr.startswith('bag_replay: error: ') and complaint in result.stderr

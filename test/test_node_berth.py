@@ -25,15 +25,10 @@ from pathlib import Path
 import re
 import time
 
-from geometry_msgs.msg import PoseStamped, WrenchStamped
-from node_harness import berth_file, Executable, spin_until
+from geometry_msgs.msg import WrenchStamped
+from node_harness import berth_file, Client, Executable, Keep
 import numpy as np
-import rclpy
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import parameter_value_to_python
-from rclpy.parameter_client import AsyncParameterClient
-from rclpy.signals import SignalHandlerOptions
-from rosgraph_msgs.msg import Clock
 import yaml
 
 REPO = Path(__file__).resolve().parent.parent
@@ -44,73 +39,30 @@ NAMES = ['head_1', 'head_2', 'breast_fwd', 'spring_fwd', 'spring_aft', 'breast_a
          'stern_1', 'stern_2']
 
 
-class Client:
-    """A test node: /clock and ship poses in sim time; the wrench kept by stamp; parameters."""
+def wrenches(client: Client) -> dict:
+    """Return {stamp [ns]: force (x, y, z) [N]} of the wrenches the client received."""
+    return {msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec:
+            np.array([msg.wrench.force.x, msg.wrench.force.y, msg.wrench.force.z])
+            for _, msg in client.wrenches}
 
-    def __init__(self):
-        self.context = rclpy.Context()
-        rclpy.init(context=self.context, signal_handler_options=SignalHandlerOptions.NO)
-        self.node = rclpy.create_node('berth_test', context=self.context)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
-        self.ship_pub = self.node.create_publisher(PoseStamped, 'ship/pose', 1000)
-        self.clock_pub = self.node.create_publisher(Clock, '/clock', 10)
-        self.wrenches = {}
-        self.sub = self.node.create_subscription(
-            WrenchStamped, 'ship/mooring_wrench', self._keep, 1000)
-        self.parameters = AsyncParameterClient(self.node, 'mooring')
 
-    def _keep(self, msg):
-        stamp = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
-        f = msg.wrench.force
-        self.wrenches[stamp] = np.array([f.x, f.y, f.z])
+def drive(client: Client, seconds: float) -> None:
+    """Publish /clock and the ship at rest at 50 Hz of sim time from START."""
+    client.drive(START, seconds, ship=lambda t: REST)
 
-    def close(self):
-        self.executor.shutdown()
-        self.node.destroy_node()
-        rclpy.try_shutdown(context=self.context)
 
-    def wait_for(self, condition, timeout: float, what: str, node=None) -> None:
-        spin_until(self.executor, condition, timeout, what, node)
-
-    def wait_for_node(self, node) -> None:
-        self.wait_for(lambda: self.parameters.services_are_ready()
-                      and self.ship_pub.get_subscription_count() > 0
-                      and self.clock_pub.get_subscription_count() > 0
-                      and self.sub.get_publisher_count() > 0, 90.0, 'the node', node)
-
-    def drive(self, seconds: float) -> None:
-        """Publish /clock and the ship at rest at 50 Hz of sim time from START."""
-        wall = time.monotonic()
-        for k in range(round(seconds * 50) + 1):
-            while time.monotonic() - wall < k / 50:
-                self.executor.spin_once(timeout_sec=0.002)
-            ns = START + k * 20_000_000
-            clock = Clock()
-            clock.clock.sec, clock.clock.nanosec = divmod(ns, 1_000_000_000)
-            self.clock_pub.publish(clock)
-            msg = PoseStamped()
-            msg.header.frame_id = 'world'
-            msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(ns, 1_000_000_000)
-            msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = REST
-            msg.pose.orientation.w = 1.0
-            self.ship_pub.publish(msg)
-
-    def dump(self) -> dict:
-        """Return the node's parameters as `ros2 param dump` writes them (nested at dots)."""
-        future = self.parameters.list_parameters()
-        self.wait_for(future.done, 10.0, 'list_parameters')
-        names = list(future.result().result.names)
-        future = self.parameters.get_parameters(names)
-        self.wait_for(future.done, 10.0, 'get_parameters')
-        nested = {}
-        for name, value in zip(names, future.result().values):
-            *path, leaf = name.split('.')
-            where = nested
-            for key in path:
-                where = where.setdefault(key, {})
-            where[leaf] = parameter_value_to_python(value)
-        return {'/mooring': {'ros__parameters': nested}}
+def dump_parameters(client: Client) -> dict:
+    """Return the node's parameters as `ros2 param dump` writes them (nested at dots)."""
+    names = list(client.call(client.parameters.list_parameters()).result.names)
+    values = client.call(client.parameters.get_parameters(names)).values
+    nested = {}
+    for name, value in zip(names, values):
+        *path, leaf = name.split('.')
+        where = nested
+        for key in path:
+            where = where.setdefault(key, {})
+        where[leaf] = parameter_value_to_python(value)
+    return {'/mooring': {'ros__parameters': nested}}
 
 
 def lengths(dump: dict) -> dict:
@@ -124,27 +76,29 @@ def test_a_parameter_dump_restarts_the_same_lines(colcon_install, colcon_env, tm
     # pretension (issue: head_1.length read 40.0 for a 44.8 m line, and the node refused its
     # own dump: "line 'head_1' has both length and pretension"). Loaded into a new node,
     # the dump starts the same lines: the same lengths, the same wrench.
-    client = Client()
+    client = Client(node='mooring', poses=('ship',),
+                    keep={'wrenches': Keep('ship/mooring_wrench', WrenchStamped, 1000)})
     runs, node = [], None
     try:
         for name, params in (('first', berth_file(tmp_path / 'berth.yaml')),
                              ('again', tmp_path / 'dump.yaml')):
             # the node before has left the graph: its wrench publisher matches no more
-            client.wait_for(lambda: client.sub.get_publisher_count() == 0, 30.0, 'no node')
+            client.wait_for(lambda: client.wrenches.subscription.get_publisher_count() == 0,
+                            30.0, 'no node')
             node = Executable(colcon_install, colcon_env, tmp_path / f'{name}.log', 'mooring',
                               '--ros-args', '--params-file', str(params),
                               '-p', 'use_sim_time:=true')
-            client.wrenches = {}
+            client.clear()
             client.wait_for_node(node)
             # 2 s: the node may see the test's subscription a few outputs after the test
             # sees its publisher (DDS discovery is not symmetric); the first are then unsent
-            client.drive(2.0)
-            client.wait_for(lambda: len(client.wrenches) >= 75, 20.0, 'the wrenches', node)
-            dump = client.dump()
+            drive(client, 2.0)
+            client.wait_for(lambda: len(wrenches(client)) >= 75, 20.0, 'the wrenches', node)
+            dump = dump_parameters(client)
             if name == 'first':
                 (tmp_path / 'dump.yaml').write_text(yaml.safe_dump(dump))
             assert node.interrupt() == 0
-            runs.append((node, dump, dict(client.wrenches)))
+            runs.append((node, dump, wrenches(client)))
     finally:
         client.close()
         if node is not None and node.process.poll() is None:
@@ -169,8 +123,12 @@ def test_a_parameter_dump_restarts_the_same_lines(colcon_install, colcon_env, tm
 
 
 def ship_motion_drives_mooring(colcon_install, colcon_env, folder: Path, berth: Path,
-                               *ship_args) -> str:
-    """Start mooring (berth) and ship_motion remapped to ship/pose; return mooring's log."""
+                               *ship_args, seconds: float = 3.0) -> str:
+    """
+    Start mooring (berth) and ship_motion remapped to ship/pose; return mooring's log.
+
+    Both stop `seconds` after the lines started.
+    """
     mooring = Executable(colcon_install, colcon_env, folder / 'mooring.log', 'mooring',
                          '--ros-args', '--params-file', str(berth))
     ship = Executable(colcon_install, colcon_env, folder / 'ship.log', 'ship_motion',
@@ -181,7 +139,7 @@ def ship_motion_drives_mooring(colcon_install, colcon_env, folder: Path, berth: 
             assert time.monotonic() < end and mooring.process.poll() is None, mooring.text()
             time.sleep(0.2)  # the wall clock is the nodes' clock here: nothing to drive
         started = time.monotonic()
-        while time.monotonic() < started + 3.0:
+        while time.monotonic() < started + seconds:
             assert mooring.process.poll() is None, mooring.text()
             time.sleep(0.2)
         assert ship.interrupt() == 0 and mooring.interrupt() == 0
@@ -245,7 +203,8 @@ def test_a_start_past_the_working_load_limit_says_so(colcon_install, colcon_env,
             'spring_aft': 50.588, 'breast_aft': 16.736, 'stern_1': 46.741, 'stern_2': 40.768}
     text = ship_motion_drives_mooring(colcon_install, colcon_env, tmp_path,
                                       berth_file(tmp_path / 'berth.yaml', rest),
-                                      '-p', 'mean_position:=[0.0, 0.0, 8.0]')
+                                      '-p', 'mean_position:=[0.0, 0.0, 8.0]',
+                                      seconds=1.0)  # (what it checks is said at the start)
     warned = re.findall(r'\]: (\w+) starts at (\d+) kN, past its working load limit of (\d+) '
                         r'kN \(([\d.]+) % of its MBL\)', text)
     print('\n'.join(' '.join(w) for w in warned))

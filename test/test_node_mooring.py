@@ -26,19 +26,17 @@ WLL (50 %), past it, and past 90 %.
 import json
 import math
 import re
-import subprocess
 import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
-from node_harness import spin_until
+from node_harness import Client, Executable, Keep, spin_until
 import numpy as np
 from one_line import OneLine
 import pytest
 import rclpy
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
-from rclpy.parameter_client import AsyncParameterClient
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.signals import SignalHandlerOptions
 from rclpy.time import Time
@@ -49,7 +47,6 @@ from rope_sim_ros.params import arrangement
 from rope_sim_ros.params.table import from_values, SPECS
 from rope_sim_ros.ros.mooring_display import line_diagnostics, line_markers
 from rope_sim_ros.ros.parameters import describe
-from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Bool, Float64, String
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
@@ -104,122 +101,52 @@ def rotation_matrix(q):
         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
-class MooringProcess:
+class MooringProcess(Executable):
     """The installed mooring executable with a parameter file, its log in a file."""
 
     def __init__(self, install, env, log, params_file, *ros_args):
-        self.log = log
-        command = [str(install / 'lib' / 'rope_sim_ros' / 'mooring'), '--ros-args',
-                   '--params-file', str(params_file), *ros_args]
-        with open(log, 'w') as f:
-            self.process = subprocess.Popen(command, env=env, stdin=subprocess.DEVNULL,
-                                            stdout=f, stderr=subprocess.STDOUT)
-
-    def text(self) -> str:
-        return self.log.read_text(errors='replace')
-
-    def interrupt(self, timeout: float = 20.0) -> int:
-        if self.process.poll() is None:
-            self.process.send_signal(2)
-        try:
-            return self.process.wait(timeout)
-        except subprocess.TimeoutExpired:
-            self.process.kill()
-            self.process.wait()
-            raise AssertionError(f'mooring ignored Ctrl-C:\n{self.text()}')
+        """Start it with params_file and extra --ros-args (e.g. '-p', 'use_sim_time:=true')."""
+        super().__init__(install, env, log, 'mooring', '--ros-args', '--params-file',
+                         str(params_file), *ros_args)
 
 
-class Client:
-    """A test node: /clock and ship poses in, every output of the mooring node kept."""
+def mooring_client() -> Client:
+    """Return a test client of the mooring node: /clock, ship poses, easy's winch command."""
+    client = Client(node='mooring', poses=('ship',), keep={
+        'markers': Keep('mooring/markers', MarkerArray, 100, lambda msg: msg),
+        'diagnostics': Keep('/diagnostics', DiagnosticArray, 100, lambda msg: msg),
+        'wrenches': Keep('ship/mooring_wrench', WrenchStamped),
+        'tensions': {name: Keep(f'{name}/fairlead/tension', Wrench) for name in NAMES},
+        'lengths': {name: Keep(f'{name}/winch/length', Float64) for name in NAMES},
+        'events': Keep('mooring/events', String, 100, lambda msg: json.loads(msg.data)),
+        'parted': Keep('hard/rope/parted', Bool,  # latched, as the node offers it
+                       QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL),
+                       lambda msg: msg.data)})
+    client.publisher('easy/winch/command', Float64)
+    return client
 
-    def __init__(self):
-        self.context = rclpy.Context()
-        rclpy.init(context=self.context, signal_handler_options=SignalHandlerOptions.NO)
-        self.node = rclpy.create_node('mooring_test', context=self.context)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
-        self.ship_pub = self.node.create_publisher(PoseStamped, 'ship/pose', 1000)
-        self.clock_pub = self.node.create_publisher(Clock, '/clock', 10)
-        self.winch_pub = self.node.create_publisher(Float64, 'easy/winch/command', 10)
-        self.markers, self.diagnostics, self.wrenches = [], [], []
-        self.tensions = {name: [] for name in NAMES}  # by publication sequence number
-        self.events, self.parted = [], []
-        self.lengths = {name: [] for name in NAMES}
-        subs = [
-            self.node.create_subscription(MarkerArray, 'mooring/markers',
-                                          self.markers.append, 100),
-            self.node.create_subscription(DiagnosticArray, '/diagnostics',
-                                          self.diagnostics.append, 100),
-            self.node.create_subscription(WrenchStamped, 'ship/mooring_wrench',
-                                          self._keep(self.wrenches), 2000),
-        ]
-        for name in NAMES:
-            subs.append(self.node.create_subscription(
-                Wrench, f'{name}/fairlead/tension', self._keep(self.tensions[name]), 2000))
-            subs.append(self.node.create_subscription(
-                Float64, f'{name}/winch/length', self._keep(self.lengths[name]), 2000))
-        subs.append(self.node.create_subscription(
-            String, 'mooring/events', lambda msg: self.events.append(json.loads(msg.data)), 100))
-        subs.append(self.node.create_subscription(  # latched, as the node offers it
-            Bool, 'hard/rope/parted', lambda msg: self.parted.append(msg.data),
-            QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)))
-        self.subscriptions = subs
-        self.parameters = AsyncParameterClient(self.node, 'mooring')
-        self.reset = self.node.create_client(Trigger, 'mooring/reset')
 
-    @staticmethod
-    def _keep(store: list):
-        def keep(msg, info):
-            store.append((info['publication_sequence_number'], msg))
-        return keep
+def drive(client: Client, start: float, seconds: float) -> None:
+    """
+    Publish /clock and the ship pose of sim time [start, start + seconds) at RATE.
 
-    def close(self) -> None:
-        self.executor.shutdown()
-        self.node.destroy_node()
-        rclpy.try_shutdown(context=self.context)
+    Then wait for the outputs the poses let out: the node stays one pose behind, and holds
+    back outputs that one pose let through together (at publish_rate 100 Hz) up to a pose
+    period for their time on the clock, which stops here.
+    """
+    sent = client.drive(SIM_START + round(start * 1e9), seconds - 1.0 / RATE,
+                        ship=lambda t: ship_pose(start + t), rate=RATE)
+    due = sent[-3].stamp_ns
 
-    def wait_for(self, condition, timeout: float, what: str) -> None:
-        end = time.monotonic() + timeout
-        while not condition():
-            if time.monotonic() > end:
-                raise AssertionError(f'timed out after {timeout} s waiting for {what}')
-            self.executor.spin_once(timeout_sec=0.01)
+    def out():
+        return client.wrenches and stamp_ns(client.wrenches[-1][1]) >= due
 
-    def wait_for_node(self, node: MooringProcess, timeout: float = 90.0) -> None:
-        def ready():
-            if node.process.poll() is not None:
-                raise AssertionError(f'mooring exited with {node.process.returncode}:\n'
-                                     f'{node.text()}')
-            return (self.parameters.services_are_ready() and self.reset.service_is_ready()
-                    and self.ship_pub.get_subscription_count() > 0
-                    and self.winch_pub.get_subscription_count() > 0
-                    and self.clock_pub.get_subscription_count() > 0
-                    and all(s.get_publisher_count() > 0 for s in self.subscriptions))
-        self.wait_for(ready, timeout, 'the mooring node')
+    client.wait_for(out, 10.0, f'the outputs up to {(due - SIM_START) * 1e-9:.2f} s')
+    client.spin(0.1)  # the other topics of those outputs on their way
 
-    def drive(self, start: float, seconds: float) -> None:
-        """Publish /clock and the ship pose of sim time [start, start + seconds] at RATE."""
-        wall = time.monotonic()
-        for k in range(round(seconds * RATE)):
-            t = start + k / RATE
-            while time.monotonic() - wall < k / RATE:
-                self.executor.spin_once(timeout_sec=0.002)
-            ns = SIM_START + round(t * 1e9)
-            sec, nanosec = divmod(ns, 1_000_000_000)
-            clock = Clock()
-            clock.clock.sec, clock.clock.nanosec = sec, nanosec
-            self.clock_pub.publish(clock)
-            position, orientation = ship_pose(t)
-            msg = PoseStamped()
-            msg.header.frame_id = 'world'
-            msg.header.stamp.sec, msg.header.stamp.nanosec = sec, nanosec
-            msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = position
-            (msg.pose.orientation.x, msg.pose.orientation.y, msg.pose.orientation.z,
-             msg.pose.orientation.w) = orientation
-            self.ship_pub.publish(msg)
-        end = time.monotonic() + 0.5
-        while time.monotonic() < end:  # the last outputs on their way
-            self.executor.spin_once(timeout_sec=0.01)
+
+def stamp_ns(msg) -> int:
+    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
 
 
 def statuses(array: DiagnosticArray) -> dict:
@@ -242,7 +169,7 @@ def mooring(colcon_install, colcon_env, tmp_path_factory):
     params_file.write_text(yaml.safe_dump({'mooring': {'ros__parameters': line_values()}}))
     node = MooringProcess(colcon_install, colcon_env, folder / 'mooring.log', params_file,
                           '-p', 'use_sim_time:=true')
-    client = Client()
+    client = mooring_client()
     try:
         client.wait_for_node(node)
         yield node, client
@@ -293,12 +220,12 @@ def test_each_line_has_the_single_line_nodes_parameters(mooring):
 
 def test_markers_and_diagnostics_follow_the_utilisation(mooring):
     _, client = mooring
-    client.drive(0.0, 2.4)  # the ship at rest: every line below its pull at SURGE
+    drive(client, 0.0, 2.4)  # the ship at rest: every line below its pull at SURGE
     before = statuses(client.diagnostics[-1])
     assert before['easy'][0] == DiagnosticStatus.OK
     assert before['working'][0] == DiagnosticStatus.OK  # 48 % of MBL: below the WLL
     assert before['hard'][0] == DiagnosticStatus.WARN
-    client.drive(2.4, 4.6)  # surge 0.5 m ahead, then held for 2.5 s
+    drive(client, 2.4, 4.6)  # surge 0.5 m ahead, then held for 2.5 s
     mbl = OneLine(from_values(LINE)).material.mbl
     report = statuses(client.diagnostics[-1])
     assert [report[name][0] for name in NAMES] == [
@@ -333,8 +260,8 @@ def test_markers_and_diagnostics_follow_the_utilisation(mooring):
 def test_wrench_as_received_is_the_sum_of_the_lines(mooring):
     _, client = mooring
     rotation = rotation_matrix(ship_pose(RAMP[1])[1])
-    by_sequence = [dict(store) for store in client.tensions.values()]
-    wrenches = dict(client.wrenches)
+    by_sequence = [store.by_sequence() for store in client.tensions.values()]
+    wrenches = client.wrenches.by_sequence()
     common = sorted(set(wrenches).intersection(*by_sequence))[-50:]  # the ship held still
     assert len(common) == 50
     for n in common:
@@ -357,12 +284,12 @@ def test_reset_shows_as_error_then_clears(mooring):
     client.wait_for(future.done, 10.0, 'reset')
     assert future.result().success
     count = len(client.diagnostics)
-    client.drive(7.1, 1.2)
+    drive(client, 7.1, 1.2)
     after = [statuses(a) for a in client.diagnostics[count:]]
     assert after and all(s[name][0] == DiagnosticStatus.ERROR for s in after[:1]
                          for name in NAMES)
     assert after[0]['easy'][1] == 'restarted at rest: reset'
-    client.drive(8.3, 1.2)
+    drive(client, 8.3, 1.2)
     final = statuses(client.diagnostics[-1])
     assert [final[name][0] for name in NAMES] == [
         DiagnosticStatus.OK, DiagnosticStatus.WARN, DiagnosticStatus.WARN]
@@ -381,10 +308,10 @@ def test_a_winch_command_moves_only_its_line(mooring):
     set_parameter(client, 'easy.winch_mode', 'speed')
     before = {name: client.lengths[name][-1][1].data for name in NAMES}
     assert before['easy'] == pytest.approx(line_values()['easy']['length'], abs=1e-9)
-    client.winch_pub.publish(Float64(data=0.4))
-    client.drive(9.5, 2.5)
-    client.winch_pub.publish(Float64(data=0.0))
-    client.drive(12.0, 1.5)
+    client.publishers['easy/winch/command'].publish(Float64(data=0.4))
+    drive(client, 9.5, 2.5)
+    client.publishers['easy/winch/command'].publish(Float64(data=0.0))
+    drive(client, 12.0, 1.5)
     paid_out = client.lengths['easy'][-1][1].data - before['easy']
     assert 0.4 * 1.5 < paid_out < 0.4 * 3.0, paid_out
     for name in ('working', 'hard'):
@@ -401,7 +328,7 @@ def test_a_line_that_parts_shows_to_every_subscriber(mooring):
     hard = client.tensions['hard'][-1][1].force
     mbl = OneLine(from_values(LINE)).material.mbl
     set_parameter(client, 'hard.break_load', 0.5 * mbl)
-    client.drive(13.5, 2.5)
+    drive(client, 13.5, 2.5)
     parted = [e for e in client.events if e['event'] == 'parted']
     assert len(parted) == 1 and parted[0]['line'] == 'hard'
     assert 0 <= parted[0]['segment'] < 10 and parted[0]['t'] > 13.0
@@ -419,8 +346,8 @@ def test_a_line_that_parts_shows_to_every_subscriber(mooring):
     before_pull = math.hypot(hard.x, hard.y, hard.z)
     assert math.hypot(now['hard'].x, now['hard'].y, now['hard'].z) < 0.05 * before_pull
     assert now['working'].x == pytest.approx(working.x, rel=1e-3)
-    by_sequence = [dict(client.tensions[name]) for name in NAMES]
-    wrenches = dict(client.wrenches)
+    by_sequence = [client.tensions[name].by_sequence() for name in NAMES]
+    wrenches = client.wrenches.by_sequence()
     last = max(set(wrenches).intersection(*by_sequence))  # one output's messages
     forces = np.array([[w.force.x, w.force.y, w.force.z]
                        for w in (store[last] for store in by_sequence)])
@@ -436,7 +363,7 @@ def test_a_publish_rate_set_at_run_time_is_followed(mooring):
     node, client = mooring
     set_parameter(client, 'publish_rate', 100.0)
     count = len(client.wrenches)
-    client.drive(16.0, 1.0)
+    drive(client, 16.0, 1.0)
     assert node.process.poll() is None, node.text()
     stamps = [w.header.stamp.sec + 1e-9 * w.header.stamp.nanosec
               for _, w in client.wrenches[count:]]
@@ -536,7 +463,7 @@ def test_a_damping_that_cannot_run_live_is_refused_saying_why(mooring):
     set_parameter(client, 'easy.axial_damping', largest)
     count = len(client.wrenches)
     started = time.monotonic()
-    client.drive(17.0, 2.0)
+    drive(client, 17.0, 2.0)
     print(f'2 s of sim time with easy.axial_damping {largest:g}: '
           f'{time.monotonic() - started:.2f} s of wall time')
     assert len(client.wrenches) - count >= 0.9 * 2.0 * 100  # publish_rate 100 Hz since

@@ -21,7 +21,7 @@ Its own module: the shared node of test_node_mooring, on the same topics, is gon
 from geometry_msgs.msg import WrenchStamped
 from rosbags.rosbag2 import Reader
 from rosbags.typesys import get_typestore, Stores
-from test_node_mooring import Client, line_values, MooringProcess
+from test_node_mooring import drive, line_values, mooring_client, MooringProcess
 import yaml
 
 
@@ -34,13 +34,11 @@ def test_the_bag_holds_the_wrenches_a_subscriber_received(colcon_install, colcon
     params_file.write_text(yaml.safe_dump({'mooring': {'ros__parameters': values}}))
     node = MooringProcess(colcon_install, colcon_env, tmp_path / 'recording.log', params_file,
                           '-p', 'use_sim_time:=true')
-    client = Client()
-    world = []
-    client.subscriptions.append(client.node.create_subscription(
-        WrenchStamped, 'ship/mooring_wrench_world', world.append, 2000))
+    client = mooring_client()
+    world = client.subscribe('ship/mooring_wrench_world', WrenchStamped, 2000, lambda m: m)
     try:
         client.wait_for_node(node)
-        client.drive(0.0, 3.0)
+        drive(client, 0.0, 3.0)
     finally:
         client.close()
         assert node.interrupt() == 0, node.text()
@@ -57,7 +55,7 @@ def test_the_bag_holds_the_wrenches_a_subscriber_received(colcon_install, colcon
             if connection.topic in recorded:
                 recorded[connection.topic].append(
                     numbers(store.deserialize_cdr(data, connection.msgtype)))
-    received = [numbers(msg) for _, msg in sorted(client.wrenches, key=lambda kept: kept[0])]
+    received = [numbers(msg) for _, msg in sorted(client.wrenches.by_sequence().items())]
     received_world = [numbers(msg) for msg in world]
     assert len(received) >= 100 and len(received_world) >= 100  # 3 s at 50 Hz, less the start
     # every output is in the bag; a subscriber gets them from its match on (a first one may

@@ -32,11 +32,10 @@ import warnings
 
 from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
 from mcap.reader import make_reader
-from node_harness import no_gc_pauses, NodeProcess
+from node_harness import Client, NodeProcess, Sent
 import numpy as np
 import pytest
 import rclpy
-from rclpy.executors import SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.serialization import deserialize_message
 from rclpy.signals import SignalHandlerOptions
@@ -79,108 +78,49 @@ def fairlead_motion(t: float) -> np.ndarray:
     return FAIRLEAD + [0.4 * math.sin(2.0 * t), 0.0, 0.2 * math.sin(1.3 * t)]
 
 
-class Client:
-    """A test node: publishes both end poses and keeps every tension it receives."""
+def recorded(sent: Sent) -> tuple:
+    """Return a pose the client sent as the bag's is compared with it (pose_values)."""
+    return sent.stamp_ns, sent.position, sent.orientation
 
-    def __init__(self, namespace: str):
-        self.context = rclpy.Context()
-        rclpy.init(context=self.context, signal_handler_options=SignalHandlerOptions.NO)
-        self.node = rclpy.create_node('recording_client', namespace=namespace,
-                                      context=self.context)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
-        self.fairlead_pub = self.node.create_publisher(PoseStamped, 'fairlead/pose', 10)
-        self.bollard_pub = self.node.create_publisher(PoseStamped, 'bollard/pose', 10)
-        self.fairlead, self.bollard = [], []
-        self.subscriptions = [
-            self.node.create_subscription(Wrench, 'fairlead/tension', self.fairlead.append, 100),
-            self.node.create_subscription(Wrench, 'bollard/tension', self.bollard.append, 100),
-            self.node.create_subscription(PoseArray, 'rope/particles', lambda m: None, 10),
-        ]
 
-    def close(self) -> None:
-        self.executor.shutdown()
-        self.node.destroy_node()
-        rclpy.try_shutdown(context=self.context)
+def warm_up(client: Client, node: NodeProcess, rate: float = 50.0, after: int = 10) -> dict:
+    """
+    Publish the rest poses at `rate` until tensions come back, then `after` more.
 
-    def spin(self, seconds: float) -> None:
-        end = time.monotonic() + seconds
-        while time.monotonic() < end:
-            self.executor.spin_once(timeout_sec=min(0.01, max(0.0, end - time.monotonic())))
+    A node's readers match our writers a little after our writers match its readers
+    (wait_for_node sees only the latter); a pose sent in between may be lost, so these
+    are the only poses a test may miss. What was received so far is then forgotten.
 
-    def wait_for_node(self, node: NodeProcess) -> None:
-        """Wait until every topic of the node is matched both ways."""
-        end = time.monotonic() + START_TIMEOUT
-        while not (self.fairlead_pub.get_subscription_count() > 0
-                   and self.bollard_pub.get_subscription_count() > 0
-                   and all(s.get_publisher_count() > 0 for s in self.subscriptions)):
-            if node.process.poll() is not None:
-                raise AssertionError(f'node exited with {node.process.returncode}:\n'
-                                     f'{node.text()}')
-            if time.monotonic() > end:
-                raise AssertionError(f'node in {node.namespace} not up:\n{node.text()}')
-            self.executor.spin_once(timeout_sec=0.01)
+    :returns: the poses sent, as drive() returns them.
+    """
+    sent = {'fairlead/pose': [], 'bollard/pose': []}
+    end = time.monotonic() + START_TIMEOUT
+    remaining = after
+    while remaining > 0:
+        if time.monotonic() > end or node.process.poll() is not None:
+            raise AssertionError(f'no tension came back:\n{node.text()}')
+        stamp_ns = time.time_ns()
+        sent['fairlead/pose'].append(recorded(client.pose(fairlead_motion(0.0), stamp_ns)))
+        sent['bollard/pose'].append(recorded(client.pose((0.0, 0.0, 0.0), stamp_ns, 'bollard')))
+        client.spin(1.0 / rate)
+        remaining -= 1 if client.fairlead and client.bollard else 0
+    client.clear()
+    return sent
 
-    def publish(self, publisher, position, stamp_ns: int) -> tuple:
-        """Publish a PoseStamped; return (stamp, position, orientation) as recorded."""
-        msg = PoseStamped()
-        msg.header.frame_id = 'world'
-        msg.header.stamp.sec, msg.header.stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
-        msg.pose.position.x, msg.pose.position.y, msg.pose.position.z = (
-            float(c) for c in position)
-        msg.pose.orientation.z, msg.pose.orientation.w = 0.0, 1.0
-        publisher.publish(msg)
-        return stamp_ns, tuple(float(c) for c in position), (0.0, 0.0, 0.0, 1.0)
 
-    def warm_up(self, node: NodeProcess, rate: float = 50.0, after: int = 10) -> dict:
-        """
-        Publish the rest poses at `rate` until tensions come back, then `after` more.
+def drive(client: Client, seconds: float, rate: float = 50.0, bollard_every: int = 5) -> dict:
+    """
+    Publish the fairlead motion at `rate` (and a fixed bollard) on the wall clock.
 
-        A node's readers match our writers a little after our writers match its readers
-        (wait_for_node sees only the latter); a pose sent in between may be lost, so these
-        are the only poses a test may miss. What was received so far is then forgotten.
+    :returns: {'fairlead/pose': [...], 'bollard/pose': [...]} of recorded() poses.
+    """
+    def bollard(t):
+        return (0.0, 0.0, 0.0) if round(t * rate) % bollard_every == 0 else None
 
-        :returns: the poses sent, as drive() returns them.
-        """
-        sent = {'fairlead/pose': [], 'bollard/pose': []}
-        end = time.monotonic() + START_TIMEOUT
-        remaining = after
-        while remaining > 0:
-            if time.monotonic() > end or node.process.poll() is not None:
-                raise AssertionError(f'no tension came back:\n{node.text()}')
-            stamp_ns = time.time_ns()
-            sent['fairlead/pose'].append(
-                self.publish(self.fairlead_pub, fairlead_motion(0.0), stamp_ns))
-            sent['bollard/pose'].append(self.publish(self.bollard_pub, (0.0, 0.0, 0.0), stamp_ns))
-            self.spin(1.0 / rate)
-            remaining -= 1 if self.fairlead and self.bollard else 0
-        self.fairlead.clear()
-        self.bollard.clear()
-        return sent
-
-    @no_gc_pauses()
-    def drive(self, seconds: float, rate: float = 50.0, bollard_every: int = 5) -> dict:
-        """
-        Publish the fairlead motion at `rate` (and a fixed bollard) while spinning.
-
-        :returns: {'fairlead/pose': [...], 'bollard/pose': [...]} of publish() results.
-        """
-        sent = {'fairlead/pose': [], 'bollard/pose': []}
-        start, start_ns = time.monotonic(), time.time_ns()
-        k = 0
-        while k / rate <= seconds:
-            due = start + k / rate
-            while time.monotonic() < due:
-                self.executor.spin_once(
-                    timeout_sec=max(0.0, min(0.005, due - time.monotonic())))
-            stamp_ns = time.time_ns()
-            sent['fairlead/pose'].append(self.publish(
-                self.fairlead_pub, fairlead_motion((stamp_ns - start_ns) * 1e-9), stamp_ns))
-            if k % bollard_every == 0:
-                sent['bollard/pose'].append(
-                    self.publish(self.bollard_pub, (0.0, 0.0, 0.0), stamp_ns))
-            k += 1
-        return sent
+    sent = {'fairlead/pose': [], 'bollard/pose': []}
+    for pose in client.drive_wall(seconds, fairlead_motion, bollard, rate=rate):
+        sent[f'{pose.stream}/pose'].append(recorded(pose))
+    return sent
 
 
 def force_values(msg) -> tuple:
@@ -205,17 +145,17 @@ def record_run(colcon_install, colcon_env, tmp_path, namespace: str, signum: int
     bag = tmp_path / 'bag'
     node = NodeProcess(colcon_install, colcon_env, tmp_path / 'node.log', namespace,
                        '-p', f'record_path:={bag}')
-    client = Client(namespace)
+    client = Client(namespace, sim_time=False)
     try:
         client.wait_for_node(node)
-        warmup = client.warm_up(node)
-        sent = client.drive(seconds)
+        warmup = warm_up(client, node)
+        sent = drive(client, seconds)
         if signum != signal.SIGKILL:
             client.spin(0.5)  # the last inputs arrive, their outputs come back
         code = node.stop(signum)
         return {'bag': bag, 'code': code, 'log': node.text(), 'warmup': warmup, 'sent': sent,
-                'fairlead': [force_values(m) for m in client.fairlead],
-                'bollard': [force_values(m) for m in client.bollard]}
+                'fairlead': [force_values(m) for _, m in client.fairlead],
+                'bollard': [force_values(m) for _, m in client.bollard]}
     finally:
         if node.process.poll() is None:
             node.process.kill()

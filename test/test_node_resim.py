@@ -27,7 +27,7 @@ import json
 import math
 
 from geometry_msgs.msg import PoseStamped
-from node_harness import NodeProcess, SimClient
+from node_harness import Client, NodeProcess
 import numpy as np
 from rope_sim_ros.bag import read_messages
 from rope_sim_ros.bag.cdr import (decode_pose_array, decode_pose_stamped, decode_string,
@@ -74,10 +74,11 @@ def record(colcon_install, colcon_env, tmp_path, namespace, drive, *ros_args):
     node = NodeProcess(colcon_install, colcon_env, tmp_path / 'node.log', namespace,
                        '-p', 'use_sim_time:=true', '-p', f'record_path:={bag}',
                        '-p', f'fairlead_offset:={OFFSET}', *ros_args)
-    client = SimClient(namespace)
+    client = Client(namespace)
     try:
         client.wait_for_node(node)
-        client.drive(START - 500_000_000, 0.5, fairlead=None)  # the clock, discovery settles
+        # the clock; discovery settles meanwhile
+        client.drive(START - 500_000_000, 0.5, fairlead=None)
         drive(client, node)
         assert node.interrupt() == 0, node.text()
     finally:
@@ -138,7 +139,6 @@ def test_resim_reproduces_the_node_across_a_gap_a_jump_a_skip_and_a_reset(
         return position + [3.6, 0.0, 0.0], orientation
 
     def drive(client, node):
-        reset = client.node.create_client(Trigger, 'mooring_line/reset')
         client.drive(START, 2.0, ship)
         client.drive(START + 2_020_000_000, 0.98, fairlead=None)
         client.drive(START + 3_000_000_000, 1.5, lambda t: moved(3.0 + t))
@@ -147,7 +147,7 @@ def test_resim_reproduces_the_node_across_a_gap_a_jump_a_skip_and_a_reset(
         client.drive(START + 6_500_000_000, 1.0, lambda t: moved(6.5 + t))
         client.wait_for(lambda: client.outputs()[-1][0] >= START + 7_460_000_000, 30.0,
                         'the outputs up to 7.46 s')
-        future = reset.call_async(Trigger.Request())
+        future = client.reset.call_async(Trigger.Request())
         client.wait_for(future.done, 10.0, 'the reset')
         assert future.result().success
         client.drive(START + 7_520_000_000, 0.5, lambda t: moved(7.52 + t))

@@ -19,7 +19,7 @@ Over real DDS from the colcon install, in sim time driven by the test: what the 
 publishes (tensions, peaks, the parted flag) and what it logs.
 """
 
-from node_harness import NodeProcess, SimClient
+from node_harness import Client, NodeProcess
 import numpy as np
 import pytest
 from rclpy.qos import DurabilityPolicy, QoSProfile
@@ -35,7 +35,7 @@ def line_node(colcon_install, colcon_env, tmp_path):
     """Start a mooring_line in sim time; yield (node, client, peaks, parted); stop both."""
     node = NodeProcess(colcon_install, colcon_env, tmp_path / 'restarts.log', '/restarts',
                        '-p', 'use_sim_time:=true')
-    client = SimClient('/restarts')
+    client = Client('/restarts')
     peaks, parted = [], []
     subscriptions = [client.node.create_subscription(
         Float64, f'{end}/peak_tension', lambda msg: peaks.append(msg.data), 2000)
