@@ -54,7 +54,7 @@ from ..mooring.berthing import Berthing, read_berthing, watch
 from ..mooring.ship import quay_normal, ship_loads, start_pose, water_depth
 from ..params.arrangement import ArrangementParams, flatten, NODE_NAME, read_setup
 from ..params.files import read_params_file
-from ..params.table import ParameterError
+from ..params.table import not_positive, ParameterError
 
 REPO = Path(__file__).resolve().parents[2]
 PACKAGE = 'rope_sim_ros'
@@ -180,12 +180,10 @@ def main(argv=None) -> int:
                         '(default: out/ in the checkout, else in the working directory)')
     args = parser.parse_args(argv)
 
-    for name in ('speed', 'duration'):
-        value = getattr(args, name)
-        if value is not None and not (math.isfinite(value) and value > 0.0):
-            print(f'demo: --{name} {value!r} is not allowed: must be a number > 0',
-                  file=sys.stderr)
-            return 2
+    bad = not_positive(args, ('speed', 'duration'))
+    if bad:
+        print(f'demo: {bad}', file=sys.stderr)
+        return 2
     prefix = args.install.resolve() / PACKAGE
     executables = prefix / 'lib' / PACKAGE
     checkout = (REPO / 'config' / 'berth_demo.yaml').is_file()

@@ -22,7 +22,7 @@ ROS parameter file (`mooring_line: ros__parameters: {...}`).
 
 from dataclasses import dataclass, field, fields, replace
 import math
-from typing import Any, Mapping, Optional
+from typing import Any, Mapping, Optional, Sequence
 
 
 NODE_NAME = 'mooring_line'
@@ -267,6 +267,19 @@ SPECS: Mapping[str, Spec] = {
         'best_effort (the sensor-data profile REP 2003 gives subscribers: reaches every '
         'publisher, may lose a pose under load)', choices=RELIABILITIES),
 }
+
+
+def not_positive(options: Any, names: Sequence[str]) -> str:
+    """
+    Return why the first of a command line's options `names` is not a number > 0, or ''.
+
+    :param options: argparse's namespace; an option left at None was not given.
+    """
+    for name in names:
+        value = getattr(options, name)
+        if value is not None and not (math.isfinite(value) and value > 0.0):
+            return f'--{name} {value!r} is not allowed: must be a number > 0'
+    return ''
 
 
 def allowed(spec: Spec) -> str:

@@ -73,7 +73,7 @@ from ..mooring.events import decode_event
 from ..mooring.ship import quay_normal, ship_loads
 from ..params import arrangement
 from ..params.files import read_params_file
-from ..params.table import ParameterError
+from ..params.table import not_positive, ParameterError
 
 START_TIMEOUT = 90.0  # [s] a first start compiles or loads the kernels
 DISCOVERY_SETTLE = 1.0  # [s] of wall time for the node to match the demo's subscriptions
@@ -534,12 +534,10 @@ def main(argv=None) -> int:
     parser.add_argument('--duration', type=float, default=None,
                         help='sim seconds (default: berth_demo.duration, else 200)')
     args = parser.parse_args(argv)
-    for name in ('speed', 'duration'):
-        value = getattr(args, name)
-        if value is not None and not (math.isfinite(value) and value > 0.0):
-            print(f'berth demo: --{name} {value!r} is not allowed: must be a number > 0',
-                  file=sys.stderr)
-            return 2
+    bad = not_positive(args, ('speed', 'duration'))
+    if bad:
+        print(f'berth demo: {bad}', file=sys.stderr)
+        return 2
     files = ' + '.join(args.params)
     try:
         setup = read_setup(args.params)
