@@ -136,8 +136,9 @@ def test_a_steady_stream_is_never_silent_beside_calls_and_a_stall(
     silent = [e for e in bag_events(bag) if e['event'] == 'silent']
     warnings = log_lines(node, f'no new pose for {Pacer.LIVE_INPUT:g} s')
     # Silent only in a real gap (t: how far the ropes had gone when the node took it for
-    # silent, at most a pose period past the last pose), and in the planned one.
-    assert all(any(start - 0.05 < e['t'] < end + 0.05 for start, end in real)
+    # silent, at most a pose period past the last pose; on a busy machine up to a few pose
+    # periods behind it: 0.061 s once, at load 5), and in the planned one.
+    assert all(any(start - 0.1 < e['t'] < end + 0.05 for start, end in real)
                for e in silent), (silent, real)
     assert any(11.8 < e['t'] < 12.9 for e in silent), silent
     assert 1 <= len(warnings) <= len(silent) <= len(real), (silent, warnings, node.text())
