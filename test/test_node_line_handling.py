@@ -47,7 +47,7 @@ from rope_sim_ros.ros.mooring_display import FREE_COLOUR
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
-from test_node_mooring import MooringProcess
+from test_node_mooring import colour, MooringProcess, stamp_ns, statuses
 from test_node_resim import compare, record, ship, START
 from visualization_msgs.msg import Marker, MarkerArray
 import yaml
@@ -153,7 +153,7 @@ class Client:
         # that recent says the node took every pose, so a command now is taken there.
         last = (round(end * POSE_RATE) - 1) / POSE_RATE
         reached = SIM_START + round((last - 1.0 / POSE_RATE - 1.0 / OUTPUT_RATE) * 1e9)
-        self.wait_for(lambda: self.loads and stamp_of(self.loads[-1]) >= reached, 10.0,
+        self.wait_for(lambda: self.loads and stamp_ns(self.loads[-1]) >= reached, 10.0,
                       f'the output of {reached} ns')
 
     def call(self, service: str) -> Trigger.Response:
@@ -165,20 +165,6 @@ class Client:
         future = self.parameters.set_parameters([Parameter(name, value=value)])
         self.wait_for(future.done, 10.0, f'setting {name}')
         return future.result().results[0]
-
-
-def stamp_of(msg) -> int:
-    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
-
-
-def statuses(array: DiagnosticArray) -> dict:
-    """Return {hardware_id: (level, message, {key: value})} of a DiagnosticArray."""
-    return {s.hardware_id: (s.level, s.message, {v.key: v.value for v in s.values})
-            for s in array.status}
-
-
-def colour(marker: Marker) -> tuple:
-    return tuple(round(c, 3) for c in (marker.color.r, marker.color.g, marker.color.b))
 
 
 def recorded_outputs(bag) -> dict:
@@ -382,7 +368,7 @@ def test_a_bollard_load_is_the_sum_of_the_lines_fast_on_it(berthing):
             counted[(bollard, len(lines))] += 1
     assert all(counted.values()), counted  # two, one and no line on each, over the run
     # and over DDS: the received loads are the recorded ones
-    received = {stamp_of(msg): [msg.wrench.force.x, msg.wrench.force.y, msg.wrench.force.z]
+    received = {stamp_ns(msg): [msg.wrench.force.x, msg.wrench.force.y, msg.wrench.force.z]
                 for msg in berthing['client'].loads}
     recorded = dict(rows['/b1/load'])
     assert len(received) > 100
