@@ -16,8 +16,8 @@
 Column layout of the flat tables the numba kernels take (built by objects.System).
 
 numba passes a few 2-D tables far faster than dozens of arrays (each argument costs its
-dispatch), so a System packs its lines and points into the tables below; these names say
-which column holds what.
+dispatch), so a System packs its lines and points into the tables below, and hands them with
+its state to the kernels as one record (record.py); these names say which column holds what.
 
 PARTICLE table (P, PARTICLE_COLUMNS), one row per particle of every line, lines stacked:
     MASS: lumped mass [kg], half of each neighbouring segment (an end: half of one);

@@ -16,10 +16,12 @@
 The integrators: improved Euler and implicit Euler over a whole System, compiled (numba).
 
 The forces at a state are model/forces/assembly.py's; here they are stepped through time.
-Each kernel takes a run of steps of one System in place, its driven points at the samples
-it is given, its free points moving with the lines. Tests run these same functions
-interpreted (``.py_func``).
+Each kernel takes a run of steps of one System in place (its arrays as one record, its group:
+model/record.py), its driven points at the samples it is given, its free points moving with
+the lines. Tests run these same functions interpreted (``.py_func``).
 """
+
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -130,20 +132,22 @@ def _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, s
 # -- improved Euler (the seed's eq. 7: Heun's method) ----------------------------------------
 
 @numba.njit(cache=True)
-def improved_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                       line_real, points, env, bodies, fenders, max_iterations):
+def improved_euler_run(group, drive_x, drive_v, dt, max_iterations):
     """
     Take len(drive_x) improved Euler steps of the whole system in place.
 
-    :param x, v: particle positions and velocities (P, 3), every line's rows stacked.
-    :param point_x, point_v: point positions and velocities (Q, 3).
+    :param group: the System's arrays (model/record.py): the particles' x, v (P, 3), every
+        line's rows stacked; the points' point_x, point_v (Q, 3); the tables of layout.py
+        (particles, lines, line_real, points; env: gravity, water, air, current, seabed,
+        quay; bodies, fenders: the bodies' state is stepped in place, their carried points
+        follow them).
     :param drive_x, drive_v: driven points' positions and velocities at the end of each step
         (n, Q, 3) (rows of other points ignored).
-    :param particles, lines, line_real, points: the tables of layout.py.
-    :param env: the ENV array (layout.ENV_*): gravity, water, air, current, seabed, quay.
-    :param bodies, fenders: the BODY and FENDER tables (the bodies' state is stepped in
-        place, their carried points follow them).
     """
+    x, v, point_x, point_v = group.x, group.v, group.point_x, group.point_v
+    particles, lines, line_real, points = (group.particles, group.lines, group.line_real,
+                                           group.points)
+    env, bodies, fenders = group.env, group.bodies, group.fenders
     n_points = points.shape[0]
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
@@ -531,17 +535,108 @@ def _particle_system(x, v, f, i, particles, line_real, k, environment, tangents,
                                    tangent, b, dt, half_h2, block)
 
 
+class _LineWork(NamedTuple):
+    """An implicit run's scratch: the forces at the predictor, one line's system at a time."""
+
+    inv_mass: np.ndarray  # (P,) the strain limit's inverse masses (layout.INV_MASS)
+    rest: np.ndarray  # (P,) the springs' rest lengths (layout.REST; the winch changes them)
+    f: np.ndarray  # (P, 3) the springs' forces
+    sub: np.ndarray  # (P,) submerged length of each particle
+    tangent: np.ndarray  # (P, 3) unit tangent of each particle
+    block: np.ndarray  # (3, 3) one spring's or one particle's block
+    rhs_flat: np.ndarray  # (3 W,) a line's right-hand side, then its solution (W: the most
+    rhs: np.ndarray  # (W, 3) interior particles of any line); the same by particle
+    band: np.ndarray  # (3 W, 9) A banded (with the bending springs), else (0, 0)
+    diagonal: np.ndarray  # (W, 3, 3) A block tridiagonal: its diagonal blocks,
+    lower: np.ndarray  # (W, 3, 3) those below it,
+    inverse: np.ndarray  # (W, 3, 3) and block Thomas's factors
+    multiplier: np.ndarray  # (W, 3, 3)
+
+
+class _PointWork(NamedTuple):
+    """An implicit run's scratch where points are free or carried: the point system."""
+
+    free_of: np.ndarray  # (Q,) each point's row among the point unknowns, -1 for none
+    schur: np.ndarray  # (3 F, 3 F) the point system S (F: free and carried points)
+    point_rhs: np.ndarray  # (3 F,) its right-hand side g, then the points' accelerations
+    point_force: np.ndarray  # (1, 3) a free point's own load
+    end_force: np.ndarray  # (1, 3) a line end's load on its point
+    coupling: np.ndarray  # (W, 3, 6) a line's B: end A's point's columns, then end B's
+    solved_coupling: np.ndarray  # (P, 3, 6) every line's A^-1 B, by particle row
+    column: np.ndarray  # (3 W,) one column of B, then of A^-1 B
+    column_blocks: np.ndarray  # (W, 3) the same by particle
+    end_col: np.ndarray  # (2,) each end's first column in B
+    end_free: np.ndarray  # (2,) a line's ends: on a free or carried point
+    free_index: np.ndarray  # (2,) their points' rows among the unknowns
+    solution: np.ndarray  # (P, 3) the interior particles' accelerations
+    transform: np.ndarray  # the bodies' condensed system (_body_arrays; empty without)
+    reduced: np.ndarray
+    reduced_rhs: np.ndarray
+    body_accel: np.ndarray  # (B, 6) the bodies' accelerations
+
+
+@numba.njit(cache=True)
+def _line_work(group, implicit_bending):
+    """Return an implicit run's _LineWork for this group's lines."""
+    x, particles, lines = group.x, group.particles, group.lines
+    widest = 1
+    for k in range(lines.shape[0]):
+        widest = max(widest, lines[k, LAST] - lines[k, FIRST] - 1)
+    rhs_flat = np.empty(3 * widest)
+    # structural springs only: 3x3 block-tridiagonal (block Thomas); with the bending
+    # springs the band is wider (banded Cholesky)
+    return _LineWork(np.ascontiguousarray(particles[:, INV_MASS]),
+                     np.ascontiguousarray(particles[:, REST]), np.empty_like(x),
+                     np.zeros(x.shape[0]), np.zeros_like(x), np.empty((3, 3)), rhs_flat,
+                     rhs_flat.reshape(widest, 3),
+                     np.empty((3 * widest, 9) if implicit_bending else (0, 0)),
+                     np.empty((widest, 3, 3)), np.empty((widest, 3, 3)),
+                     np.empty((widest, 3, 3)), np.empty((widest, 3, 3)))
+
+
+@numba.njit(cache=True)
+def _point_work(group, widest):
+    """Return an implicit run's _PointWork: free and carried points are its unknowns."""
+    points, n_bodies = group.points, group.bodies.shape[0]
+    free_of = np.full(points.shape[0], -1, dtype=np.int64)
+    n_free = 0
+    for q in range(points.shape[0]):
+        if points[q, KIND] == FREE or points[q, KIND] == CARRIED:
+            free_of[q] = n_free
+            n_free += 1
+    column = np.empty(3 * widest)
+    if n_bodies > 0:
+        transform, reduced, reduced_rhs, body_accel = _body_arrays(points, free_of, n_free,
+                                                                   n_bodies)
+    else:
+        transform, reduced, reduced_rhs, body_accel = (np.zeros((0, 0)), np.empty((0, 0)),
+                                                       np.empty(0), np.zeros((0, 6)))
+    return _PointWork(free_of, np.empty((3 * n_free, 3 * n_free)), np.empty(3 * n_free),
+                      np.empty((1, 3)), np.empty((1, 3)), np.empty((widest, 3, 6)),
+                      np.zeros((group.x.shape[0], 3, 6)), column, column.reshape(widest, 3),
+                      np.array([0, 3]), np.zeros(2, dtype=np.bool_),
+                      np.zeros(2, dtype=np.int64), np.zeros_like(group.x), transform, reduced,
+                      reduced_rhs, body_accel)
+
+
 @numba.njit(cache=True, inline='always')
-def _implicit_kinematic_line(x, v, f, particles, line_real, k, first, last, axial,
-                             implicit_bending, dt, half_h2, env, gravity, environment,
-                             tangents, contact, sub, tangent, block, rhs, rhs_flat, band,
-                             diagonal, lower, inverse, multiplier, accel):
+def _implicit_kinematic_line(group, work, k, implicit_bending, dt, half_h2, gravity, contact):
     """
-    Take the implicit step of one line whose two ends are on fixed or driven points.
+    Take the implicit step of line k, whose two ends are on fixed or driven points.
 
     The general assembly without the free points' bookkeeping: the line's interior is the
-    whole system, solved and applied at once.
+    whole system, solved and applied at once. dt, half_h2: the step's h gamma, h^2 beta.
     """
+    x, v, accel, particles, line_real = (group.x, group.v, group.accel, group.particles,
+                                         group.line_real)
+    lines, env = group.lines, group.env
+    f, sub, tangent, block = work.f, work.sub, work.tangent, work.block
+    rhs, rhs_flat, band = work.rhs, work.rhs_flat, work.band
+    diagonal, lower, inverse = work.diagonal, work.lower, work.inverse
+    first, last = lines[k, FIRST], lines[k, LAST]
+    axial = lines[k, AXIAL] == 1
+    environment = lines[k, FLUID] == 1 or contact
+    tangents = lines[k, TANGENTS] == 1
     m = last - first - 1
     if m <= 0:
         return
@@ -596,7 +691,7 @@ def _newmark(k, newmark, ready, dt):
 
 
 @numba.njit(cache=True, inline='always')
-def _predict(x, v, accel, dt, ahead_x, ahead_v, first, stop):
+def _predict_rows(x, v, accel, dt, ahead_x, ahead_v, first, stop):
     """
     Rows first..stop-1's predictor: x += h v + ahead_x a0, v += ahead_v a0 (a0: accel).
 
@@ -615,309 +710,382 @@ def _predict(x, v, accel, dt, ahead_x, ahead_v, first, stop):
 
 
 @numba.njit(cache=True)
-def _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                              line_real, points, env, max_iterations, implicit_bending,
-                              inv_mass, rest, f, block, rhs, rhs_flat, band, diagonal, lower,
-                              inverse, multiplier, sub, tangent, newmark, accel):
+def _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
+                              implicit_bending, newmark):
     """
-    Take implicit_euler_run's steps when no point is free (its scratch arrays passed in).
+    Take implicit_euler_run's steps when no point is free (work: its _LineWork).
 
-    Compiled on its own, not inlined into implicit_euler_run: inlined (once for each matrix
-    kind) it took a third of the two minutes numba spent compiling that kernel, for no speed.
+    Each line alone, from its own history: the predictor, the forces there, then line by
+    line its system assembled, solved and applied (_implicit_kinematic_line). Compiled on
+    its own, not inlined into implicit_euler_run: inlined (once for each matrix kind) it
+    took a third of the two minutes numba spent compiling that kernel, for no speed.
     """
+    x, v, accel, point_x, point_v = group.x, group.v, group.accel, group.point_x, group.point_v
+    particles, lines, line_real, points = (group.particles, group.lines, group.line_real,
+                                           group.points)
+    env, inv_mass, rest = group.env, work.inv_mass, work.rest
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
     for k in range(drive_x.shape[0]):
         pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
         for line in range(lines.shape[0]):  # each line from its own history
             _, _, ahead_x, ahead_v = _newmark(k, newmark, line_real[line, HISTORY] > 0.0, dt)
-            _predict(x, v, accel, dt, ahead_x, ahead_v, lines[line, FIRST],
-                     lines[line, LAST] + 1)
+            _predict_rows(x, v, accel, dt, ahead_x, ahead_v, lines[line, FIRST],
+                          lines[line, LAST] + 1)
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
-        line_forces(x, v, f, particles, lines, line_real)
-        line_passes(x, particles, lines, line_real, env, sub, tangent)
+        line_forces(x, v, work.f, particles, lines, line_real)
+        line_passes(x, particles, lines, line_real, env, work.sub, work.tangent)
         for line in range(lines.shape[0]):
             h_gamma, h2_beta, _, _ = _newmark(k, newmark, line_real[line, HISTORY] > 0.0, dt)
-            _implicit_kinematic_line(x, v, f, particles, line_real, line, lines[line, FIRST],
-                                     lines[line, LAST], lines[line, AXIAL] == 1,
-                                     implicit_bending, h_gamma, h2_beta, env, gravity,
-                                     lines[line, FLUID] == 1 or contact,
-                                     lines[line, TANGENTS] == 1, contact, sub, tangent, block,
-                                     rhs, rhs_flat, band, diagonal, lower, inverse, multiplier,
-                                     accel)
+            _implicit_kinematic_line(group, work, line, implicit_bending, h_gamma, h2_beta,
+                                     gravity, contact)
         _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
         _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
-                    f)  # f: scratch here, the next step computes it afresh
+                    work.f)  # f: scratch here, the next step computes it afresh
 
 
 @numba.njit(cache=True)
-def implicit_euler_run(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines,
-                       line_real, points, env, bodies, fenders, max_iterations, implicit_bending,
-                       gamma, beta, accel, point_accel):
+def implicit_euler_run(group, drive_x, drive_v, dt, max_iterations, implicit_bending, gamma,
+                       beta):
     """
     Take len(drive_x) implicit steps of the whole system in place.
 
     Arguments as improved_euler_run; implicit_bending: put the bending springs in the matrix
     too (needed only when they are stiff enough to limit an explicit step; it widens a
     line's band from 5 to 8). gamma, beta: Newmark's (1, 1/2: implicit Euler, as above; the
-    adaptive integrator's are less damping), from accel and point_accel (P, 3), (Q, 3), the
-    accelerations of each line's step before where its HISTORY says they are (the run leaves
-    its last ones there). A body's accelerations of the step before are in its BODY_ACCEL.
+    adaptive integrator's are less damping), from the group's accel and point_accel, the
+    accelerations of each line's step before where its HISTORY says they are (the run
+    leaves its last ones there). A body's accelerations of the step before are in its
+    BODY_ACCEL.
 
-    A body (bodies, fenders: the BODY and FENDER tables) joins the step through its carried
-    points: they are unknowns of the point system as free points are, and the body's own six
-    accelerations y replace them, a_q = J_q y with J_q = [I, -[r_q]x] (_condense). Its
-    predictor is the rigid body's (its points follow it there, centripetal terms and all),
-    its own loads and their Jacobians (forces/body.py) join the condensed system, and its
-    points are placed on it again after the step: a stiff line on a light body steps as
-    stably as on a payload.
+    A body (the group's bodies and fenders: the BODY and FENDER tables) joins the step
+    through its carried points: they are unknowns of the point system as free points are,
+    and the body's own six accelerations y replace them, a_q = J_q y with
+    J_q = [I, -[r_q]x] (_solve_with_bodies). Its predictor is the rigid body's (its points
+    follow it there, centripetal terms and all), its own loads and their Jacobians
+    (forces/body.py) join the condensed system, and its points are placed on it again after
+    the step: a stiff line on a light body steps as stably as on a payload.
+
+    Each step is composed of the small steps of the comment above: _predict, then the
+    system at the predictor, _assemble_points (the forces, the free points' own rows) and
+    line by line _assemble_line and _condense_line (its interior solved and condensed onto
+    its free ends), then _solve (the points, then every line's interior) and _update.
     """
-    n_points = points.shape[0]
-    n_lines = lines.shape[0]
-    inv_mass = np.ascontiguousarray(particles[:, INV_MASS])  # for the strain limit
-    rest = np.ascontiguousarray(particles[:, REST])
-    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
-    contact = has_contact(env)
-    sub = np.zeros(x.shape[0])  # submerged length of each particle
-    tangent = np.zeros_like(x)  # unit tangent of each particle
-    free_of = np.full(n_points, -1, dtype=np.int64)
-    n_free = 0
-    for q in range(n_points):
-        if points[q, KIND] == FREE or points[q, KIND] == CARRIED:
-            free_of[q] = n_free
-            n_free += 1
-    widest = 1
-    for k in range(n_lines):
-        widest = max(widest, lines[k, LAST] - lines[k, FIRST] - 1)
-    f = np.empty_like(x)
-    block = np.empty((3, 3))
-    rhs_flat = np.empty(3 * widest)
-    rhs = rhs_flat.reshape(widest, 3)
-    # structural springs only: 3x3 block-tridiagonal (block Thomas); with the bending
-    # springs the band is wider (banded Cholesky)
-    band = np.empty((3 * widest, 9) if implicit_bending else (0, 0))
-    diagonal = np.empty((widest, 3, 3))
-    lower = np.empty((widest, 3, 3))
-    inverse = np.empty((widest, 3, 3))
-    multiplier = np.empty((widest, 3, 3))
-    if n_free == 0 and bodies.shape[0] == 0:  # every end fixed or driven: each line alone
-        _implicit_kinematic_steps(x, v, point_x, point_v, drive_x, drive_v, dt, particles,
-                                  lines, line_real, points, env, max_iterations,
-                                  implicit_bending, inv_mass, rest, f, block, rhs, rhs_flat,
-                                  band, diagonal, lower, inverse, multiplier, sub, tangent,
-                                  (gamma, beta), accel)
+    work = _line_work(group, implicit_bending)
+    if not _moving_points(group.points) and group.bodies.shape[0] == 0:
+        # every end fixed or driven: each line alone
+        _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
+                                  implicit_bending, (gamma, beta))
         return
-    solution = np.zeros_like(x)  # interior accelerations, by particle row
-    # free points: the Schur system, its right-hand side, and per line the coupling B and
-    # A^-1 B (by particle row), six columns: end A's point, then end B's
-    schur = np.empty((3 * n_free, 3 * n_free))
-    point_rhs = np.empty(3 * n_free)
-    end_force = np.empty((1, 3))
-    point_force = np.empty((1, 3))
-    coupling = np.empty((widest, 3, 6))
-    solved_coupling = np.zeros((x.shape[0], 3, 6))
-    column = np.empty(3 * widest)
-    column_blocks = column.reshape(widest, 3)
-    end_col = np.array([0, 3])
-    end_free = np.zeros(2, dtype=np.bool_)
-    free_index = np.zeros(2, dtype=np.int64)
+    lines, line_real = group.lines, group.line_real
+    point_work = _point_work(group, work.rhs.shape[0])
     ready = True  # lines joined by free points step as one: all from their history, or none
-    for line in range(n_lines):
+    for line in range(lines.shape[0]):
         ready &= line_real[line, HISTORY] > 0.0
-    # bodies: the condensed system of the free points' and the bodies' accelerations
-    n_bodies = bodies.shape[0]
-    if n_bodies > 0:
-        transform, reduced, reduced_rhs, body_accel = _condensed_arrays(
-            points, free_of, n_free, n_bodies)
     for k in range(drive_x.shape[0]):
         dt_c, half_h2, ahead_x, ahead_v = _newmark(k, (gamma, beta), ready, dt)
-        pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
-        _predict(x, v, accel, dt, ahead_x, ahead_v, 0, x.shape[0])
-        for q in range(n_points):
-            if points[q, KIND] == FREE:
-                for p in range(3):
-                    point_x[q, p] += dt * point_v[q, p]
-                    if ahead_x != 0.0 or ahead_v != 0.0:
-                        point_x[q, p] += ahead_x * point_accel[q, p]
-                        point_v[q, p] += ahead_v * point_accel[q, p]
-        if n_bodies > 0:
-            _predict_bodies(bodies, dt, ahead_x, ahead_v)
-            place_points(bodies, points, point_x, point_v)
-        _drive(points, point_x, point_v, drive_x, drive_v, k)
-        set_ends(x, v, lines, point_x, point_v)
-        line_forces(x, v, f, particles, lines, line_real)
-        line_passes(x, particles, lines, line_real, env, sub, tangent)
-        schur[:] = 0.0
-        point_rhs[:] = 0.0
-        for q in range(n_points):
-            j = free_of[q]
-            if points[q, KIND] == FREE:  # a carried point's rows: its line ends' only
-                point_force[0] = 0.0
-                added, weight = point_environment(point_x, point_v, q, points, contact, env,
-                                                  point_force, 0)
-                block[:] = 0.0
-                point_environment_block(point_x, point_v, q, points, contact, env, dt_c,
-                                        half_h2, block)
-                mass = points[q, OWN_MASS] + added
-                for p in range(3):
-                    point_rhs[3 * j + p] = point_force[0, p] + weight * gravity[p]
-                    schur[3 * j + p, 3 * j + p] += mass
-                    for r in range(3):
-                        schur[3 * j + p, 3 * j + r] += block[p, r]
-        for line in range(n_lines):
-            first, last = lines[line, FIRST], lines[line, LAST]
-            axial = lines[line, AXIAL] == 1
-            environment = lines[line, FLUID] == 1 or contact
-            tangents = lines[line, TANGENTS] == 1
-            m = last - first - 1
-            coupled = False
-            for e in range(2):
-                q = lines[line, END_A + e]
-                end_free[e] = free_of[q] >= 0
-                free_index[e] = free_of[q]
-                coupled |= end_free[e]
-            diagonal[:m] = 0.0
-            lower[:m] = 0.0
-            if implicit_bending:
-                band[:3 * m] = 0.0
-            if coupled:
-                coupling[:m] = 0.0
-            for i in range(first, last):
-                spring_block_at(x, particles, i, False, half_h2, dt_c, axial, block,
-                                line_real[line])
-                if coupled:
-                    _scatter(block, i, i + 1, first, last, end_col, end_free, free_index,
-                             implicit_bending, band, diagonal, lower, coupling, schur)
-                elif implicit_bending:  # the common cases, kept lean: A only
-                    _add_band_spring(band, i - first - 1, i - first, m, block)
-                else:
-                    _add_chain_block(diagonal, lower, i - first, m, block)
-            if implicit_bending:
-                for i in range(first, last - 1):
-                    spring_block_at(x, particles, i, True, half_h2, dt_c, axial, block,
-                                    line_real[line])
-                    if coupled:
-                        _scatter(block, i, i + 2, first, last, end_col, end_free,
-                                 free_index, True, band, diagonal, lower, coupling, schur)
-                    else:
-                        _add_band_spring(band, i - first - 1, i - first + 1, m, block)
-            # mass, weight, buoyancy, drag and contact of the interior particles
-            for i in range(first + 1, last):
-                local = i - first - 1
-                _particle_system(x, v, f, i, particles, line_real, line, environment,
-                                 tangents, contact, env, gravity, sub, tangent, dt_c, half_h2,
-                                 rhs, local, block)
-                if implicit_bending:
-                    _add_band(band, local, local, block, 1.0)
-                else:
-                    for p in range(3):
-                        for q in range(3):
-                            diagonal[local, p, q] += block[p, q]
-            # the line ends on free points: their rows of the point system
-            for e in range(2):
-                if not end_free[e]:
-                    continue
-                row = first if e == 0 else last
-                j = free_index[e]
-                _particle_system(x, v, f, row, particles, line_real, line, environment,
-                                 tangents, contact, env, gravity, sub, tangent, dt_c, half_h2,
-                                 end_force, 0, block)
-                for p in range(3):
-                    point_rhs[3 * j + p] += end_force[0, p]
-                    for q in range(3):
-                        schur[3 * j + p, 3 * j + q] += block[p, q]
-            if m <= 0:
-                continue
-            if implicit_bending:
-                _cholesky_factor(band, 3 * m)
-                _cholesky_band_solve(band, rhs_flat, 3 * m)
-            else:
-                _block_thomas_factor(diagonal, lower, inverse, multiplier, m)
-                _block_thomas_solve(lower, inverse, multiplier, rhs, m)
-            for i in range(m):
-                for p in range(3):
-                    solution[first + 1 + i, p] = rhs[i, p]
-            if not coupled:
-                continue
-            # A^-1 B, column by column, and the Schur complement's share of this line
-            for c in range(6):
-                e = c // 3
-                if not end_free[e]:
-                    continue
-                for i in range(m):
-                    for p in range(3):
-                        column[3 * i + p] = coupling[i, p, c]
-                if implicit_bending:
-                    _cholesky_band_solve(band, column, 3 * m)
-                else:
-                    _block_thomas_solve(lower, inverse, multiplier, column_blocks, m)
-                for i in range(m):
-                    for p in range(3):
-                        solved_coupling[first + 1 + i, p, c] = column[3 * i + p]
-            for c in range(6):
-                e = c // 3
-                if not end_free[e]:
-                    continue
-                ro = 3 * free_index[e] + c % 3
-                s = 0.0
-                for i in range(m):
-                    for p in range(3):
-                        s += coupling[i, p, c] * rhs[i, p]
-                point_rhs[ro] -= s
-                for d in range(6):
-                    g = d // 3
-                    if not end_free[g]:
-                        continue
-                    co = 3 * free_index[g] + d % 3
-                    s = 0.0
-                    for i in range(m):
-                        for p in range(3):
-                            s += coupling[i, p, c] * solved_coupling[first + 1 + i, p, d]
-                    schur[ro, co] -= s
-        if n_bodies > 0:
-            _condense(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c,
-                      half_h2, transform, reduced, reduced_rhs, body_accel)
-        else:
-            dense_cholesky_solve(schur, point_rhs)
-        for line in range(n_lines):
-            first, last = lines[line, FIRST], lines[line, LAST]
-            for c in range(6):
-                q = lines[line, END_A + c // 3]
-                if free_of[q] < 0:
-                    continue
-                a = point_rhs[3 * free_of[q] + c % 3]
-                for i in range(first + 1, last):
-                    for p in range(3):
-                        solution[i, p] -= solved_coupling[i, p, c] * a
-        for q in range(n_points):
-            j = free_of[q]
-            if j >= 0:
-                for p in range(3):
-                    point_accel[q, p] = point_rhs[3 * j + p]
-                    if points[q, KIND] == FREE:
-                        point_x[q, p] += half_h2 * point_rhs[3 * j + p]
-                        point_v[q, p] += dt_c * point_rhs[3 * j + p]
-        if n_bodies > 0:
-            _correct_bodies(bodies, body_accel, dt_c, half_h2)
-            place_points(bodies, points, point_x, point_v)
-        for line in range(n_lines):
-            for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
-                for p in range(3):
-                    x[i, p] += half_h2 * solution[i, p]
-                    v[i, p] += dt_c * solution[i, p]
-                    accel[i, p] = solution[i, p]
-        set_ends(x, v, lines, point_x, point_v)
-        _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
-                       max_iterations)
-        _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
-                    f)  # f: scratch here, the next step computes it afresh
+        _predict(group, work, drive_x, drive_v, k, dt, ahead_x, ahead_v)
+        _assemble_points(group, work, point_work, dt_c, half_h2)
+        for line in range(lines.shape[0]):
+            _assemble_line(group, work, point_work, line, implicit_bending, dt_c, half_h2)
+            _condense_line(work, point_work, lines[line, FIRST], lines[line, LAST],
+                           implicit_bending)
+        _solve(group, point_work, dt_c, half_h2)
+        _update(group, work, point_work, dt, dt_c, half_h2, k, max_iterations)
 
 
 @numba.njit(cache=True)
-def _condensed_arrays(points, free_of, n_free, n_bodies):
+def _predict(group, work, drive_x, drive_v, k, dt, ahead_x, ahead_v):
     """
-    Return the condensed system's arrays, each to be filled by _condense.
+    Put everything at step k's predictor, the driven points at their k-th sample.
+
+    x^ = x0 + h v0 (with Newmark's a0 terms ahead_x, ahead_v) of every particle, free point
+    and body (rigidly turned; its carried points follow it), every line end on its point.
+    The winches first take the rest lengths of the step's end (winch.pay_out).
+    """
+    x, v, accel = group.x, group.v, group.accel
+    point_x, point_v, point_accel = group.point_x, group.point_v, group.point_accel
+    points, bodies = group.points, group.bodies
+    gravity = group.env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    pay_out(x, v, group.particles, group.lines, group.line_real, points, work.rest,
+            work.inv_mass, dt, gravity)
+    _predict_rows(x, v, accel, dt, ahead_x, ahead_v, 0, x.shape[0])
+    for q in range(points.shape[0]):
+        if points[q, KIND] == FREE:
+            for p in range(3):
+                point_x[q, p] += dt * point_v[q, p]
+                if ahead_x != 0.0 or ahead_v != 0.0:
+                    point_x[q, p] += ahead_x * point_accel[q, p]
+                    point_v[q, p] += ahead_v * point_accel[q, p]
+    if bodies.shape[0] > 0:
+        _predict_bodies(bodies, dt, ahead_x, ahead_v)
+        place_points(bodies, points, point_x, point_v)
+    _drive(points, point_x, point_v, drive_x, drive_v, k)
+    set_ends(x, v, group.lines, point_x, point_v)
+
+
+@numba.njit(cache=True)
+def _assemble_points(group, work, point_work, dt_c, half_h2):
+    """
+    Start the step's system at the predictor: the forces, and the free points' own rows.
+
+    The springs' forces (work.f), the lines' submerged lengths and tangents; the point
+    system S (point_work.schur) and g (point_work.point_rhs) cleared, then each free
+    point's mass matrix (its own mass and added mass, h C + h^2 K of its drag and contact)
+    and load (weight, buoyancy, drag, contact). A carried point's rows are its line ends'
+    only.
+    """
+    x, v, particles, lines, line_real = (group.x, group.v, group.particles, group.lines,
+                                         group.line_real)
+    point_x, point_v, points, env = group.point_x, group.point_v, group.points, group.env
+    schur, point_rhs, point_force = point_work.schur, point_work.point_rhs, point_work.point_force
+    block = work.block
+    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    contact = has_contact(env)
+    line_forces(x, v, work.f, particles, lines, line_real)
+    line_passes(x, particles, lines, line_real, env, work.sub, work.tangent)
+    schur[:] = 0.0
+    point_rhs[:] = 0.0
+    for q in range(points.shape[0]):
+        j = point_work.free_of[q]
+        if points[q, KIND] == FREE:
+            point_force[0] = 0.0
+            added, weight = point_environment(point_x, point_v, q, points, contact, env,
+                                              point_force, 0)
+            block[:] = 0.0
+            point_environment_block(point_x, point_v, q, points, contact, env, dt_c, half_h2,
+                                    block)
+            mass = points[q, OWN_MASS] + added
+            for p in range(3):
+                point_rhs[3 * j + p] = point_force[0, p] + weight * gravity[p]
+                schur[3 * j + p, 3 * j + p] += mass
+                for r in range(3):
+                    schur[3 * j + p, 3 * j + r] += block[p, r]
+
+
+@numba.njit(cache=True)
+def _assemble_line(group, work, point_work, line, implicit_bending, dt_c, half_h2):
+    """
+    Assemble one line's share of the step's system at the predictor.
+
+    Its interior's matrix A (work.band, or work.diagonal and work.lower) and right-hand side
+    r (work.rhs): springs, masses, weight, buoyancy, drag and contact; its coupling B to the
+    ends on free or carried points (point_work.coupling, which point_work.end_free and
+    free_index name); and those ends' rows of the point system (point_work.schur,
+    point_rhs).
+    """
+    x, v, particles, lines, line_real = (group.x, group.v, group.particles, group.lines,
+                                         group.line_real)
+    env = group.env
+    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    contact = has_contact(env)
+    f, sub, tangent, block = work.f, work.sub, work.tangent, work.block
+    rhs, band, diagonal, lower = work.rhs, work.band, work.diagonal, work.lower
+    schur, point_rhs, coupling = point_work.schur, point_work.point_rhs, point_work.coupling
+    end_col, end_free, free_index = point_work.end_col, point_work.end_free, point_work.free_index
+    first, last = lines[line, FIRST], lines[line, LAST]
+    axial = lines[line, AXIAL] == 1
+    environment = lines[line, FLUID] == 1 or contact
+    tangents = lines[line, TANGENTS] == 1
+    m = last - first - 1
+    coupled = False
+    for e in range(2):
+        q = lines[line, END_A + e]
+        end_free[e] = point_work.free_of[q] >= 0
+        free_index[e] = point_work.free_of[q]
+        coupled |= end_free[e]
+    diagonal[:m] = 0.0
+    lower[:m] = 0.0
+    if implicit_bending:
+        band[:3 * m] = 0.0
+    if coupled:
+        coupling[:m] = 0.0
+    for i in range(first, last):
+        spring_block_at(x, particles, i, False, half_h2, dt_c, axial, block, line_real[line])
+        if coupled:
+            _scatter(block, i, i + 1, first, last, end_col, end_free, free_index,
+                     implicit_bending, band, diagonal, lower, coupling, schur)
+        elif implicit_bending:  # the common cases, kept lean: A only
+            _add_band_spring(band, i - first - 1, i - first, m, block)
+        else:
+            _add_chain_block(diagonal, lower, i - first, m, block)
+    if implicit_bending:
+        for i in range(first, last - 1):
+            spring_block_at(x, particles, i, True, half_h2, dt_c, axial, block,
+                            line_real[line])
+            if coupled:
+                _scatter(block, i, i + 2, first, last, end_col, end_free, free_index, True,
+                         band, diagonal, lower, coupling, schur)
+            else:
+                _add_band_spring(band, i - first - 1, i - first + 1, m, block)
+    # mass, weight, buoyancy, drag and contact of the interior particles
+    for i in range(first + 1, last):
+        local = i - first - 1
+        _particle_system(x, v, f, i, particles, line_real, line, environment, tangents,
+                         contact, env, gravity, sub, tangent, dt_c, half_h2, rhs, local, block)
+        if implicit_bending:
+            _add_band(band, local, local, block, 1.0)
+        else:
+            for p in range(3):
+                for q in range(3):
+                    diagonal[local, p, q] += block[p, q]
+    # the line ends on free points: their rows of the point system
+    end_force = point_work.end_force
+    for e in range(2):
+        if not end_free[e]:
+            continue
+        row = first if e == 0 else last
+        j = free_index[e]
+        _particle_system(x, v, f, row, particles, line_real, line, environment, tangents,
+                         contact, env, gravity, sub, tangent, dt_c, half_h2, end_force, 0,
+                         block)
+        for p in range(3):
+            point_rhs[3 * j + p] += end_force[0, p]
+            for q in range(3):
+                schur[3 * j + p, 3 * j + q] += block[p, q]
+
+
+@numba.njit(cache=True)
+def _condense_line(work, point_work, first, last, implicit_bending):
+    """
+    Solve a line's interior alone and condense it onto its free ends (after _assemble_line).
+
+    Its particles' accelerations for its own right-hand side, A^-1 r (into point_work.solution,
+    rows first + 1 .. last - 1); then, where an end is on a free or carried point, A^-1 B
+    (point_work.solved_coupling) and the line's share of the Schur complement:
+    S -= B^T A^-1 B, g -= B^T A^-1 r.
+    """
+    rhs, rhs_flat, band = work.rhs, work.rhs_flat, work.band
+    lower, inverse, multiplier = work.lower, work.inverse, work.multiplier
+    coupling, solved_coupling = point_work.coupling, point_work.solved_coupling
+    column = point_work.column
+    end_free, free_index = point_work.end_free, point_work.free_index
+    schur, point_rhs, solution = point_work.schur, point_work.point_rhs, point_work.solution
+    m = last - first - 1
+    if m <= 0:
+        return
+    if implicit_bending:
+        _cholesky_factor(band, 3 * m)
+        _cholesky_band_solve(band, rhs_flat, 3 * m)
+    else:
+        _block_thomas_factor(work.diagonal, lower, inverse, multiplier, m)
+        _block_thomas_solve(lower, inverse, multiplier, rhs, m)
+    for i in range(m):
+        for p in range(3):
+            solution[first + 1 + i, p] = rhs[i, p]
+    if not (end_free[0] or end_free[1]):
+        return
+    # A^-1 B, column by column, and the Schur complement's share of this line
+    for c in range(6):
+        e = c // 3
+        if not end_free[e]:
+            continue
+        for i in range(m):
+            for p in range(3):
+                column[3 * i + p] = coupling[i, p, c]
+        if implicit_bending:
+            _cholesky_band_solve(band, column, 3 * m)
+        else:
+            _block_thomas_solve(lower, inverse, multiplier, point_work.column_blocks, m)
+        for i in range(m):
+            for p in range(3):
+                solved_coupling[first + 1 + i, p, c] = column[3 * i + p]
+    for c in range(6):
+        e = c // 3
+        if not end_free[e]:
+            continue
+        ro = 3 * free_index[e] + c % 3
+        s = 0.0
+        for i in range(m):
+            for p in range(3):
+                s += coupling[i, p, c] * rhs[i, p]
+        point_rhs[ro] -= s
+        for d in range(6):
+            g = d // 3
+            if not end_free[g]:
+                continue
+            co = 3 * free_index[g] + d % 3
+            s = 0.0
+            for i in range(m):
+                for p in range(3):
+                    s += coupling[i, p, c] * solved_coupling[first + 1 + i, p, d]
+            schur[ro, co] -= s
+
+
+@numba.njit(cache=True)
+def _solve(group, point_work, dt_c, half_h2):
+    """
+    Solve the condensed system: the points' accelerations, then every line's interior.
+
+    The point system S a = g (point_work.point_rhs becomes a; with bodies, through their own six
+    accelerations, point_work.body_accel: _solve_with_bodies), then each line's interior
+    a_k = A^-1 r - A^-1 B a (point_work.solution).
+    """
+    lines, free_of = group.lines, point_work.free_of
+    point_rhs, solution = point_work.point_rhs, point_work.solution
+    solved_coupling = point_work.solved_coupling
+    if group.bodies.shape[0] > 0:
+        _solve_with_bodies(point_work.schur, point_rhs, group.points, group.point_x, free_of,
+                           group.bodies, group.fenders, dt_c, half_h2, point_work.transform,
+                           point_work.reduced, point_work.reduced_rhs, point_work.body_accel)
+    else:
+        dense_cholesky_solve(point_work.schur, point_rhs)
+    for line in range(lines.shape[0]):
+        first, last = lines[line, FIRST], lines[line, LAST]
+        for c in range(6):
+            q = lines[line, END_A + c // 3]
+            if free_of[q] < 0:
+                continue
+            a = point_rhs[3 * free_of[q] + c % 3]
+            for i in range(first + 1, last):
+                for p in range(3):
+                    solution[i, p] -= solved_coupling[i, p, c] * a
+
+
+@numba.njit(cache=True)
+def _update(group, work, point_work, dt, dt_c, half_h2, k, max_iterations):
+    """
+    Finish step k from the solved accelerations a: x += h^2 beta a, v += h gamma a.
+
+    The free points and the interior particles, the bodies (their carried points placed on
+    them again); a kept for the next step (accel, point_accel, BODY_ACCEL); every line end
+    on its point. Then the strain limit and what follows every step (_after_step).
+    """
+    x, v, accel = group.x, group.v, group.accel
+    point_x, point_v, point_accel = group.point_x, group.point_v, group.point_accel
+    particles, lines, line_real, points, bodies = (group.particles, group.lines,
+                                                   group.line_real, group.points, group.bodies)
+    free_of, point_rhs, solution = point_work.free_of, point_work.point_rhs, point_work.solution
+    gravity = group.env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    for q in range(points.shape[0]):
+        j = free_of[q]
+        if j >= 0:
+            for p in range(3):
+                point_accel[q, p] = point_rhs[3 * j + p]
+                if points[q, KIND] == FREE:
+                    point_x[q, p] += half_h2 * point_rhs[3 * j + p]
+                    point_v[q, p] += dt_c * point_rhs[3 * j + p]
+    if bodies.shape[0] > 0:
+        _correct_bodies(bodies, point_work.body_accel, dt_c, half_h2)
+        place_points(bodies, points, point_x, point_v)
+    for line in range(lines.shape[0]):
+        for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
+            for p in range(3):
+                x[i, p] += half_h2 * solution[i, p]
+                v[i, p] += dt_c * solution[i, p]
+                accel[i, p] = solution[i, p]
+    set_ends(x, v, lines, point_x, point_v)
+    _limit_strains(x, v, work.inv_mass, work.rest, lines, line_real, points, point_x, point_v,
+                   max_iterations)
+    _after_step(x, v, particles, lines, line_real, points, work.rest, work.inv_mass, dt, k,
+                gravity, work.f)  # f: scratch here, the next step computes it afresh
+
+
+@numba.njit(cache=True)
+def _body_arrays(points, free_of, n_free, n_bodies):
+    """
+    Return the condensed system's arrays, each to be filled by _solve_with_bodies.
 
     transform T (3 F, Y), reduced (Y, Y), its right-hand side (Y,) and the bodies'
     accelerations (B, 6); Y holds 3 unknowns per free point and 6 per body, in that order.
@@ -931,8 +1099,8 @@ def _condensed_arrays(points, free_of, n_free, n_bodies):
 
 
 @numba.njit(cache=True)
-def _condense(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c, half_h2,
-              transform, reduced, reduced_rhs, body_accel):
+def _solve_with_bodies(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c,
+                       half_h2, transform, reduced, reduced_rhs, body_accel):
     """
     Solve the point system S a = g with the carried points' accelerations a_q = J_q y.
 
@@ -1018,7 +1186,7 @@ def _reduce(schur, rhs, transform, reduced, reduced_rhs):
 
 @numba.njit(cache=True)
 def _predict_bodies(bodies, dt, ahead_x, ahead_v):
-    """Put every body at its predictor (as _predict does the particles; rigidly turned)."""
+    """Put every body at its predictor (as _predict_rows does the particles; rigidly turned)."""
     history = ahead_x != 0.0 or ahead_v != 0.0
     for b in range(bodies.shape[0]):
         body = bodies[b]
@@ -1063,10 +1231,9 @@ def run_kernel(system, integrator: str, dt: float, drive_x: np.ndarray, drive_v:
     :param compiled: False runs the same kernels' Python code (``.py_func``), for tests.
     """
     if integrator == 'implicit_euler':
-        run = implicit_euler_run
-        last = (max_iterations, implicit_bending, newmark[0], newmark[1], system.accel,
-                system.point_accel)
+        run = implicit_euler_run if compiled else implicit_euler_run.py_func
+        run(system.group, drive_x, drive_v, dt, max_iterations, implicit_bending, newmark[0],
+            newmark[1])
     else:
-        run, last = improved_euler_run, (max_iterations,)
-    (run if compiled else run.py_func)(system.x, system.v, system.point_x, system.point_v,
-                                       drive_x, drive_v, dt, *system.tables, *last)
+        run = improved_euler_run if compiled else improved_euler_run.py_func
+        run(system.group, drive_x, drive_v, dt, max_iterations)
