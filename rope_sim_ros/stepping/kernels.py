@@ -565,7 +565,6 @@ class _PointWork(NamedTuple):
     solved_coupling: np.ndarray  # (P, 3, 6) every line's A^-1 B, by particle row
     column: np.ndarray  # (3 W,) one column of B, then of A^-1 B
     column_blocks: np.ndarray  # (W, 3) the same by particle
-    end_col: np.ndarray  # (2,) each end's first column in B
     end_free: np.ndarray  # (2,) a line's ends: on a free or carried point
     free_index: np.ndarray  # (2,) their points' rows among the unknowns
     solution: np.ndarray  # (P, 3) the interior particles' accelerations
@@ -575,7 +574,7 @@ class _PointWork(NamedTuple):
     body_accel: np.ndarray  # (B, 6) the bodies' accelerations
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _line_work(group, implicit_bending):
     """Return an implicit run's _LineWork for this group's lines."""
     x, particles, lines = group.x, group.particles, group.lines
@@ -594,7 +593,7 @@ def _line_work(group, implicit_bending):
                      np.empty((widest, 3, 3)), np.empty((widest, 3, 3)))
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _point_work(group, widest):
     """Return an implicit run's _PointWork: free and carried points are its unknowns."""
     points, n_bodies = group.points, group.bodies.shape[0]
@@ -614,25 +613,21 @@ def _point_work(group, widest):
     return _PointWork(free_of, np.empty((3 * n_free, 3 * n_free)), np.empty(3 * n_free),
                       np.empty((1, 3)), np.empty((1, 3)), np.empty((widest, 3, 6)),
                       np.zeros((group.x.shape[0], 3, 6)), column, column.reshape(widest, 3),
-                      np.array([0, 3]), np.zeros(2, dtype=np.bool_),
+                      np.zeros(2, dtype=np.bool_),
                       np.zeros(2, dtype=np.int64), np.zeros_like(group.x), transform, reduced,
                       reduced_rhs, body_accel)
 
 
 @numba.njit(cache=True, inline='always')
-def _implicit_kinematic_line(group, work, k, implicit_bending, dt, half_h2, gravity, contact):
+def _implicit_kinematic_line(k, x, v, accel, f, sub, tangent, particles, lines, line_real,
+                             env, contact, gravity, implicit_bending, dt, half_h2, block, rhs,
+                             rhs_flat, band, diagonal, lower, inverse):
     """
     Take the implicit step of line k, whose two ends are on fixed or driven points.
 
     The general assembly without the free points' bookkeeping: the line's interior is the
     whole system, solved and applied at once. dt, half_h2: the step's h gamma, h^2 beta.
     """
-    x, v, accel, particles, line_real = (group.x, group.v, group.accel, group.particles,
-                                         group.line_real)
-    lines, env = group.lines, group.env
-    f, sub, tangent, block = work.f, work.sub, work.tangent, work.block
-    rhs, rhs_flat, band = work.rhs, work.rhs_flat, work.band
-    diagonal, lower, inverse = work.diagonal, work.lower, work.inverse
     first, last = lines[k, FIRST], lines[k, LAST]
     axial = lines[k, AXIAL] == 1
     environment = lines[k, FLUID] == 1 or contact
@@ -723,7 +718,9 @@ def _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
     x, v, accel, point_x, point_v = group.x, group.v, group.accel, group.point_x, group.point_v
     particles, lines, line_real, points = (group.particles, group.lines, group.line_real,
                                            group.points)
-    env, inv_mass, rest = group.env, work.inv_mass, work.rest
+    env = group.env
+    (inv_mass, rest, f, sub, tangent, block, rhs_flat, rhs, band, diagonal, lower, inverse,
+     _) = work
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
     for k in range(drive_x.shape[0]):
@@ -734,15 +731,17 @@ def _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
                           lines[line, LAST] + 1)
         _drive(points, point_x, point_v, drive_x, drive_v, k)
         set_ends(x, v, lines, point_x, point_v)
-        line_forces(x, v, work.f, particles, lines, line_real)
-        line_passes(x, particles, lines, line_real, env, work.sub, work.tangent)
+        line_forces(x, v, f, particles, lines, line_real)
+        line_passes(x, particles, lines, line_real, env, sub, tangent)
         for line in range(lines.shape[0]):
             h_gamma, h2_beta, _, _ = _newmark(k, newmark, line_real[line, HISTORY] > 0.0, dt)
-            _implicit_kinematic_line(group, work, line, implicit_bending, h_gamma, h2_beta,
-                                     gravity, contact)
+            _implicit_kinematic_line(line, x, v, accel, f, sub, tangent, particles, lines,
+                                     line_real, env, contact, gravity, implicit_bending,
+                                     h_gamma, h2_beta, block, rhs, rhs_flat, band, diagonal,
+                                     lower, inverse)
         _limit_kinematic_strains(x, v, inv_mass, rest, lines, line_real, max_iterations)
         _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
-                    work.f)  # f: scratch here, the next step computes it afresh
+                    f)  # f: scratch here, the next step computes it afresh
 
 
 @numba.njit(cache=True)
@@ -767,10 +766,17 @@ def implicit_euler_run(group, drive_x, drive_v, dt, max_iterations, implicit_ben
     (forces/body.py) join the condensed system, and its points are placed on it again after
     the step: a stiff line on a light body steps as stably as on a payload.
 
-    Each step is composed of the small steps of the comment above: _predict, then the
-    system at the predictor, _assemble_points (the forces, the free points' own rows) and
-    line by line _assemble_line and _condense_line (its interior solved and condensed onto
-    its free ends), then _solve (the points, then every line's interior) and _update.
+    Each step is composed of the small steps of the comment above: the winches' rest lengths
+    of the step's end and _predict; the forces at the predictor and _assemble_points (the
+    free points' own rows); _condense_lines (each line's system assembled, its interior
+    solved and condensed onto its free ends); _solve (the points, then every line's
+    interior); _update, the strain limit and _after_step.
+
+    The records (the group, the run's scratch) are read once, here, and the steps, compiled
+    into this function (inline), take their arrays: with steps that read the records
+    themselves a 20-segment line with a free end took 14-19 % longer a step, eight of 50
+    segments 6 % (numba takes and drops a reference count at each read of a record's
+    field that it cannot prove needless).
     """
     work = _line_work(group, implicit_bending)
     if not _moving_points(group.points) and group.bodies.shape[0] == 0:
@@ -778,38 +784,53 @@ def implicit_euler_run(group, drive_x, drive_v, dt, max_iterations, implicit_ben
         _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
                                   implicit_bending, (gamma, beta))
         return
-    lines, line_real = group.lines, group.line_real
-    point_work = _point_work(group, work.rhs.shape[0])
+    x, v, accel = group.x, group.v, group.accel
+    point_x, point_v, point_accel = group.point_x, group.point_v, group.point_accel
+    particles, lines, line_real, points = (group.particles, group.lines, group.line_real,
+                                           group.points)
+    env, bodies, fenders = group.env, group.bodies, group.fenders
+    (inv_mass, rest, f, sub, tangent, block, rhs_flat, rhs, band, diagonal, lower, inverse,
+     multiplier) = work
+    (free_of, schur, point_rhs, point_force, end_force, coupling, solved_coupling, column,
+     column_blocks, end_free, free_index, solution, transform, reduced, reduced_rhs,
+     body_accel) = _point_work(group, rhs.shape[0])
+    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
+    contact = has_contact(env)
     ready = True  # lines joined by free points step as one: all from their history, or none
     for line in range(lines.shape[0]):
         ready &= line_real[line, HISTORY] > 0.0
     for k in range(drive_x.shape[0]):
         dt_c, half_h2, ahead_x, ahead_v = _newmark(k, (gamma, beta), ready, dt)
-        _predict(group, work, drive_x, drive_v, k, dt, ahead_x, ahead_v)
-        _assemble_points(group, work, point_work, dt_c, half_h2)
-        for line in range(lines.shape[0]):
-            _assemble_line(group, work, point_work, line, implicit_bending, dt_c, half_h2)
-            _condense_line(work, point_work, lines[line, FIRST], lines[line, LAST],
-                           implicit_bending)
-        _solve(group, point_work, dt_c, half_h2)
-        _update(group, work, point_work, dt, dt_c, half_h2, k, max_iterations)
+        pay_out(x, v, particles, lines, line_real, points, rest, inv_mass, dt, gravity)
+        _predict(x, v, accel, point_x, point_v, point_accel, points, lines, bodies, drive_x,
+                 drive_v, k, dt, ahead_x, ahead_v)
+        line_forces(x, v, f, particles, lines, line_real)
+        line_passes(x, particles, lines, line_real, env, sub, tangent)
+        _assemble_points(point_x, point_v, points, env, contact, gravity, free_of, schur,
+                         point_rhs, point_force, block, dt_c, half_h2)
+        _condense_lines(x, v, f, sub, tangent, particles, lines, line_real, env, dt_c,
+                        half_h2, block, rhs, rhs_flat, band, diagonal, lower, inverse,
+                        multiplier, free_of, end_free, free_index, coupling, solved_coupling,
+                        column, column_blocks, end_force, schur, point_rhs, solution)
+        _solve(lines, points, point_x, bodies, fenders, free_of, schur, point_rhs, solution,
+               solved_coupling, transform, reduced, reduced_rhs, body_accel, dt_c, half_h2)
+        _update(x, v, accel, point_x, point_v, point_accel, points, lines, bodies, free_of,
+                point_rhs, solution, body_accel, dt_c, half_h2)
+        _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
+                       max_iterations)
+        _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
+                    f)  # f: scratch here, the next step computes it afresh
 
 
-@numba.njit(cache=True)
-def _predict(group, work, drive_x, drive_v, k, dt, ahead_x, ahead_v):
+@numba.njit(cache=True, inline='always')
+def _predict(x, v, accel, point_x, point_v, point_accel, points, lines, bodies, drive_x,
+             drive_v, k, dt, ahead_x, ahead_v):
     """
     Put everything at step k's predictor, the driven points at their k-th sample.
 
     x^ = x0 + h v0 (with Newmark's a0 terms ahead_x, ahead_v) of every particle, free point
     and body (rigidly turned; its carried points follow it), every line end on its point.
-    The winches first take the rest lengths of the step's end (winch.pay_out).
     """
-    x, v, accel = group.x, group.v, group.accel
-    point_x, point_v, point_accel = group.point_x, group.point_v, group.point_accel
-    points, bodies = group.points, group.bodies
-    gravity = group.env[ENV_GRAVITY:ENV_GRAVITY + 3]
-    pay_out(x, v, group.particles, group.lines, group.line_real, points, work.rest,
-            work.inv_mass, dt, gravity)
     _predict_rows(x, v, accel, dt, ahead_x, ahead_v, 0, x.shape[0])
     for q in range(points.shape[0]):
         if points[q, KIND] == FREE:
@@ -822,33 +843,23 @@ def _predict(group, work, drive_x, drive_v, k, dt, ahead_x, ahead_v):
         _predict_bodies(bodies, dt, ahead_x, ahead_v)
         place_points(bodies, points, point_x, point_v)
     _drive(points, point_x, point_v, drive_x, drive_v, k)
-    set_ends(x, v, group.lines, point_x, point_v)
+    set_ends(x, v, lines, point_x, point_v)
 
 
-@numba.njit(cache=True)
-def _assemble_points(group, work, point_work, dt_c, half_h2):
+@numba.njit(cache=True, inline='always')
+def _assemble_points(point_x, point_v, points, env, contact, gravity, free_of, schur,
+                     point_rhs, point_force, block, dt_c, half_h2):
     """
-    Start the step's system at the predictor: the forces, and the free points' own rows.
+    Start the point system S, g at the predictor: the free points' own rows.
 
-    The springs' forces (work.f), the lines' submerged lengths and tangents; the point
-    system S (point_work.schur) and g (point_work.point_rhs) cleared, then each free
-    point's mass matrix (its own mass and added mass, h C + h^2 K of its drag and contact)
-    and load (weight, buoyancy, drag, contact). A carried point's rows are its line ends'
-    only.
+    S and g cleared, then each free point's mass matrix (its own mass and added mass,
+    h C + h^2 K of its drag and contact) and load (weight, buoyancy, drag, contact). A
+    carried point's rows are its line ends' only.
     """
-    x, v, particles, lines, line_real = (group.x, group.v, group.particles, group.lines,
-                                         group.line_real)
-    point_x, point_v, points, env = group.point_x, group.point_v, group.points, group.env
-    schur, point_rhs, point_force = point_work.schur, point_work.point_rhs, point_work.point_force
-    block = work.block
-    gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
-    contact = has_contact(env)
-    line_forces(x, v, work.f, particles, lines, line_real)
-    line_passes(x, particles, lines, line_real, env, work.sub, work.tangent)
     schur[:] = 0.0
     point_rhs[:] = 0.0
     for q in range(points.shape[0]):
-        j = point_work.free_of[q]
+        j = free_of[q]
         if points[q, KIND] == FREE:
             point_force[0] = 0.0
             added, weight = point_environment(point_x, point_v, q, points, contact, env,
@@ -864,173 +875,159 @@ def _assemble_points(group, work, point_work, dt_c, half_h2):
                     schur[3 * j + p, 3 * j + r] += block[p, r]
 
 
-@numba.njit(cache=True)
-def _assemble_line(group, work, point_work, line, implicit_bending, dt_c, half_h2):
+@numba.njit(cache=True, inline='always')
+def _condense_lines(x, v, f, sub, tangent, particles, lines, line_real, env, dt_c, half_h2,
+                    block, rhs, rhs_flat, band, diagonal, lower, inverse, multiplier, free_of,
+                    end_free, free_index, coupling, solved_coupling, column, column_blocks,
+                    end_force, schur, point_rhs, solution):
     """
-    Assemble one line's share of the step's system at the predictor.
+    Assemble each line's system at the predictor and condense it onto its free ends.
 
-    Its interior's matrix A (work.band, or work.diagonal and work.lower) and right-hand side
-    r (work.rhs): springs, masses, weight, buoyancy, drag and contact; its coupling B to the
-    ends on free or carried points (point_work.coupling, which point_work.end_free and
-    free_index name); and those ends' rows of the point system (point_work.schur,
-    point_rhs).
+    Line by line (its matrices are the next line's scratch). Assembled: its interior's
+    matrix A (band, or diagonal and lower) and right-hand side r (rhs): springs, masses,
+    weight, buoyancy, drag and contact; its coupling B (coupling) to its ends on free or
+    carried points, which end_free and free_index name; and those ends' rows of the point
+    system (schur, point_rhs). Condensed: its interior solved alone, A^-1 r (into solution),
+    and where an end is on a free or carried point, A^-1 B (solved_coupling) and the line's
+    share of the Schur complement, S -= B^T A^-1 B, g -= B^T A^-1 r.
+
+    One function for every line, its arrays handed over once a step: an array a compiled
+    function is handed costs numba a reference count taken and dropped (when it cannot
+    prove it needless), and an assembly and a condensation each a function of its own,
+    called line by line, took a 20-segment line with a free end 6 % longer a step, eight of
+    50 segments 2 %. No more than 30 arguments: Python hands more over as *args, which
+    numba cannot inline. implicit_bending: band is (0, 0) without the bending springs.
     """
-    x, v, particles, lines, line_real = (group.x, group.v, group.particles, group.lines,
-                                         group.line_real)
-    env = group.env
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
-    f, sub, tangent, block = work.f, work.sub, work.tangent, work.block
-    rhs, band, diagonal, lower = work.rhs, work.band, work.diagonal, work.lower
-    schur, point_rhs, coupling = point_work.schur, point_work.point_rhs, point_work.coupling
-    end_col, end_free, free_index = point_work.end_col, point_work.end_free, point_work.free_index
-    first, last = lines[line, FIRST], lines[line, LAST]
-    axial = lines[line, AXIAL] == 1
-    environment = lines[line, FLUID] == 1 or contact
-    tangents = lines[line, TANGENTS] == 1
-    m = last - first - 1
-    coupled = False
-    for e in range(2):
-        q = lines[line, END_A + e]
-        end_free[e] = point_work.free_of[q] >= 0
-        free_index[e] = point_work.free_of[q]
-        coupled |= end_free[e]
-    diagonal[:m] = 0.0
-    lower[:m] = 0.0
-    if implicit_bending:
-        band[:3 * m] = 0.0
-    if coupled:
-        coupling[:m] = 0.0
-    for i in range(first, last):
-        spring_block_at(x, particles, i, False, half_h2, dt_c, axial, block, line_real[line])
+    end_col = (0, 3)  # each end's first column in B
+    implicit_bending = band.shape[0] > 0
+    for line in range(lines.shape[0]):
+        first, last = lines[line, FIRST], lines[line, LAST]
+        axial = lines[line, AXIAL] == 1
+        environment = lines[line, FLUID] == 1 or contact
+        tangents = lines[line, TANGENTS] == 1
+        m = last - first - 1
+        coupled = False
+        for e in range(2):
+            q = lines[line, END_A + e]
+            end_free[e] = free_of[q] >= 0
+            free_index[e] = free_of[q]
+            coupled |= end_free[e]
+        diagonal[:m] = 0.0
+        lower[:m] = 0.0
+        if implicit_bending:
+            band[:3 * m] = 0.0
         if coupled:
-            _scatter(block, i, i + 1, first, last, end_col, end_free, free_index,
-                     implicit_bending, band, diagonal, lower, coupling, schur)
-        elif implicit_bending:  # the common cases, kept lean: A only
-            _add_band_spring(band, i - first - 1, i - first, m, block)
-        else:
-            _add_chain_block(diagonal, lower, i - first, m, block)
-    if implicit_bending:
-        for i in range(first, last - 1):
-            spring_block_at(x, particles, i, True, half_h2, dt_c, axial, block,
-                            line_real[line])
+            coupling[:m] = 0.0
+        for i in range(first, last):
+            spring_block_at(x, particles, i, False, half_h2, dt_c, axial, block, line_real[line])
             if coupled:
-                _scatter(block, i, i + 2, first, last, end_col, end_free, free_index, True,
-                         band, diagonal, lower, coupling, schur)
+                _scatter(block, i, i + 1, first, last, end_col, end_free, free_index,
+                         implicit_bending, band, diagonal, lower, coupling, schur)
+            elif implicit_bending:  # the common cases, kept lean: A only
+                _add_band_spring(band, i - first - 1, i - first, m, block)
             else:
-                _add_band_spring(band, i - first - 1, i - first + 1, m, block)
-    # mass, weight, buoyancy, drag and contact of the interior particles
-    for i in range(first + 1, last):
-        local = i - first - 1
-        _particle_system(x, v, f, i, particles, line_real, line, environment, tangents,
-                         contact, env, gravity, sub, tangent, dt_c, half_h2, rhs, local, block)
+                _add_chain_block(diagonal, lower, i - first, m, block)
         if implicit_bending:
-            _add_band(band, local, local, block, 1.0)
-        else:
-            for p in range(3):
-                for q in range(3):
-                    diagonal[local, p, q] += block[p, q]
-    # the line ends on free points: their rows of the point system
-    end_force = point_work.end_force
-    for e in range(2):
-        if not end_free[e]:
-            continue
-        row = first if e == 0 else last
-        j = free_index[e]
-        _particle_system(x, v, f, row, particles, line_real, line, environment, tangents,
-                         contact, env, gravity, sub, tangent, dt_c, half_h2, end_force, 0,
-                         block)
-        for p in range(3):
-            point_rhs[3 * j + p] += end_force[0, p]
-            for q in range(3):
-                schur[3 * j + p, 3 * j + q] += block[p, q]
-
-
-@numba.njit(cache=True)
-def _condense_line(work, point_work, first, last, implicit_bending):
-    """
-    Solve a line's interior alone and condense it onto its free ends (after _assemble_line).
-
-    Its particles' accelerations for its own right-hand side, A^-1 r (into point_work.solution,
-    rows first + 1 .. last - 1); then, where an end is on a free or carried point, A^-1 B
-    (point_work.solved_coupling) and the line's share of the Schur complement:
-    S -= B^T A^-1 B, g -= B^T A^-1 r.
-    """
-    rhs, rhs_flat, band = work.rhs, work.rhs_flat, work.band
-    lower, inverse, multiplier = work.lower, work.inverse, work.multiplier
-    coupling, solved_coupling = point_work.coupling, point_work.solved_coupling
-    column = point_work.column
-    end_free, free_index = point_work.end_free, point_work.free_index
-    schur, point_rhs, solution = point_work.schur, point_work.point_rhs, point_work.solution
-    m = last - first - 1
-    if m <= 0:
-        return
-    if implicit_bending:
-        _cholesky_factor(band, 3 * m)
-        _cholesky_band_solve(band, rhs_flat, 3 * m)
-    else:
-        _block_thomas_factor(work.diagonal, lower, inverse, multiplier, m)
-        _block_thomas_solve(lower, inverse, multiplier, rhs, m)
-    for i in range(m):
-        for p in range(3):
-            solution[first + 1 + i, p] = rhs[i, p]
-    if not (end_free[0] or end_free[1]):
-        return
-    # A^-1 B, column by column, and the Schur complement's share of this line
-    for c in range(6):
-        e = c // 3
-        if not end_free[e]:
-            continue
-        for i in range(m):
-            for p in range(3):
-                column[3 * i + p] = coupling[i, p, c]
-        if implicit_bending:
-            _cholesky_band_solve(band, column, 3 * m)
-        else:
-            _block_thomas_solve(lower, inverse, multiplier, point_work.column_blocks, m)
-        for i in range(m):
-            for p in range(3):
-                solved_coupling[first + 1 + i, p, c] = column[3 * i + p]
-    for c in range(6):
-        e = c // 3
-        if not end_free[e]:
-            continue
-        ro = 3 * free_index[e] + c % 3
-        s = 0.0
-        for i in range(m):
-            for p in range(3):
-                s += coupling[i, p, c] * rhs[i, p]
-        point_rhs[ro] -= s
-        for d in range(6):
-            g = d // 3
-            if not end_free[g]:
+            for i in range(first, last - 1):
+                spring_block_at(x, particles, i, True, half_h2, dt_c, axial, block,
+                                line_real[line])
+                if coupled:
+                    _scatter(block, i, i + 2, first, last, end_col, end_free, free_index, True,
+                             band, diagonal, lower, coupling, schur)
+                else:
+                    _add_band_spring(band, i - first - 1, i - first + 1, m, block)
+        # mass, weight, buoyancy, drag and contact of the interior particles
+        for i in range(first + 1, last):
+            local = i - first - 1
+            _particle_system(x, v, f, i, particles, line_real, line, environment, tangents,
+                             contact, env, gravity, sub, tangent, dt_c, half_h2, rhs, local, block)
+            if implicit_bending:
+                _add_band(band, local, local, block, 1.0)
+            else:
+                for p in range(3):
+                    for q in range(3):
+                        diagonal[local, p, q] += block[p, q]
+        # the line ends on free points: their rows of the point system
+        for e in range(2):
+            if not end_free[e]:
                 continue
-            co = 3 * free_index[g] + d % 3
+            row = first if e == 0 else last
+            j = free_index[e]
+            _particle_system(x, v, f, row, particles, line_real, line, environment, tangents,
+                             contact, env, gravity, sub, tangent, dt_c, half_h2, end_force, 0,
+                             block)
+            for p in range(3):
+                point_rhs[3 * j + p] += end_force[0, p]
+                for q in range(3):
+                    schur[3 * j + p, 3 * j + q] += block[p, q]
+        # condense: A^-1 r, A^-1 B and the Schur complement
+        if m <= 0:
+            continue
+        if implicit_bending:
+            _cholesky_factor(band, 3 * m)
+            _cholesky_band_solve(band, rhs_flat, 3 * m)
+        else:
+            _block_thomas_factor(diagonal, lower, inverse, multiplier, m)
+            _block_thomas_solve(lower, inverse, multiplier, rhs, m)
+        for i in range(m):
+            for p in range(3):
+                solution[first + 1 + i, p] = rhs[i, p]
+        if not coupled:
+            continue
+        # A^-1 B, column by column, and the Schur complement's share of this line
+        for c in range(6):
+            e = c // 3
+            if not end_free[e]:
+                continue
+            for i in range(m):
+                for p in range(3):
+                    column[3 * i + p] = coupling[i, p, c]
+            if implicit_bending:
+                _cholesky_band_solve(band, column, 3 * m)
+            else:
+                _block_thomas_solve(lower, inverse, multiplier, column_blocks, m)
+            for i in range(m):
+                for p in range(3):
+                    solved_coupling[first + 1 + i, p, c] = column[3 * i + p]
+        for c in range(6):
+            e = c // 3
+            if not end_free[e]:
+                continue
+            ro = 3 * free_index[e] + c % 3
             s = 0.0
             for i in range(m):
                 for p in range(3):
-                    s += coupling[i, p, c] * solved_coupling[first + 1 + i, p, d]
-            schur[ro, co] -= s
+                    s += coupling[i, p, c] * rhs[i, p]
+            point_rhs[ro] -= s
+            for d in range(6):
+                g = d // 3
+                if not end_free[g]:
+                    continue
+                co = 3 * free_index[g] + d % 3
+                s = 0.0
+                for i in range(m):
+                    for p in range(3):
+                        s += coupling[i, p, c] * solved_coupling[first + 1 + i, p, d]
+                schur[ro, co] -= s
 
 
-@numba.njit(cache=True)
-def _solve(group, point_work, dt_c, half_h2):
+@numba.njit(cache=True, inline='always')
+def _solve(lines, points, point_x, bodies, fenders, free_of, schur, point_rhs, solution,
+           solved_coupling, transform, reduced, reduced_rhs, body_accel, dt_c, half_h2):
     """
     Solve the condensed system: the points' accelerations, then every line's interior.
 
-    The point system S a = g (point_work.point_rhs becomes a; with bodies, through their own six
-    accelerations, point_work.body_accel: _solve_with_bodies), then each line's interior
-    a_k = A^-1 r - A^-1 B a (point_work.solution).
+    The point system S a = g (point_rhs becomes a; with bodies, through their own six
+    accelerations, body_accel: _solve_with_bodies), then each line's interior
+    a_k = A^-1 r - A^-1 B a (solution).
     """
-    lines, free_of = group.lines, point_work.free_of
-    point_rhs, solution = point_work.point_rhs, point_work.solution
-    solved_coupling = point_work.solved_coupling
-    if group.bodies.shape[0] > 0:
-        _solve_with_bodies(point_work.schur, point_rhs, group.points, group.point_x, free_of,
-                           group.bodies, group.fenders, dt_c, half_h2, point_work.transform,
-                           point_work.reduced, point_work.reduced_rhs, point_work.body_accel)
+    if bodies.shape[0] > 0:
+        _solve_with_bodies(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c,
+                           half_h2, transform, reduced, reduced_rhs, body_accel)
     else:
-        dense_cholesky_solve(point_work.schur, point_rhs)
+        dense_cholesky_solve(schur, point_rhs)
     for line in range(lines.shape[0]):
         first, last = lines[line, FIRST], lines[line, LAST]
         for c in range(6):
@@ -1043,21 +1040,16 @@ def _solve(group, point_work, dt_c, half_h2):
                     solution[i, p] -= solved_coupling[i, p, c] * a
 
 
-@numba.njit(cache=True)
-def _update(group, work, point_work, dt, dt_c, half_h2, k, max_iterations):
+@numba.njit(cache=True, inline='always')
+def _update(x, v, accel, point_x, point_v, point_accel, points, lines, bodies, free_of,
+            point_rhs, solution, body_accel, dt_c, half_h2):
     """
-    Finish step k from the solved accelerations a: x += h^2 beta a, v += h gamma a.
+    Finish the step from the solved accelerations a: x += h^2 beta a, v += h gamma a.
 
     The free points and the interior particles, the bodies (their carried points placed on
     them again); a kept for the next step (accel, point_accel, BODY_ACCEL); every line end
-    on its point. Then the strain limit and what follows every step (_after_step).
+    on its point.
     """
-    x, v, accel = group.x, group.v, group.accel
-    point_x, point_v, point_accel = group.point_x, group.point_v, group.point_accel
-    particles, lines, line_real, points, bodies = (group.particles, group.lines,
-                                                   group.line_real, group.points, group.bodies)
-    free_of, point_rhs, solution = point_work.free_of, point_work.point_rhs, point_work.solution
-    gravity = group.env[ENV_GRAVITY:ENV_GRAVITY + 3]
     for q in range(points.shape[0]):
         j = free_of[q]
         if j >= 0:
@@ -1067,7 +1059,7 @@ def _update(group, work, point_work, dt, dt_c, half_h2, k, max_iterations):
                     point_x[q, p] += half_h2 * point_rhs[3 * j + p]
                     point_v[q, p] += dt_c * point_rhs[3 * j + p]
     if bodies.shape[0] > 0:
-        _correct_bodies(bodies, point_work.body_accel, dt_c, half_h2)
+        _correct_bodies(bodies, body_accel, dt_c, half_h2)
         place_points(bodies, points, point_x, point_v)
     for line in range(lines.shape[0]):
         for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
@@ -1076,10 +1068,6 @@ def _update(group, work, point_work, dt, dt_c, half_h2, k, max_iterations):
                 v[i, p] += dt_c * solution[i, p]
                 accel[i, p] = solution[i, p]
     set_ends(x, v, lines, point_x, point_v)
-    _limit_strains(x, v, work.inv_mass, work.rest, lines, line_real, points, point_x, point_v,
-                   max_iterations)
-    _after_step(x, v, particles, lines, line_real, points, work.rest, work.inv_mass, dt, k,
-                gravity, work.f)  # f: scratch here, the next step computes it afresh
 
 
 @numba.njit(cache=True)
