@@ -13,10 +13,10 @@
 # limitations under the License.
 
 """
-What it costs to hand a group's arrays to a compiled kernel: positional, or as one record.
+What it costs to hand a System's arrays to a compiled kernel: positional, or as one record.
 
 A kernel call from Python pays numba's dispatch: it types every argument, looks up the
-specialisation and unboxes each array. The kernels step a group (a System) of 13 arrays
+specialisation and unboxes each array. The kernels step a System's 13 arrays
 (state: x, v, point_x, point_v, accel, point_accel; tables: particles, lines, line_real,
 points, env, bodies, fenders), plus the call's drive arrays, dt and settings. This times a
 kernel of no work (it only touches its arrays, so that none is optimised away) taking them
@@ -24,14 +24,14 @@ kernel of no work (it only touches its arrays, so that none is optimised away) t
 - positional: 20 arguments, as implicit_euler_run took them;
 - tuple: one plain tuple of the 13 arrays (fields by index), then the 7 per-call arguments;
 - namedtuple: one typing.NamedTuple of the 13 arrays, then the same 7;
-- structref: the project's record, a numba StructRef (rope_sim_ros/model/record.py Group);
+- structref: the project's record, a numba StructRef (rope_sim_ros/model/record.py SystemArrays);
 - jitclass: one numba jitclass of the 13 arrays;
 
 interleaved in blocks so that a shared machine slows all alike, and prints the median
 microseconds a call, and what making the record costs (a System makes its own once, the
 adaptive integrator one for each line it takes again with improved Euler, each step). It also
 says, for each, whether the kernel's Python code (``.py_func``, what the tests run as the
-reference) runs on the record and writes into the group's own arrays, and whether numba
+reference) runs on the record and writes into the System's own arrays, and whether numba
 loads a kernel that takes it from its cache (cache=True, in a temporary directory).
 
     python benchmarks/record_overhead.py [--calls 20000] [--rounds 15]
@@ -55,12 +55,12 @@ FIELDS = ('x', 'v', 'point_x', 'point_v', 'accel', 'point_accel', 'particles', '
 def makers() -> dict:
     """Return, by variant, its kernel and a function of the arrays giving the call's arguments."""
     import record_variants as variants
-    from rope_sim_ros.model.record import Group
+    from rope_sim_ros.model.record import SystemArrays
 
     def tail(a):
         return (a['drive_x'], a['drive_v'], 1e-3, 10, False, 1.0, 0.5)
 
-    def group(a):
+    def fields(a):
         return [a[name] for name in FIELDS]
 
     return {
@@ -68,15 +68,15 @@ def makers() -> dict:
             a['x'], a['v'], a['point_x'], a['point_v'], a['drive_x'], a['drive_v'], 1e-3,
             a['particles'], a['lines'], a['line_real'], a['points'], a['env'], a['bodies'],
             a['fenders'], 10, False, 1.0, 0.5, a['accel'], a['point_accel'])),
-        'tuple': (variants.plain, lambda a: (tuple(group(a)),) + tail(a)),
-        'namedtuple': (variants.record, lambda a: (variants.Record(*group(a)),) + tail(a)),
-        'structref': (variants.record, lambda a: (Group(*group(a)),) + tail(a)),
-        'jitclass': (variants.record, lambda a: (variants.JitRecord(*group(a)),) + tail(a)),
+        'tuple': (variants.plain, lambda a: (tuple(fields(a)),) + tail(a)),
+        'namedtuple': (variants.record, lambda a: (variants.Record(*fields(a)),) + tail(a)),
+        'structref': (variants.record, lambda a: (SystemArrays(*fields(a)),) + tail(a)),
+        'jitclass': (variants.record, lambda a: (variants.JitRecord(*fields(a)),) + tail(a)),
     }
 
 
 def fresh_arrays() -> dict:
-    """Return a group's arrays and a run of no steps' drive arrays."""
+    """Return a System's arrays and a run of no steps' drive arrays."""
     import numpy as np
     import record_variants
     a = record_variants.arrays()
@@ -86,7 +86,7 @@ def fresh_arrays() -> dict:
 
 
 def interpreted_writes(kernel, make) -> bool:
-    """Tell whether the kernel's Python code on the record writes the group's own x."""
+    """Tell whether the kernel's Python code on the record writes the System's own x."""
     import numpy as np
     a = fresh_arrays()
     a['drive_x'] = np.zeros((3, 2, 3))
@@ -149,7 +149,7 @@ def main() -> None:
             make(a)
         made[name] = (time.perf_counter() - start) / (args.calls // 10) * 1e6
     base = statistics.median(times['positional'])
-    print(f'## A kernel of no work on a 50-segment group: median of {args.rounds} blocks of '
+    print(f'## A kernel of no work on a 50-segment System: median of {args.rounds} blocks of '
           f'{args.calls} calls')
     print()
     print('| arguments | us a call | / positional | us to make the arguments '

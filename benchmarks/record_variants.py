@@ -100,16 +100,17 @@ def positional(x, v, point_x, point_v, drive_x, drive_v, dt, particles, lines, l
 
 
 @numba.njit(cache=CACHE)
-def record(group, drive_x, drive_v, dt, max_iterations, bending, gamma, beta):
+def record(arrays, drive_x, drive_v, dt, max_iterations, bending, gamma, beta):
     """Do the same on a record with named fields (NamedTuple, StructRef or jitclass)."""
-    x = group.x
+    x = arrays.x
     for _ in range(drive_x.shape[0]):
         x[0, 0] += dt
-    group.accel[0, 0] = (group.v[0, 0] + group.point_x[0, 0] + group.point_v[0, 0]
-                         + group.particles[0, 0] + group.lines[0, 0] + group.line_real[0, 0]
-                         + group.points[0, 0] + group.env[0] + group.bodies.shape[0]
-                         + group.fenders.shape[0] + group.point_accel[0, 0]
-                         + drive_v.shape[0] + max_iterations + bending + gamma + beta)
+    arrays.accel[0, 0] = (arrays.v[0, 0] + arrays.point_x[0, 0] + arrays.point_v[0, 0]
+                          + arrays.particles[0, 0] + arrays.lines[0, 0]
+                          + arrays.line_real[0, 0] + arrays.points[0, 0] + arrays.env[0]
+                          + arrays.bodies.shape[0] + arrays.fenders.shape[0]
+                          + arrays.point_accel[0, 0] + drive_v.shape[0] + max_iterations
+                          + bending + gamma + beta)
 
 
 X, V, POINT_X, POINT_V, ACCEL, POINT_ACCEL, PARTICLES, LINES, LINE_REAL, POINTS, ENV, BODIES, \
@@ -117,14 +118,14 @@ X, V, POINT_X, POINT_V, ACCEL, POINT_ACCEL, PARTICLES, LINES, LINE_REAL, POINTS,
 
 
 @numba.njit(cache=CACHE)
-def plain(group, drive_x, drive_v, dt, max_iterations, bending, gamma, beta):
+def plain(arrays, drive_x, drive_v, dt, max_iterations, bending, gamma, beta):
     """Do the same on a plain tuple, its fields by index."""
-    x = group[X]
+    x = arrays[X]
     for _ in range(drive_x.shape[0]):
         x[0, 0] += dt
-    group[ACCEL][0, 0] = (group[V][0, 0] + group[POINT_X][0, 0] + group[POINT_V][0, 0]
-                          + group[PARTICLES][0, 0] + group[LINES][0, 0]
-                          + group[LINE_REAL][0, 0] + group[POINTS][0, 0] + group[ENV][0]
-                          + group[BODIES].shape[0] + group[FENDERS].shape[0]
-                          + group[POINT_ACCEL][0, 0] + drive_v.shape[0] + max_iterations
-                          + bending + gamma + beta)
+    arrays[ACCEL][0, 0] = (arrays[V][0, 0] + arrays[POINT_X][0, 0] + arrays[POINT_V][0, 0]
+                           + arrays[PARTICLES][0, 0] + arrays[LINES][0, 0]
+                           + arrays[LINE_REAL][0, 0] + arrays[POINTS][0, 0] + arrays[ENV][0]
+                           + arrays[BODIES].shape[0] + arrays[FENDERS].shape[0]
+                           + arrays[POINT_ACCEL][0, 0] + drive_v.shape[0] + max_iterations
+                           + bending + gamma + beta)

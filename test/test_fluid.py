@@ -389,10 +389,10 @@ def test_set_current_changes_the_drag_in_place():
     start = chain_equilibrium(A, B, 40.0, 20, 51.1292, 1.0e8, GRAVITY).positions
     system = single_line(WIRE, environment, 40.0, 20, start, Point('fixed', A),
                          Point('fixed', B))
-    group = system.group
+    arrays = system.arrays
     before, _ = system.loads()
     system.set_current([0.0, 1.0, 0.0])
-    assert system.group is group  # nothing rebuilt
+    assert system.arrays is arrays  # nothing rebuilt
     after, _ = system.loads()
     # at rest in a current of 1 m/s across the line, each end particle (1 m of it) feels
     # its drag at once

@@ -40,9 +40,9 @@ mass plus the attached half segments' masses and added masses).
 
 The System packs everything into the flat tables of layout.py, once (pack) and again when a
 line's rest lengths or a point change (refresh), and hands its state and tables to the kernels
-as one record, its group (record.py), made anew with them. After packing, every Line's x and v
-and every Point's position and velocity are views into the System's arrays: writing them moves
-the state the kernels step.
+as one record, its arrays (record.SystemArrays), made anew with them. After packing, every
+Line's x and v and every Point's position and velocity are views into the System's arrays:
+writing them moves the state the kernels step.
 """
 
 from dataclasses import dataclass, replace
@@ -73,7 +73,7 @@ from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, SNAP_FLOOR
                      WINCH_ACCELERATION, WINCH_BRAKE_LOAD, WINCH_COMMAND, WINCH_END,
                      WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
                      WINCH_RESPONSE, WINCH_SPEED)
-from .record import Group
+from .record import SystemArrays
 from .ship.wind import Wind
 from .tension_curve import check_curve, TensionCurve
 
@@ -436,8 +436,8 @@ class System:
     :ivar environment: the Environment.
     :ivar points: the Points, in index order.
     :ivar lines: the Lines.
-    :ivar group: after pack(), the arrays the kernels step, as one record (record.Group);
-        refresh() makes it anew, with the tables.
+    :ivar arrays: after pack(), the arrays the kernels step, as one record
+        (record.SystemArrays); refresh() makes it anew, with the tables.
     """
 
     def __init__(self, environment: Environment):
@@ -555,9 +555,10 @@ class System:
         self.accel = np.zeros_like(self.x)
         self.point_accel = np.zeros_like(self.point_x)
         # what every step passes, built once: a step runs at kHz
-        self.group = Group(self.x, self.v, self.point_x, self.point_v, self.accel,
-                           self.point_accel, self.particles, self.lines_table, self.line_real,
-                           self.points_table, self.env, self.body_table, self.fender_table)
+        self.arrays = SystemArrays(self.x, self.v, self.point_x, self.point_v, self.accel,
+                                   self.point_accel, self.particles, self.lines_table,
+                                   self.line_real, self.points_table, self.env,
+                                   self.body_table, self.fender_table)
         self._accel_at = -1
         self.fine_left = np.zeros(len(self.lines))
         # the lines the adaptive integrator may take into improved Euler through a snap: its
@@ -1107,10 +1108,10 @@ class LineView:
         lines_table[0, [END_A, END_B]] = (0, 1)
         points = system.points_table[self.ends]  # a copy
         points[points[:, KIND] == CARRIED, KIND] = DRIVEN
-        self.group = Group(self.x, self.v, self.point_x, self.point_v, self.accel,
-                           self.point_accel, system.particles[first:last], lines_table,
-                           self.line_real, points, system.env, system.body_table[:0],
-                           system.fender_table[:0])
+        self.arrays = SystemArrays(self.x, self.v, self.point_x, self.point_v, self.accel,
+                                   self.point_accel, system.particles[first:last],
+                                   lines_table, self.line_real, points, system.env,
+                                   system.body_table[:0], system.fender_table[:0])
 
     def drive(self, drive_x: np.ndarray, drive_v: np.ndarray) -> tuple:
         """Return the view's points' rows of a System's drive arrays (n, Q, 3): (n, 2, 3) twice."""

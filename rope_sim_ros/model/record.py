@@ -13,49 +13,51 @@
 # limitations under the License.
 
 """
-The record that carries a group's arrays (a System's) into the compiled kernels, as one.
+The record that carries a System's arrays into the compiled kernels, as one: SystemArrays.
 
-A Group holds the arrays the integrators read and write (stepping/kernels.py): the state
-(x, v, point_x, point_v, accel, point_accel) and the tables of layout.py (particles, lines,
-line_real, points, env, bodies, fenders). It holds the System's own arrays, not copies: a
-kernel that writes group.x writes System.x.
+A SystemArrays holds the arrays the integrators read and write (stepping/kernels.py): the
+state (x, v, point_x, point_v, accel, point_accel) and the tables of layout.py (particles,
+lines, line_real, points, env, bodies, fenders). It holds the System's own arrays, not
+copies: a kernel that writes arrays.x writes System.x. Named for what it holds, a System's
+arrays: a mooring's Group (mooring/group.py) is a set of lines stepped together, with a
+System of its own.
 
 It is a numba StructRef: one reference, unboxed in one step, where the kernels took 20
-positional arrays. benchmarks/record_overhead.py, a kernel of no work on a 50-segment group,
-four runs: a call took 0.85-0.97 times as long with the StructRef as with the positional
-arrays (0.83-0.93 us against 0.96-0.98 us on a quiet machine); 1.1-1.3 times with a plain
-tuple and 2.2-2.6 times with a NamedTuple (numba types each of their arrays in Python at every
-call); 0.6-0.7 times with a jitclass, but numba cannot cache a kernel that takes one (every
-start would compile them all again). Making a Group costs about 3.6 us: a System makes one
-when it packs or refreshes its tables, a LineView one each time it is made.
+positional arrays. benchmarks/record_overhead.py, a kernel of no work on a 50-segment
+System, four runs: a call took 0.85-0.97 times as long with the StructRef as with the
+positional arrays (0.83-0.93 us against 0.96-0.98 us on a quiet machine); 1.1-1.3 times with
+a plain tuple and 2.2-2.6 times with a NamedTuple (numba types each of their arrays in Python
+at every call); 0.6-0.7 times with a jitclass, but numba cannot cache a kernel that takes
+one (every start would compile them all again). Making a SystemArrays costs about 3.6 us: a
+System makes one when it packs or refreshes its tables, a LineView one each time it is made.
 
 A kernel reads a record's fields once, before its step loop, and hands its steps the arrays:
 numba takes and drops a reference count at each read of a field that it cannot prove
 needless, which inside a step loop cost a small line's implicit step up to 19 %
 (kernels.implicit_euler_run).
 
-In Python (a kernel's interpreted code, ``.py_func``, which the tests run) a Group's fields
-are the very arrays it was made of. An array joins the record as one more name in FIELDS
-(and one more argument where a System and a LineView make their Group).
+In Python (a kernel's interpreted code, ``.py_func``, which the tests run) a SystemArrays'
+fields are the very arrays it was made of. An array joins the record as one more name in
+FIELDS (and one more argument where a System and a LineView make their SystemArrays).
 """
 
 import numba
 from numba.core import types
 from numba.experimental import structref
 
-# the fields, in the order Group takes them
+# the fields, in the order SystemArrays takes them
 FIELDS = ('x', 'v', 'point_x', 'point_v', 'accel', 'point_accel', 'particles', 'lines',
           'line_real', 'points', 'env', 'bodies', 'fenders')
 
 
 @structref.register
-class GroupType(types.StructRef):
-    """numba's type of a Group: the types of its arrays."""
+class SystemArraysType(types.StructRef):
+    """numba's type of a SystemArrays: the types of its arrays."""
 
 
-class Group(structref.StructRefProxy):
+class SystemArrays(structref.StructRefProxy):
     """
-    A group's arrays as one record for the kernels (see the module's docstring).
+    A System's arrays as one record for the kernels (see the module's docstring).
 
     :ivar x, v: particle positions and velocities (P, 3), every line's rows stacked.
     :ivar point_x, point_v: point positions and velocities (Q, 3).
@@ -66,18 +68,18 @@ class Group(structref.StructRefProxy):
     def __new__(cls, *arrays):
         """Make the record of these arrays, in the order of FIELDS (shared, not copied)."""
         if len(arrays) != len(FIELDS):
-            raise TypeError(f'a Group takes {len(FIELDS)} arrays ({", ".join(FIELDS)}), '
-                            f'not {len(arrays)}')
-        group = _new_group(*arrays)
+            raise TypeError(f'a SystemArrays takes {len(FIELDS)} arrays '
+                            f'({", ".join(FIELDS)}), not {len(arrays)}')
+        record = _new_record(*arrays)
         # in Python (py_func) its fields are the arrays themselves: a StructRef has none
-        vars(group).update(zip(FIELDS, arrays))
-        return group
+        vars(record).update(zip(FIELDS, arrays))
+        return record
 
 
-structref.define_proxy(Group, GroupType, list(FIELDS))
+structref.define_proxy(SystemArrays, SystemArraysType, list(FIELDS))
 
 
 @numba.njit(cache=True)
-def _new_group(*arrays):
-    """Make a Group in compiled code (cached, where numba's own constructor is not)."""
-    return Group(*arrays)
+def _new_record(*arrays):
+    """Make a SystemArrays in compiled code (cached, where numba's own constructor is not)."""
+    return SystemArrays(*arrays)

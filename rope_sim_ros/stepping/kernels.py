@@ -16,9 +16,9 @@
 The integrators: improved Euler and implicit Euler over a whole System, compiled (numba).
 
 The forces at a state are model/forces/assembly.py's; here they are stepped through time.
-Each kernel takes a run of steps of one System in place (its arrays as one record, its group:
-model/record.py), its driven points at the samples it is given, its free points moving with
-the lines. Tests run these same functions interpreted (``.py_func``).
+Each kernel takes a run of steps of one System in place (its arrays as one record:
+model/record.py's SystemArrays), its driven points at the samples it is given, its free
+points moving with the lines. Tests run these same functions interpreted (``.py_func``).
 """
 
 from typing import NamedTuple
@@ -132,22 +132,22 @@ def _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, s
 # -- improved Euler (the seed's eq. 7: Heun's method) ----------------------------------------
 
 @numba.njit(cache=True)
-def improved_euler_run(group, drive_x, drive_v, dt, max_iterations):
+def improved_euler_run(arrays, drive_x, drive_v, dt, max_iterations):
     """
     Take len(drive_x) improved Euler steps of the whole system in place.
 
-    :param group: the System's arrays (model/record.py): the particles' x, v (P, 3), every
-        line's rows stacked; the points' point_x, point_v (Q, 3); the tables of layout.py
-        (particles, lines, line_real, points; env: gravity, water, air, current, seabed,
-        quay; bodies, fenders: the bodies' state is stepped in place, their carried points
-        follow them).
+    :param arrays: the System's arrays (model/record.py's SystemArrays): the particles' x,
+        v (P, 3), every line's rows stacked; the points' point_x, point_v (Q, 3); the
+        tables of layout.py (particles, lines, line_real, points; env: gravity, water, air,
+        current, seabed, quay; bodies, fenders: the bodies' state is stepped in place, their
+        carried points follow them).
     :param drive_x, drive_v: driven points' positions and velocities at the end of each step
         (n, Q, 3) (rows of other points ignored).
     """
-    x, v, point_x, point_v = group.x, group.v, group.point_x, group.point_v
-    particles, lines, line_real, points = (group.particles, group.lines, group.line_real,
-                                           group.points)
-    env, bodies, fenders = group.env, group.bodies, group.fenders
+    x, v, point_x, point_v = arrays.x, arrays.v, arrays.point_x, arrays.point_v
+    particles, lines, line_real, points = (arrays.particles, arrays.lines, arrays.line_real,
+                                           arrays.points)
+    env, bodies, fenders = arrays.env, arrays.bodies, arrays.fenders
     n_points = points.shape[0]
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
@@ -575,9 +575,9 @@ class _PointWork(NamedTuple):
 
 
 @numba.njit(cache=True, inline='always')
-def _line_work(group, implicit_bending):
-    """Return an implicit run's _LineWork for this group's lines."""
-    x, particles, lines = group.x, group.particles, group.lines
+def _line_work(arrays, implicit_bending):
+    """Return an implicit run's _LineWork for these arrays' lines."""
+    x, particles, lines = arrays.x, arrays.particles, arrays.lines
     widest = 1
     for k in range(lines.shape[0]):
         widest = max(widest, lines[k, LAST] - lines[k, FIRST] - 1)
@@ -594,9 +594,9 @@ def _line_work(group, implicit_bending):
 
 
 @numba.njit(cache=True, inline='always')
-def _point_work(group, widest):
+def _point_work(arrays, widest):
     """Return an implicit run's _PointWork: free and carried points are its unknowns."""
-    points, n_bodies = group.points, group.bodies.shape[0]
+    points, n_bodies = arrays.points, arrays.bodies.shape[0]
     free_of = np.full(points.shape[0], -1, dtype=np.int64)
     n_free = 0
     for q in range(points.shape[0]):
@@ -612,9 +612,9 @@ def _point_work(group, widest):
                                                        np.empty(0), np.zeros((0, 6)))
     return _PointWork(free_of, np.empty((3 * n_free, 3 * n_free)), np.empty(3 * n_free),
                       np.empty((1, 3)), np.empty((1, 3)), np.empty((widest, 3, 6)),
-                      np.zeros((group.x.shape[0], 3, 6)), column, column.reshape(widest, 3),
+                      np.zeros((arrays.x.shape[0], 3, 6)), column, column.reshape(widest, 3),
                       np.zeros(2, dtype=np.bool_),
-                      np.zeros(2, dtype=np.int64), np.zeros_like(group.x), transform, reduced,
+                      np.zeros(2, dtype=np.int64), np.zeros_like(arrays.x), transform, reduced,
                       reduced_rhs, body_accel)
 
 
@@ -705,7 +705,7 @@ def _predict_rows(x, v, accel, dt, ahead_x, ahead_v, first, stop):
 
 
 @numba.njit(cache=True)
-def _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
+def _implicit_kinematic_steps(arrays, work, drive_x, drive_v, dt, max_iterations,
                               implicit_bending, newmark):
     """
     Take implicit_euler_run's steps when no point is free (work: its _LineWork).
@@ -715,10 +715,11 @@ def _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
     its own, not inlined into implicit_euler_run: inlined (once for each matrix kind) it
     took a third of the two minutes numba spent compiling that kernel, for no speed.
     """
-    x, v, accel, point_x, point_v = group.x, group.v, group.accel, group.point_x, group.point_v
-    particles, lines, line_real, points = (group.particles, group.lines, group.line_real,
-                                           group.points)
-    env = group.env
+    x, v, accel = arrays.x, arrays.v, arrays.accel
+    point_x, point_v = arrays.point_x, arrays.point_v
+    particles, lines, line_real, points = (arrays.particles, arrays.lines, arrays.line_real,
+                                           arrays.points)
+    env = arrays.env
     (inv_mass, rest, f, sub, tangent, block, rhs_flat, rhs, band, diagonal, lower, inverse,
      _) = work
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
@@ -745,7 +746,7 @@ def _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
 
 
 @numba.njit(cache=True)
-def implicit_euler_run(group, drive_x, drive_v, dt, max_iterations, implicit_bending, gamma,
+def implicit_euler_run(arrays, drive_x, drive_v, dt, max_iterations, implicit_bending, gamma,
                        beta):
     """
     Take len(drive_x) implicit steps of the whole system in place.
@@ -753,12 +754,12 @@ def implicit_euler_run(group, drive_x, drive_v, dt, max_iterations, implicit_ben
     Arguments as improved_euler_run; implicit_bending: put the bending springs in the matrix
     too (needed only when they are stiff enough to limit an explicit step; it widens a
     line's band from 5 to 8). gamma, beta: Newmark's (1, 1/2: implicit Euler, as above; the
-    adaptive integrator's are less damping), from the group's accel and point_accel, the
+    adaptive integrator's are less damping), from the arrays' accel and point_accel, the
     accelerations of each line's step before where its HISTORY says they are (the run
     leaves its last ones there). A body's accelerations of the step before are in its
     BODY_ACCEL.
 
-    A body (the group's bodies and fenders: the BODY and FENDER tables) joins the step
+    A body (the arrays' bodies and fenders: the BODY and FENDER tables) joins the step
     through its carried points: they are unknowns of the point system as free points are,
     and the body's own six accelerations y replace them, a_q = J_q y with
     J_q = [I, -[r_q]x] (_solve_with_bodies). Its predictor is the rigid body's (its points
@@ -772,28 +773,28 @@ def implicit_euler_run(group, drive_x, drive_v, dt, max_iterations, implicit_ben
     solved and condensed onto its free ends); _solve (the points, then every line's
     interior); _update, the strain limit and _after_step.
 
-    The records (the group, the run's scratch) are read once, here, and the steps, compiled
-    into this function (inline), take their arrays: with steps that read the records
-    themselves a 20-segment line with a free end took 14-19 % longer a step, eight of 50
+    The records (the System's arrays, the run's scratch) are read once, here, and the
+    steps, compiled into this function (inline), take their arrays: with steps that read the
+    records themselves a 20-segment line with a free end took 14-19 % longer a step, eight of 50
     segments 6 % (numba takes and drops a reference count at each read of a record's
     field that it cannot prove needless).
     """
-    work = _line_work(group, implicit_bending)
-    if not _moving_points(group.points) and group.bodies.shape[0] == 0:
+    work = _line_work(arrays, implicit_bending)
+    if not _moving_points(arrays.points) and arrays.bodies.shape[0] == 0:
         # every end fixed or driven: each line alone
-        _implicit_kinematic_steps(group, work, drive_x, drive_v, dt, max_iterations,
+        _implicit_kinematic_steps(arrays, work, drive_x, drive_v, dt, max_iterations,
                                   implicit_bending, (gamma, beta))
         return
-    x, v, accel = group.x, group.v, group.accel
-    point_x, point_v, point_accel = group.point_x, group.point_v, group.point_accel
-    particles, lines, line_real, points = (group.particles, group.lines, group.line_real,
-                                           group.points)
-    env, bodies, fenders = group.env, group.bodies, group.fenders
+    x, v, accel = arrays.x, arrays.v, arrays.accel
+    point_x, point_v, point_accel = arrays.point_x, arrays.point_v, arrays.point_accel
+    particles, lines, line_real, points = (arrays.particles, arrays.lines, arrays.line_real,
+                                           arrays.points)
+    env, bodies, fenders = arrays.env, arrays.bodies, arrays.fenders
     (inv_mass, rest, f, sub, tangent, block, rhs_flat, rhs, band, diagonal, lower, inverse,
      multiplier) = work
     (free_of, schur, point_rhs, point_force, end_force, coupling, solved_coupling, column,
      column_blocks, end_free, free_index, solution, transform, reduced, reduced_rhs,
-     body_accel) = _point_work(group, rhs.shape[0])
+     body_accel) = _point_work(arrays, rhs.shape[0])
     gravity = env[ENV_GRAVITY:ENV_GRAVITY + 3]
     contact = has_contact(env)
     ready = True  # lines joined by free points step as one: all from their history, or none
@@ -1220,8 +1221,8 @@ def run_kernel(system, integrator: str, dt: float, drive_x: np.ndarray, drive_v:
     """
     if integrator == 'implicit_euler':
         run = implicit_euler_run if compiled else implicit_euler_run.py_func
-        run(system.group, drive_x, drive_v, dt, max_iterations, implicit_bending, newmark[0],
+        run(system.arrays, drive_x, drive_v, dt, max_iterations, implicit_bending, newmark[0],
             newmark[1])
     else:
         run = improved_euler_run if compiled else improved_euler_run.py_func
-        run(system.group, drive_x, drive_v, dt, max_iterations)
+        run(system.arrays, drive_x, drive_v, dt, max_iterations)
