@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from rope_sim_ros.model.objects import Environment, Line, LineType, Point, System
+from rope_sim_ros.model.record import FIELDS, SystemArrays
 from rope_sim_ros.model.rope import RopeProperties
 from rope_sim_ros.model.superelastic import MAX_ITERATIONS
 from rope_sim_ros.stepping.kernels import run_kernel
@@ -222,3 +223,24 @@ def test_a_line_view_steps_its_line_in_the_system_and_no_other():
     # the first line was not stepped: where it was packed, at rest
     np.testing.assert_array_equal(alone.x[:11], _two_hanging_wires().x[:11])
     np.testing.assert_array_equal(alone.v[:11], 0.0)
+
+
+def test_the_kernels_record_holds_the_systems_own_arrays_and_is_made_anew_with_its_tables():
+    system = _two_hanging_wires()
+    arrays = system.arrays
+    own = (system.x, system.v, system.point_x, system.point_v, system.accel,
+           system.point_accel, system.particles, system.lines_table, system.line_real,
+           system.points_table, system.env, system.body_table, system.fender_table)
+    assert all(getattr(arrays, name) is array for name, array in zip(FIELDS, own))
+    # a compiled step writes the System's state through the record
+    before = system.x.copy()
+    drive_x, drive_v = system.drive_arrays(10)
+    drive_x[:, 3, 0] += 0.01 * np.arange(1, 11)
+    step(system, 'implicit_euler', 1e-3, drive_x, drive_v, MAX_ITERATIONS)
+    assert system.x[11:22, 0].max() - before[11:22, 0].max() == pytest.approx(0.1)
+    assert np.abs(system.accel[12:21]).max() > 0.0
+    system.refresh()  # new tables, a new record of them
+    assert system.arrays is not arrays
+    assert system.arrays.particles is system.particles and system.arrays.x is system.x
+    with pytest.raises(TypeError, match=r'a SystemArrays takes 13 arrays \(x, v, point_x'):
+        SystemArrays(system.x, system.v)
