@@ -34,14 +34,13 @@ The first run compiles both trees' kernels into --cache (a few minutes).
 import argparse
 import importlib
 import inspect
-import os
 from pathlib import Path
 import statistics
-import sys
 import tempfile
 import time
 
-HERE = Path(__file__).resolve().parents[1]
+from two_trees import import_both
+
 # (integrator, lines, segments, free end, steps a call, step [s])
 CASES = (
     ('implicit_euler', 1, 20, False, 1, 3e-3),
@@ -114,17 +113,7 @@ def main() -> None:
     parser.add_argument('--cache', type=Path,
                         default=Path(tempfile.gettempdir()) / 'rope_sim_kernel_cost')
     args = parser.parse_args()
-    if not (args.before / 'rope_sim_ros').is_dir():
-        parser.error(f'--before {args.before}: no rope_sim_ros/ there')
-    names = args.cache / 'packages'
-    names.mkdir(parents=True, exist_ok=True)
-    for name, tree in (('before_tree', args.before.resolve()), ('this_tree', HERE)):
-        link = names / name
-        if link.is_symlink() or link.exists():
-            link.unlink()
-        link.symlink_to(tree / 'rope_sim_ros')
-    os.environ['NUMBA_CACHE_DIR'] = str(args.cache / 'numba')  # before numba is imported
-    sys.path.insert(0, str(names))
+    import_both(parser, args.before, args.cache)  # before numba is imported
     print(f'## The kernels a call: {args.before} against this tree, thread CPU time, '
           f'{args.rounds} blocks of {args.calls} calls each, alternated')
     print()

@@ -36,14 +36,13 @@ The first run compiles both trees' kernels into --cache (a few minutes).
 """
 
 import argparse
-import os
 from pathlib import Path
 import statistics
-import sys
 import tempfile
 import time
 
-HERE = Path(__file__).resolve().parents[1]
+from two_trees import import_both
+
 BLOCK = 200  # outputs a turn
 CASES = ('polyester', 'wire', 'hmpe')  # physics_vs_moordyn.py's lines
 
@@ -129,19 +128,7 @@ def main() -> None:
     parser.add_argument('--cache', type=Path,
                         default=Path(tempfile.gettempdir()) / 'rope_sim_one_line_cost')
     args = parser.parse_args()
-    if not (args.before / 'rope_sim_ros').is_dir():
-        parser.error(f'--before {args.before}: no rope_sim_ros/ there')
-    # each package under a name of its own, and a cache of its own: a kernel cached for one
-    # name cannot be loaded under another
-    names = args.cache / 'packages'
-    names.mkdir(parents=True, exist_ok=True)
-    for name, tree in (('before_tree', args.before.resolve()), ('this_tree', HERE)):
-        link = names / name
-        if link.is_symlink() or link.exists():
-            link.unlink()
-        link.symlink_to(tree / 'rope_sim_ros')
-    os.environ['NUMBA_CACHE_DIR'] = str(args.cache / 'numba')  # before numba is imported
-    sys.path.insert(0, str(names))
+    import_both(parser, args.before, args.cache)  # before numba is imported
     # the benchmark's line (this tree's package under its own name beside the two)
     from physics_vs_moordyn import line_values
     print(f'## One line an output: {args.before} against this tree, interleaved in blocks of '
