@@ -22,18 +22,21 @@ behind it moves at eps c = 43.853 m/s, and its 100 kJ turn into motion.
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 from one_line import OneLine
 from physics_cases import reference_params
 import pytest
 from rope_sim_ros.model.objects import Environment, Line, LineType, Point, System
+from rope_sim_ros.mooring.driver import Driver
 from rope_sim_ros.offline.motion import read_motion
 from rope_sim_ros.offline.run import run_motion
 from rope_sim_ros.offline.sinks import LINE_COLUMNS, STATE_COLUMN
-from rope_sim_ros.params.arrangement import single_line
+from rope_sim_ros.params.arrangement import flatten, read_setup, single_line
 from rope_sim_ros.stepping.step import step
 
+REPO_ROOT = Path(__file__).resolve().parent.parent
 EA, MASS, L0, EPS = 5.0e7, 2.6, 40.0, 0.01
 WAVE = math.sqrt(EA / MASS)  # 4385.29 m/s
 
@@ -165,3 +168,65 @@ def test_the_offline_runner_writes_the_peak_the_length_and_parted(tmp_path):
     first = np.flatnonzero(table['parted'])[0]
     assert np.all(table['parted'][first:] == 1.0)
     assert table['fairlead_peak_tension'][first] > 1.9e5  # the snap's peak, in its row
+
+
+def test_a_free_ships_line_parting_at_its_fairlead_beside_fast_lines_leaves_the_run_going():
+    # The berth's free ship held off the fenders by lines made fast at run time while a
+    # ship passes: spring_aft, alone on the ship's side, takes the passing ship's pull and
+    # parts in its last segment, at the fairlead, while the others are stepped with the ship
+    # in one implicit group. Such a parting once stopped the run (a division by zero in the
+    # compiled step) or restarted the ship: here it goes on, the ship where it was, the piece
+    # hanging from its bollard.
+    overrides = {'ship_mode': 'free', 'publish_rate': 10.0,
+                 'ship': {'start_position': [0.0, -20.6, 0.0]},
+                 'passing_ship': {'speed': 5.0, 'length': 200.0, 'beam': 32.0, 'draft': 12.0,
+                                  'block_coefficient': 0.8, 'separation': 57.0,
+                                  'start_x': -175.0, 'direction': 1}}
+    for name, length in (('spring_fwd', 51.0), ('breast_fwd', 17.0), ('breast_aft', 17.0)):
+        overrides[name] = {'start_state': 'stowed', 'length': length,
+                           'winch_mode': 'constant_tension', 'winch_tension': 1.0e4,
+                           'winch_max_speed': 0.25}
+    setup = read_setup(REPO_ROOT / 'config' / 'berth.yaml', flatten(overrides))
+    names = [line.name for line in setup.lines]
+    spring_aft = names.index('spring_aft')
+    driver = Driver(setup, rate=10.0)
+    driver.start_free(0)
+    published, partings = [], {}
+    for t in range(1, 31):
+        if t == 10:
+            driver.command('spring_fwd', 'make_fast')
+        if t == 18:
+            driver.command('breast_fwd', 'make_fast')
+            driver.command('breast_aft', 'make_fast')
+        report = driver.outputs_until(float(t))
+        assert not report.faults
+        for out in report.outputs:
+            if out.advance is not None:
+                assert not out.advance.restarted and not out.advance.ship_restarted
+                partings.update(out.advance.parted)
+            published.append(out.output)
+    assert list(partings) == [spring_aft]
+    parting = partings[spring_aft]
+    segments = len(published[-1].positions[spring_aft]) - 1
+    # the passing ship abeam takes it past its break load in its fairlead segment
+    assert 23.0 < parting.t < 25.0 and parting.segment == segments - 1
+    assert all(o.finite for o in published)
+    before = [o for o in published if o.t < parting.t]
+    after = [o for o in published if o.t > parting.t + 1.0]
+    assert max(o.fairlead_peaks[spring_aft] for o in before) > 0.95 * parting.break_load
+    # the ship is not sent back to its start: it moves on smoothly from where it was
+    track = np.array([o.ship.position for o in published])
+    assert np.abs(np.diff(track, axis=0)).max() < 0.05
+    assert np.linalg.norm(track[-1] - track[len(before) - 1]) < 1.0
+    # the bollard's piece hangs: its weight on the bollard, next to nothing on the fairlead
+    # (9.5 N seen: the parted segment's end particle)
+    last = after[-1]
+    assert last.parted[spring_aft]
+    assert last.fairlead_tensions[spring_aft] < 1.0e-4 * parting.break_load
+    assert 0.0 < last.bollard_tensions[spring_aft] < 0.01 * parting.break_load
+    piece = last.positions[spring_aft][:-1]
+    assert piece[:, 2].min() < piece[0, 2] - 1.0
+    # the lines that held on still hold the ship
+    held = [k for k in range(len(names)) if k != spring_aft]
+    assert all(np.isfinite(last.fairlead_tensions[held]))
+    assert last.fairlead_tensions[held].max() > 1.0e5
