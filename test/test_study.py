@@ -40,10 +40,11 @@ from types import SimpleNamespace
 import numpy as np
 import pyarrow.parquet as pq
 import pytest
+from rope_sim_ros.model.ship.motions import MOTION_CRITERIA
 from rope_sim_ros.mooring import scenario
 from rope_sim_ros.mooring.status import Rating, ratings
 from rope_sim_ros.offline import cli
-from rope_sim_ros.offline.sinks import ship_excursions, SummarySink
+from rope_sim_ros.offline.sinks import ship_excursions, ship_motions, SummarySink
 from rope_sim_ros.offline.study import run_study
 from rope_sim_ros.offline.study.cluster import job_of, run_case, StudyProgress
 from rope_sim_ros.offline.study.file import prepare, read_study
@@ -136,6 +137,10 @@ def summarise(path, names, ratings_):
         summary.update(ship_excursions(np.column_stack([column(c) for c in ('x', 'y', 'z')]),
                                        np.column_stack([column(c) for c in
                                                         ('qx', 'qy', 'qz', 'qw')])))
+        summary.update(ship_motions(np.column_stack([column(c) for c in ('x', 'y', 'z')]),
+                                    np.column_stack([column(c) for c in
+                                                     ('qx', 'qy', 'qz', 'qw')]),
+                                    MOTION_CRITERIA['bulk_cranes']))
     return summary
 
 
@@ -423,7 +428,8 @@ def test_cases_list_and_per_case_files(tmp_path):
 def test_ship_excursions_and_line_summary_of_synthetic_outputs():
     # a free ship's outputs: heading +y (yaw 90 deg) at (10, 20, 0), then moving
     yaw0 = math.pi / 2.0
-    sink = SummarySink(['a'], [Rating(20000.0, 10000.0)], free=True)
+    sink = SummarySink(['a'], [Rating(20000.0, 10000.0)],
+                       criteria=MOTION_CRITERIA['bulk_cranes'])
     motions = [(0.0, 0.0, 0.0), (-3.0, 0.5, 0.05), (1.0, -0.2, -0.02), (0.0, 0.0, 0.0)]
     # fairlead and bollard tension, their peaks since the previous output, parted
     tensions = [(1000.0, 900.0, 1100.0, 950.0, 0.0), (5000.0, 5200.0, 5400.0, 5300.0, 0.0),
@@ -448,6 +454,14 @@ def test_ship_excursions_and_line_summary_of_synthetic_outputs():
     assert summary['max_surge'] == pytest.approx(0.5, abs=1e-12)
     assert summary['max_sway'] == pytest.approx(3.0, abs=1e-12)
     assert summary['max_yaw'] == pytest.approx(0.05, abs=1e-12)
+    # peak to peak: surge 0.5 to -0.2, yaw 0.05 to -0.02; sway zero to peak: 3 m from its
+    # mean 0.5 m (-0.0, 3, -1, -0.0); nothing in heave, roll, pitch
+    assert summary['surge_motion'] == pytest.approx(0.7, abs=1e-12)
+    assert summary['sway_motion'] == pytest.approx(2.5, abs=1e-12)
+    assert summary['yaw_motion'] == pytest.approx(0.07, abs=1e-12)
+    assert summary['heave_motion'] == summary['roll_motion'] == summary['pitch_motion'] == 0.0
+    # against a bulk carrier's cranes (sway 1 m, yaw 2 deg): sway's 2.5 is the largest share
+    assert summary['motion_share'] == pytest.approx(2.5, abs=1e-12)
 
 
 def test_the_progress_bar_counts_cases():

@@ -56,6 +56,8 @@ from ..bag.cdr import (decode_pose_array, decode_pose_stamped, decode_string, de
 from ..messages.topics import (BOLLARD_TENSION, EXTERNAL_WRENCH, FAIRLEAD_TENSION,
                                FENDER_REACTION, LINE_NODE, MOORING_NODE, MOORING_WRENCH,
                                PARTICLES, PASSING_WRENCH, SHIP_POSE)
+from ..model.ship.motions import (against_limits, ANGULAR, motion_ranges, motion_series,
+                                  MotionLimits, MOTIONS)
 from ..mooring.events import decode_event
 from ..mooring.status import COLOURS, NEAR_BREAK_FRACTION, Rating, ratings
 from ..params.arrangement import ArrangementParams, single_line
@@ -316,6 +318,7 @@ class ArrangementRecord:
         without one.
     :ivar fender_times: [s], (f,); fender_force (f, 3) [N]: the fenders' force on the ship,
         all together, body axes; empty without fenders.
+    :ivar ship_orientation: the ship's orientation at ship_times, (p, 4) (x, y, z, w).
     """
 
     setup: ArrangementParams
@@ -337,6 +340,7 @@ class ArrangementRecord:
     push_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     fender_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
     fender_force: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    ship_orientation: np.ndarray = field(default_factory=lambda: np.zeros((0, 4)))
 
     def peak(self, k: int) -> Tuple[float, float]:
         """Return line k's largest tension [N] and its time [s]."""
@@ -384,7 +388,7 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
             sec, nanosec, _, position, q = decode_pose_stamped(message.data)
             yaw = math.atan2(2.0 * (q[3] * q[2] + q[0] * q[1]),
                              1.0 - 2.0 * (q[1] ** 2 + q[2] ** 2))
-            ship.append((sec * 1_000_000_000 + nanosec, position, yaw))
+            ship.append((sec * 1_000_000_000 + nanosec, position, yaw, q))
     count = min(len(s) for s in series.values())
     if not count:
         raise BagError(f'bag {os.fspath(path)} holds no fairlead tension of every line')
@@ -421,7 +425,8 @@ def read_record(path, setup: Optional[ArrangementParams] = None) -> ArrangementR
         tuple((float(seconds(ns)), label) for ns, label in events),
         push_times, body(push_times, [p[1] for p in pushes], np.array([not p[2] for p in pushes],
                                                                       dtype=bool)),
-        fender_times, body(fender_times, [fender_sums[k] for k in sorted(fender_sums)]))
+        fender_times, body(fender_times, [fender_sums[k] for k in sorted(fender_sums)]),
+        np.array([s[3] for s in ship], dtype=float).reshape(-1, 4))
 
 
 def _shapes_at(path, record: ArrangementRecord, t: float) -> List[np.ndarray]:
@@ -881,4 +886,32 @@ def describe_lines(path) -> str:
         fx, fy = record.force[i, :2] / 1e3
         rows.append(f'peak horizontal force on the ship: {horizontal[i] / 1e3:.1f} kN at '
                     f'{record.wrench_times[i]:.2f} s (body frame: Fx {fx:.1f}, Fy {fy:.1f} kN)')
+    if len(record.ship_times) > 1:
+        rows.extend(describe_motions(record.ship_position, record.ship_orientation,
+                                     record.setup.ship.motion_limits))
     return '\n'.join(rows)
+
+
+def describe_motions(positions: np.ndarray, orientations: np.ndarray,
+                     criteria: MotionLimits) -> List[str]:
+    """Return the rows that hold a ship's motions over its poses to the criteria's limits."""
+    ranges = motion_ranges(motion_series(positions, orientations))
+    shares, largest = against_limits(ranges, criteria)
+    rows = [f'ship motions against PIANC (1995) for a {criteria.ship}, {criteria.handling}:']
+    for name in MOTIONS:
+        scale, unit = (180.0 / math.pi, 'deg') if name in ANGULAR else (1.0, 'm')
+        kind = 'zero to peak' if name == 'sway' else 'peak to peak'
+        limit = criteria.limits[name]
+        against = ('no limit given' if limit is None else
+                   f'limit {limit * scale:.1f} {unit}: {100 * shares[name]:5.1f} %')
+        rows.append(f'  {name:<6} {ranges[name] * scale:7.2f} {unit:<3} {kind}   {against}')
+    worst = max((n for n in MOTIONS if shares[n] is not None), key=lambda n: shares[n],
+                default=None)
+    if worst is None:
+        rows.append('cargo handling: no limit given for this ship')
+    elif largest < 1.0:
+        rows.append(f'cargo handling can go on: every motion within its limit (the largest '
+                    f'share {100 * largest:.0f} %, {worst})')
+    else:
+        rows.append(f'cargo handling stops: {worst} at {100 * largest:.0f} % of its limit')
+    return rows

@@ -50,6 +50,8 @@ import numpy as np
 
 from ..bag import BagError, BagWriter, cdr
 from ..messages.encode import OutputEncoder
+from ..model.ship.motions import (against_limits, motion_ranges, motion_series, MotionLimits,
+                                  MOTIONS)
 from ..mooring.records import Published
 from ..mooring.status import Rating
 
@@ -78,7 +80,8 @@ LOAD_COLUMNS = tuple(f'{source}_{column}' for source in ('wind', 'current', 'pas
                      for column in ('force_x', 'force_y', 'moment_z'))
 # A run's summary per line (SummarySink), under its name, and a free ship's.
 LINE_RESULTS = ('max_tension', 'max_utilisation', 'time_of_max', 'mean_tension', 'parted')
-SHIP_RESULTS = ('max_surge', 'max_sway', 'max_yaw')
+SHIP_RESULTS = ('max_surge', 'max_sway', 'max_yaw', *(f'{name}_motion' for name in MOTIONS),
+                'motion_share')
 
 
 def _numbers(*values) -> List[str]:
@@ -305,7 +308,9 @@ class SummarySink:
 
     A free ship's ``max_surge``, ``max_sway`` [m] and ``max_yaw`` [rad]: its largest absolute
     excursion from its pose at the first output, along and across its start heading (its
-    start body axes) and about z (ship_excursions).
+    start body axes) and about z (ship_excursions); and its motions against the criteria of
+    safe cargo handling it is given (ship_motions: ``surge_motion`` ... ``yaw_motion``,
+    ``motion_share``).
 
     It keeps, per output, its time and each line's larger end tension and peak (and a free
     ship's pose): 8 (1 + 2 L) bytes (L lines; 56 more for a free ship), 0.6 MB for the berth's
@@ -313,24 +318,26 @@ class SummarySink:
     """
 
     def __init__(self, names: Sequence[str], ratings: Sequence[Rating], origin: float = 0.0,
-                 free: bool = False) -> None:
+                 criteria: Optional[MotionLimits] = None) -> None:
         """
         Prepare the summary of a run of these lines.
 
         :param names: the line names; ratings: their MBLs, in the same order.
         :param origin: the motion file's first time [s] (as CsvSink's).
-        :param free: a free ship's run: its excursions too.
+        :param criteria: a free ship's run: its motions are held to these limits (and its
+            excursions summarised too); None: the ship is driven.
         """
         self.names = list(names)
         self.ratings = list(ratings)
         self.origin = origin
-        self.free = free
+        self.criteria = criteria
+        self.free = criteria is not None
         count = len(self.names)
         # columns: t, each line's larger end tension, its peak, the ship's pose (free)
         self._sample = slice(1, 1 + count)
         self._peak = slice(1 + count, 1 + 2 * count)
         self._pose = slice(1 + 2 * count, 8 + 2 * count)  # position (3), orientation (4)
-        self._table = np.empty((64, self._pose.stop if free else self._peak.stop))
+        self._table = np.empty((64, self._pose.stop if self.free else self._peak.stop))
         self._parted = np.zeros(count, dtype=bool)
         self.rows = 0
 
@@ -372,6 +379,7 @@ class SummarySink:
         if self.free:
             pose = table[:, self._pose]
             summary.update(ship_excursions(pose[:, :3], pose[:, 3:]))
+            summary.update(ship_motions(pose[:, :3], pose[:, 3:], self.criteria))
         for column, value in summary.items():
             if not math.isfinite(value):
                 raise SummaryError(f'{column} is {value!r}, not a finite number')
@@ -382,27 +390,25 @@ def ship_excursions(positions: np.ndarray, orientations: np.ndarray) -> Dict[str
     """
     Return max_surge, max_sway [m] and max_yaw [rad] of a ship's poses, one a row.
 
-    Excursions from the first pose: the position change in the first pose's body axes (x
-    forward, y to port) and the yaw of the rotation from the first orientation.
+    Excursions from the first pose: the largest absolute surge, sway and yaw of
+    model/ship/motions.py's motion_series.
 
     :param positions: (N, 3) [m]; orientations: (N, 4) quaternions (x, y, z, w).
     """
-    p = np.asarray(positions, dtype=float)
-    q = np.asarray(orientations, dtype=float)
-    q = q / np.linalg.norm(q, axis=1)[:, None]
-    x0, y0, z0, w0 = q[0]
-    start = np.array([
-        [1.0 - 2.0 * (y0 * y0 + z0 * z0), 2.0 * (x0 * y0 - z0 * w0), 2.0 * (x0 * z0 + y0 * w0)],
-        [2.0 * (x0 * y0 + z0 * w0), 1.0 - 2.0 * (x0 * x0 + z0 * z0), 2.0 * (y0 * z0 - x0 * w0)],
-        [2.0 * (x0 * z0 - y0 * w0), 2.0 * (y0 * z0 + x0 * w0), 1.0 - 2.0 * (x0 * x0 + y0 * y0)]])
-    body = (p - p[0]) @ start  # R0^T (p - p0), row by row
-    # the relative rotation conj(q0) q, then its yaw (z-y-x angles)
-    x, y, z, w = q.T
-    rw = w0 * w + x0 * x + y0 * y + z0 * z
-    rx = w0 * x - x0 * w - y0 * z + z0 * y
-    ry = w0 * y + x0 * z - y0 * w - z0 * x
-    rz = w0 * z - x0 * y + y0 * x - z0 * w
-    yaw = np.arctan2(2.0 * (rw * rz + rx * ry), 1.0 - 2.0 * (ry * ry + rz * rz))
-    return {'max_surge': float(np.max(np.abs(body[:, 0]))),
-            'max_sway': float(np.max(np.abs(body[:, 1]))),
-            'max_yaw': float(np.max(np.abs(yaw)))}
+    series = motion_series(positions, orientations)
+    return {f'max_{name}': float(np.max(np.abs(series[name])))
+            for name in ('surge', 'sway', 'yaw')}
+
+
+def ship_motions(positions: np.ndarray, orientations: np.ndarray,
+                 criteria: MotionLimits) -> Dict[str, float]:
+    """
+    Return a ship's motions over its poses and their largest share of the criteria's limits.
+
+    NAME_motion for each of surge, sway, heave [m], roll, pitch, yaw [rad]: peak to peak,
+    sway zero to peak (model/ship/motions.py); motion_share: the largest motion's share of
+    its limit (cargo handling stops at 1).
+    """
+    ranges = motion_ranges(motion_series(positions, orientations))
+    _, share = against_limits(ranges, criteria)
+    return {**{f'{name}_motion': ranges[name] for name in MOTIONS}, 'motion_share': share}

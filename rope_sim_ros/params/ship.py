@@ -37,6 +37,7 @@ from .materials import default_config_dir
 from .names import check_names
 from .table import ParameterError, Spec
 from ..model.ship.coefficients import CoefficientFileError, parse_coefficient_csv
+from ..model.ship.motions import MOTION_CRITERIA, MotionLimits
 
 SHIP = 'ship'
 PASSING_SHIP = 'passing_ship'
@@ -100,6 +101,10 @@ SHIP_SPECS: Mapping[str, Spec] = {
     'ship.block_coefficient': Spec(
         0.85, '', 'block coefficient C_b: the passing-ship loads take the hull as a parabolic '
         'sectional-area curve holding C_b L B T', 0.3, 1.0),
+    'ship.motion_criteria': Spec(
+        'bulk_cranes', '', "the row of PIANC's (1995) motion criteria for safe working that a "
+        "run's ship motions are held to (rope_sim info, a study's results): the kind of ship "
+        'and of its cargo handling', choices=tuple(MOTION_CRITERIA)),
     'ship.wind_area_front': Spec(
         450.0, 'm^2', 'front projected area above the water, A_T of the wind coefficients',
         0.0, 1.0e6, low_open=True),
@@ -215,6 +220,7 @@ class ShipParams:
     beam: float = SHIP_SPECS['ship.beam'].default
     draft: float = SHIP_SPECS['ship.draft'].default
     block_coefficient: float = SHIP_SPECS['ship.block_coefficient'].default
+    motion_criteria: str = SHIP_SPECS['ship.motion_criteria'].default
     wind_area_front: float = SHIP_SPECS['ship.wind_area_front'].default
     wind_area_side: float = SHIP_SPECS['ship.wind_area_side'].default
     current_area_front: float = SHIP_SPECS['ship.current_area_front'].default
@@ -232,6 +238,11 @@ class ShipParams:
     def free(self) -> bool:
         """Tell whether the ship is a free body (ship_mode free)."""
         return self.mode == 'free'
+
+    @property
+    def motion_limits(self) -> MotionLimits:
+        """Return the motion criteria of safe cargo handling it is held to."""
+        return MOTION_CRITERIA[self.motion_criteria]
 
     def values(self) -> Dict[str, Any]:
         """Return every value under its parameter name (`ship.mass`, `ship_mode`)."""

@@ -241,7 +241,8 @@ def run_case(job: Job, streams: Optional[Streams]) -> Outcome:
             try:
                 summary = SummarySink(job.setup.names, ratings(job.setup),
                                       origin=streams.origin if streams is not None else 0.0,
-                                      free=streams is None)
+                                      criteria=job.setup.ship.motion_limits
+                                      if streams is None else None)
                 if streams is not None:
                     run_motion(job.setup, streams, out_path, job.rate, bag_path,
                                sinks=[summary], commands=job.commands)
