@@ -24,11 +24,10 @@ import math
 
 import numpy as np
 import pytest
-from scipy.signal import welch
-
 from rope_sim_ros.model.ship.hydro import HydroDatabase
 from rope_sim_ros.model.ship.waves import (
-    about_origin, jonswap_spectrum, Sea, ShipWaves, WaveLoads, Waves, wavenumber)
+    about_origin, jonswap_spectrum, Sea, ShipWaves, WaveLoads, wavenumber, Waves)
+from scipy.signal import welch
 
 G = 9.81
 DEPTH = 20.0
@@ -202,7 +201,7 @@ def test_the_heading_in_body_axes_follows_the_ship_yaw():
 
 
 def symmetric_excitation(omega, heading):
-    """A port-starboard symmetric hull's X: even in heading for surge, heave, pitch."""
+    """Return a port-starboard symmetric hull's X: even in heading in surge, heave, pitch."""
     even = (1.0 + omega[..., None]) * (1.0 + 0.3 * np.abs(heading[..., None]))
     odd = np.sin(heading[..., None]) * (0.5 + omega[..., None])
     sign = np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])
@@ -211,7 +210,7 @@ def symmetric_excitation(omega, heading):
 
 
 def symmetric_drift(omega, heading):
-    """A symmetric hull's drift: surge even in heading, sway and yaw odd."""
+    """Return a symmetric hull's drift: surge even in heading, sway and yaw odd."""
     return np.stack([-1e4 * (1.0 + np.cos(heading)) * omega,
                      2e4 * np.sin(heading) * omega, 3e5 * np.sin(2.0 * heading)], axis=-1)
 

@@ -24,20 +24,19 @@ import math
 
 import numpy as np
 import pytest
-from test_cli_free import FREE_BERTH
-from test_waves import database
-
 from rope_sim_ros.bag import cdr
 from rope_sim_ros.messages import topics
 from rope_sim_ros.messages.encode import encoder_for
-import rope_sim_ros.mooring.ship as mooring_ship
-from rope_sim_ros.mooring.driver import Driver
 from rope_sim_ros.model.frames import rotation_matrix
 from rope_sim_ros.model.ship.waves import ShipWaves, Waves
+from rope_sim_ros.mooring import ship as mooring_ship
+from rope_sim_ros.mooring.driver import Driver
 from rope_sim_ros.offline import cli
 from rope_sim_ros.offline.sinks import LOAD_COLUMNS, WAVE_COLUMNS
 from rope_sim_ros.params.arrangement import from_values, read_setup
 from rope_sim_ros.params.table import ParameterError
+from test_cli_free import FREE_BERTH
+from test_waves import database
 
 REGULAR = '    waves: {spectrum: regular, height: 2.0, period: 8.0, direction: 1.2}\n'
 
@@ -106,9 +105,9 @@ def test_waves_without_a_database_are_refused(tmp_path, capsys):
     code, out = run(tmp_path, FREE_BERTH + REGULAR)
     assert code == 2
     error = capsys.readouterr().err.strip()
-    assert error == ("rope_sim run: error: waves need ship.hydrodynamics: waves.spectrum is "
+    assert error == ('rope_sim run: error: waves need ship.hydrodynamics: waves.spectrum is '
                      "'regular' but the ship has no hydrodynamic database (the file `rope_sim "
-                     "hydro` writes); set it, or waves.spectrum: none")
+                     'hydro` writes); set it, or waves.spectrum: none')
     assert not out.exists()
 
 
@@ -116,7 +115,7 @@ def test_a_sea_the_database_does_not_cover_is_refused(hull, tmp_path, capsys):
     short = REGULAR.replace('period: 8.0', 'period: 1.5')  # 4.2 rad/s, the table ends at 3
     code, _ = run(tmp_path, FREE_BERTH + short)
     assert code == 2
-    assert ('waves: 100% of the sea\'s energy lies outside the frequencies of the '
+    assert ("waves: 100% of the sea's energy lies outside the frequencies of the "
             'hydrodynamic database (0.2 to 3 rad/s)') in capsys.readouterr().err
 
 

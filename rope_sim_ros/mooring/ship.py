@@ -165,9 +165,9 @@ def check_waves(waves: Waves, database: Optional[HydroDatabase]) -> None:
         return
     if database is None:
         raise ParameterError(
-            f"waves need ship.hydrodynamics: {WAVES}.spectrum is '{waves.spectrum}' but the "
+            f'waves need ship.hydrodynamics: {WAVES}.spectrum is {waves.spectrum!r} but the '
             'ship has no hydrodynamic database (the file `rope_sim hydro` writes); set it, '
-            f"or {WAVES}.spectrum: none")
+            f'or {WAVES}.spectrum: none')
     if waves.sea is None:
         return
     low, high = float(database.omega[0]), float(database.omega[-1])
@@ -175,7 +175,7 @@ def check_waves(waves: Waves, database: Optional[HydroDatabase]) -> None:
     if share > OUTSIDE_SHARE:
         sea = waves.sea.omega
         raise ParameterError(
-            f'{WAVES}: {share:.0%} of the sea\'s energy lies outside the frequencies of the '
+            f"{WAVES}: {share:.0%} of the sea's energy lies outside the frequencies of the "
             f'hydrodynamic database ({low:.3g} to {high:.3g} rad/s); at most '
             f'{OUTSIDE_SHARE:.0%} may: make it cover {sea.min():.3g} to {sea.max():.3g} rad/s '
             f'or change {WAVES}.period')
