@@ -35,7 +35,10 @@ physics (370 us an output for one line's particles and tensions, as bytes 80 us)
 - each named bollard's <bollard>/load: geometry_msgs/WrenchStamped in frame_id, the sum of
   the forces of the lines fast on it (no torque about the bollard);
 - ship/passing_ship_wrench: a passing ship's surge and sway force and yaw moment on the ship
-  (geometry_msgs/WrenchStamped, body axes, about its origin).
+  (geometry_msgs/WrenchStamped, body axes, about its origin);
+- with waves, ship/wave_wrench: their first-order load and slow drift on the ship together
+  (geometry_msgs/WrenchStamped, body axes, about its origin), and
+  environment/wave_elevation: their elevation at the ship's origin (std_msgs/Float64).
 """
 
 from typing import Dict, Iterable, List, Optional, Sequence, Tuple
@@ -47,6 +50,7 @@ from .topics import Layout
 from ..bag import cdr
 from ..model.frames import cross_rows, lines_tangent_quaternions, split_ns
 from ..mooring.records import Published
+from ..mooring.ship import reports_waves
 from ..params.arrangement import ArrangementParams
 
 
@@ -71,7 +75,7 @@ class OutputEncoder:
     def __init__(self, layout: Layout, names: Sequence[str], payloads: Sequence[bool],
                  frame_id: str, ship_frame_id: str = 'base_link', free: bool = False,
                  fenders: Sequence[str] = (), passing: bool = False,
-                 bollards: Sequence[str] = ()):
+                 bollards: Sequence[str] = (), waves: bool = False):
         """
         Name every output of these lines (payloads: which lines end in a payload).
 
@@ -79,6 +83,7 @@ class OutputEncoder:
         :param fenders: the fenders' names (their reactions are outputs).
         :param bollards: the named bollards' (their loads are outputs).
         :param passing: a ship passes (its load on the ship is an output).
+        :param waves: waves are set (their load and elevation are outputs).
         """
         self.layout = layout
         self.frame_id = frame_id
@@ -100,6 +105,8 @@ class OutputEncoder:
             self.ship_topics.update(topics.FREE_SHIP_OUTPUTS)
         if passing:
             self.ship_topics[topics.PASSING_WRENCH] = topics.WRENCH_STAMPED
+        if waves:
+            self.ship_topics.update(topics.WAVE_OUTPUTS)
         self.fender_topics = {f'{name}/{topics.FENDER_REACTION}': f
                               for f, name in enumerate(fenders)}
         self.ship_topics.update({topic: topics.WRENCH_STAMPED for topic in self.fender_topics})
@@ -114,7 +121,9 @@ class OutputEncoder:
     def has_header(self, topic: str) -> bool:
         """Tell whether an output topic's messages carry a header stamp (the ship's do)."""
         line = self.line_topics.get(topic)
-        return topic in self.ship_topics if line is None else line[1] in topics.STAMPED
+        if line is None:
+            return topic in self.ship_topics and self.ship_topics[topic] != topics.FLOAT64
+        return line[1] in topics.STAMPED
 
     def messages(self, published: Published,
                  wanted: Optional[Iterable[str]] = None) -> List[Tuple[str, bytes]]:
@@ -174,6 +183,11 @@ class OutputEncoder:
                 fx, fy, mz = out.ship_loads[2]
                 data = cdr.wrench_stamped(sec, nanosec, self.ship_frame_id, (fx, fy, 0.0),
                                           (0.0, 0.0, mz))
+            elif topic == topics.WAVE_WRENCH:
+                load = out.wave_loads.sum(axis=0)
+                data = cdr.wrench_stamped(sec, nanosec, self.ship_frame_id, load[:3], load[3:])
+            elif topic == topics.WAVE_ELEVATION:
+                data = cdr.float64(out.wave_elevation)
             elif topic == topics.SHIP_POSE:
                 data = cdr.pose_stamped(sec, nanosec, self.frame_id,
                                         [*out.ship.position, *out.ship.orientation])
@@ -202,7 +216,8 @@ def encoder_for(setup: ArrangementParams) -> OutputEncoder:
     return OutputEncoder(layout, setup.names, [line.params.has_payload for line in setup.lines],
                          setup.shared.frame_id, setup.ship_frame_id, setup.ship.free,
                          [fender.name for fender in setup.fenders], setup.passing.present,
-                         [bollard.name for bollard in setup.bollards])
+                         [bollard.name for bollard in setup.bollards],
+                         reports_waves(setup))
 
 
 def stiffness_message(matrix: np.ndarray) -> bytes:

@@ -75,6 +75,11 @@ FREE_SHIP_OUTPUTS: Dict[str, str] = {SHIP_POSE: POSE_STAMPED, SHIP_ODOMETRY: ODO
 EXTERNAL_WRENCH = 'ship/external_wrench'  # in: the external load on a free ship
 # A passing ship's load on the ship (body axes, about its origin), when one passes.
 PASSING_WRENCH = 'ship/passing_ship_wrench'
+# The waves, when set (waves.spectrum not none): their first- and second-order load on the
+# ship together (body axes, about its origin) and their elevation at its origin.
+WAVE_WRENCH = 'ship/wave_wrench'
+WAVE_ELEVATION = 'environment/wave_elevation'
+WAVE_OUTPUTS: Dict[str, str] = {WAVE_WRENCH: WRENCH_STAMPED, WAVE_ELEVATION: FLOAT64}
 WIND = 'environment/wind'  # in: the air's velocity, where it goes TO
 CURRENT = 'environment/current'  # in: the water's velocity, where it goes TO
 STIFFNESS = 'ship/stiffness'  # the 6x6 stiffness of the lines and fenders, row-major

@@ -74,6 +74,7 @@ from .layout import (BREAK_LOAD, PARTED, PARTED_STEP, PEAK_A, PEAK_B, SNAP_FLOOR
                      WINCH_MAX_LENGTH, WINCH_MAX_SPEED, WINCH_MIN_LENGTH, WINCH_MODE,
                      WINCH_RESPONSE, WINCH_SPEED)
 from .record import SystemArrays
+from .ship.waves import Waves
 from .ship.wind import Wind
 from .tension_curve import check_curve, TensionCurve
 
@@ -198,6 +199,8 @@ class Environment:
     :ivar quay_depth: how far below the deck the quay block reaches [m].
     :ivar wind: the wind over the water (ship/wind.py's Wind): it pushes the ship, not the
         lines.
+    :ivar waves: the waves on the water (ship/waves.py's Waves): they load the ship (its
+        hydrodynamic database's loads), not the lines.
     """
 
     gravity: tuple = (0.0, 0.0, -9.81)
@@ -213,6 +216,7 @@ class Environment:
     quay_normal: tuple = (0.0, 0.0, 0.0)
     quay_depth: float = 1.0e4
     wind: Wind = Wind()
+    waves: Waves = Waves()
 
     def __post_init__(self):
         """Check every number: a one-line error naming the first that is wrong."""
@@ -716,7 +720,7 @@ class System:
 
     def set_environment(self, environment: Environment) -> None:
         """
-        Take the environment as a run changed it (its current, its wind) from now on.
+        Take the environment as a run changed it (its current, wind, waves) from now on.
 
         Nothing else of it changes at run time: the current alone goes into the tables.
         """

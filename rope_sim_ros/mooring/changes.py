@@ -15,7 +15,7 @@
 """
 Run-time changes of a mooring: a line's parameters, and its one environment.
 
-A change of the environment's (current, wind_speed, wind_direction: ENVIRONMENT_SETTINGS)
+A change of the environment's (current, the wind's and the waves': ENVIRONMENT_SETTINGS)
 replaces the mooring's one Environment everywhere at once: every line's step in it, its
 groups' Systems, the ship's loads. A line's `bollard` names the bollard it will be made
 fast to (set_bollard: while it is not fast). Any other change is a line's own (damping,
@@ -29,7 +29,7 @@ from typing import Optional, Tuple
 
 from ..params.bollards import find_bollard
 from ..params.resolve import environment
-from ..params.ship import ENVIRONMENT_SETTINGS, WIND_SETTINGS
+from ..params.ship import ENVIRONMENT_SETTINGS, field_name, SHIP_SETTINGS
 from ..params.table import ParameterError
 
 
@@ -53,7 +53,7 @@ def update(mooring, k: Optional[int], values: dict) -> None:
     """
     Apply run-time changes of line k's parameters (None: every line's).
 
-    The environment's (current, wind_speed, wind_direction) change the mooring's one
+    The environment's (current, the wind's, the waves') change the mooring's one
     environment (set_environment); the others line k's own. The ropes go on from where
     they are (no restart).
 
@@ -133,14 +133,17 @@ def check_environment(mooring, changes: dict) -> tuple:
     Return (arrangement, environment) with run-time changes of the environment.
 
     :param changes: ENVIRONMENT_SETTINGS: current [m/s] (3,), wind_speed [m/s],
-        wind_direction [rad] (where it comes FROM).
-    :raises ParameterError: a line cannot run in it (its step); nothing changed.
+        wind_direction [rad] (where it comes FROM), waves.height [m], waves.period [s],
+        waves.direction [rad] (where they come FROM).
+    :raises ParameterError: a line cannot run in it (its step), or the ship's hydrodynamic
+        database does not cover the waves; nothing changed.
     """
-    shared = {k: v for k, v in changes.items() if k not in WIND_SETTINGS}
-    wind = {k: float(v) for k, v in changes.items() if k in WIND_SETTINGS}
-    ship = replace(mooring.arrangement.ship, **wind)
+    shared = {k: v for k, v in changes.items() if k not in SHIP_SETTINGS}
+    own = {field_name(k): float(v) for k, v in changes.items() if k in SHIP_SETTINGS}
+    ship = replace(mooring.arrangement.ship, **own)
     setup = replace(mooring.arrangement.with_shared(shared), ship=ship)
     changed = environment(setup.shared, setup.ship)
+    mooring.ship.check_waves(changed.waves)
     for k in range(len(mooring.lines)):
         try:
             mooring.lines[k].updated(shared, changed)
@@ -152,16 +155,18 @@ def check_environment(mooring, changes: dict) -> tuple:
 
 def set_environment(mooring, changes: dict) -> None:
     """
-    Change the mooring's one environment from now on: its current, its wind.
+    Change the mooring's one environment from now on: its current, its wind, its waves.
 
     Every line, its System and the ship's loads take it from the next step; a line
     whose step changes with it (a current's drag) is grouped again. Gusty wind
-    (wind_spectrum) keeps its spectrum and seed about a new mean.
+    (wind_spectrum) keeps its spectrum and seed about a new mean; waves keep their
+    spectrum, peak enhancement and seed (an irregular sea is drawn again for its new
+    height, period or direction: the same seed gives the same phases).
 
     :raises ParameterError: as check_environment (nothing changed then).
     """
     mooring.arrangement, mooring.environment = check_environment(mooring, changes)
-    shared = {k: v for k, v in changes.items() if k not in WIND_SETTINGS}
+    shared = {k: v for k, v in changes.items() if k not in SHIP_SETTINGS}
     steps = [line.time_step for line in mooring.lines]
     for line in mooring.lines:
         line.update(shared, mooring.environment)

@@ -485,8 +485,8 @@ class Driver:
         """
         Apply run-time changes of one line's parameters (None: a shared one, every line).
 
-        publish_rate changes the output rate (see set_rate); current, wind_speed and
-        wind_direction (None only) the mooring's one environment (Mooring.update).
+        publish_rate changes the output rate (see set_rate); current, the wind's and the
+        waves' settings (None only) the mooring's one environment (Mooring.update).
         """
         self.mooring.update(self._index(name), values)
         if 'publish_rate' in values:

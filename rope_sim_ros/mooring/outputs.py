@@ -17,9 +17,9 @@ A mooring's state at an output: every line's particles, end forces and peaks, an
 
 One MooringOutput from every group's System: its lines' loads and tensions taken once (the
 peaks since the previous output cleared), their lengths, partings and states, and the
-ship's state, fenders and loads, read from its one body whatever its mode. A stowed line,
-in no group, is all at its fairlead and pulls nothing. Whether every number is finite is
-worked out from one sum of them: an overflow anywhere makes it so.
+ship's state, fenders and loads (the waves' too), read from its one body whatever its
+mode. A stowed line, in no group, is all at its fairlead and pulls nothing. Whether every
+number is finite is worked out from one sum of them: an overflow anywhere makes it so.
 """
 
 import math
@@ -75,6 +75,7 @@ def mooring_output(mooring) -> MooringOutput:
     ship.follow(mooring.time)
     state = ship.state()
     compressions, fender_forces, points = ship.fender_states()
+    elevation, waves = ship.waves_at(mooring.time, state, mooring.environment)
     return MooringOutput(
         t=mooring.time, positions=tuple(positions), fairlead_forces=forces[:, 1],
         bollard_forces=forces[:, 0], max_strains=strains, payload_positions=tuple(payloads),
@@ -84,4 +85,5 @@ def mooring_output(mooring) -> MooringOutput:
         fender_compressions=compressions, fender_forces=fender_forces, fender_points=points,
         ship_loads=ship.loads_at(mooring.time, state, mooring.arrangement,
                                  mooring.environment),
+        wave_elevation=elevation, wave_loads=waves,
         states=tuple(line.state for line in mooring.lines))

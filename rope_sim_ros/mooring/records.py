@@ -74,6 +74,9 @@ class MooringOutput:
     :ivar ship_loads: the wind's, the current's and a passing ship's load on the ship, rows
         in that order, each F_x, F_y [N], M_z [N m] in its body axes about its origin (a
         driven ship's at its pose, taken at rest: applied to a free ship only).
+    :ivar wave_elevation: the waves' elevation at the ship's origin [m] (0: no waves).
+    :ivar wave_loads: the waves' loads on the ship, rows first order and slow drift, each
+        force [N] and moment [N m] in its body axes about its origin (zeros: no waves).
     :ivar states: each line's state: 'fast', 'free' or 'stowed' (mooring/handling.py); a
         stowed line's particles are all at its fairlead, its forces zero.
     """
@@ -97,6 +100,8 @@ class MooringOutput:
     fender_forces: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     fender_points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     ship_loads: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
+    wave_elevation: float = 0.0
+    wave_loads: np.ndarray = field(default_factory=lambda: np.zeros((2, 6)))
     states: Tuple[str, ...] = ()
 
     @property

@@ -15,7 +15,7 @@
 """
 The one ship of a mooring: a body with a mode, its fenders and the loads on it.
 
-One place turns the ship.*, fender, wind and passing_ship.* parameters into a
+One place turns the ship.*, fender, wind, waves.* and passing_ship.* parameters into a
 model.body.Body, Fenders and ShipLoads, for the Mooring that steps them and for the statics
 (equilibrium, stiffness, the berth check) alike; and the Ship the Mooring holds. Its body is
 driven or free, as MoorDyn's bodies are coupled or free: a driven ship's body is where its
@@ -24,7 +24,8 @@ body is integrated with its lines in their System (its fairleads are points it c
 Its fenders, its loads, its published state and its stiffness read the same body either way.
 The loads are those at the depth of the water, water_level - seabed_level (no sea bed, or
 no water: deep): the passing ship's are summed over the sea bed's images, the current's
-table is the one for the ratio of that depth to the ship's draft.
+table is the one for the ratio of that depth to the ship's draft. The waves' loads come
+from the ship's hydrodynamic database (hydrodynamics): waves without one are refused.
 """
 
 from collections import deque
@@ -43,11 +44,13 @@ from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, B
                             BODY_QUATERNION, BODY_VELOCITY, FENDER_COLUMNS)
 from ..model.objects import Environment, System
 from ..model.ship.coefficients import table_at_ratio
-from ..model.ship.loads import PassingShip, ShipLoads, world_load
+from ..model.ship.hydro import HydroDatabase
+from ..model.ship.loads import PassingShip, ShipLoads, world_load, world_wrench
 from ..model.ship.passing import Hull
+from ..model.ship.waves import ShipWaves, Waves
 from ..params.arrangement import ArrangementParams
 from ..params.resolve import environment
-from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables
+from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables, WAVES
 from ..params.table import LineParams, ParameterError
 
 
@@ -141,11 +144,50 @@ def passing_ship(setup: ArrangementParams) -> Optional[PassingShip]:
     return track.in_current(track.start_time, setup.shared.current)
 
 
-def ship_loads(setup: ArrangementParams) -> ShipLoads:
-    """
-    Return the wind, current and passing-ship loads of the arrangement's ship.
+def hydrodynamics(setup: ArrangementParams) -> Optional[HydroDatabase]:
+    """Return the ship's hydrodynamic database (ship.hydrodynamics), or None: it has none."""
+    return None
 
-    At the depth of the water (module docstring); the passing ship as passing_ship gives it.
+
+# The largest share of a sea's variance at frequencies its ship's hydrodynamic database
+# leaves out (they take no load): past it the database is refused for that sea.
+OUTSIDE_SHARE = 0.05
+
+
+def check_waves(waves: Waves, database: Optional[HydroDatabase]) -> None:
+    """
+    Refuse waves the ship's hydrodynamic database cannot load it with.
+
+    :raises ParameterError: waves (a spectrum other than none) without a database, or a
+        sea with more than OUTSIDE_SHARE of its variance outside the database's frequencies.
+    """
+    if not waves.configured:
+        return
+    if database is None:
+        raise ParameterError(
+            f'waves need ship.hydrodynamics: {WAVES}.spectrum is {waves.spectrum!r} but the '
+            'ship has no hydrodynamic database (the file `rope_sim hydro` writes); set it, '
+            f'or {WAVES}.spectrum: none')
+    if waves.sea is None:
+        return
+    low, high = float(database.omega[0]), float(database.omega[-1])
+    share = waves.sea.outside_share(low, high)
+    if share > OUTSIDE_SHARE:
+        sea = waves.sea.omega
+        raise ParameterError(
+            f"{WAVES}: {share:.0%} of the sea's energy lies outside the frequencies of the "
+            f'hydrodynamic database ({low:.3g} to {high:.3g} rad/s); at most '
+            f'{OUTSIDE_SHARE:.0%} may: make it cover {sea.min():.3g} to {sea.max():.3g} rad/s '
+            f'or change {WAVES}.period')
+
+
+def ship_loads(setup: ArrangementParams,
+               database: Optional[HydroDatabase] = None) -> ShipLoads:
+    """
+    Return the wind, current, passing-ship and wave loads of the arrangement's ship.
+
+    At the depth of the water (module docstring); the passing ship as passing_ship gives it;
+    the waves' from `database`, the ship's hydrodynamic database (None: none).
 
     :raises ParameterError: a coefficient table that cannot be read; a passing ship in water
         too shallow for it.
@@ -159,7 +201,7 @@ def ship_loads(setup: ArrangementParams) -> ShipLoads:
         (ship.wind_area_front, ship.wind_area_side),
         (ship.current_area_front or ship.beam * ship.draft,
          ship.current_area_side or ship.length * ship.draft),
-        passing_ship(setup), depth, setup.passing.image_pairs)
+        passing_ship(setup), depth, setup.passing.image_pairs, ShipWaves(database))
 
 
 # The largest external load a free ship takes (ship/external_wrench, LOADS.csv): a force of a
@@ -196,6 +238,11 @@ def check_external_load(load, limits: Tuple[float, float]) -> None:
                 'weight, at its length for a moment)')
 
 
+def reports_waves(setup: ArrangementParams) -> bool:
+    """Tell whether the waves (their elevation, their loads on the ship) are outputs of a run."""
+    return not setup.single and setup.ship.waves_spectrum != 'none'
+
+
 def reports_ship_loads(setup: ArrangementParams) -> bool:
     """Tell whether the ship's wind, current and passing-ship loads are outputs of a run."""
     ship = setup.ship
@@ -211,7 +258,7 @@ class Ship:
     :ivar body: its Body: a free ship's state is its System's; a driven ship's follows its
         newest pose at or before the state time (follow), at rest.
     :ivar fenders: the fenders on the quay it rests against.
-    :ivar loads: the wind's, the current's and a passing ship's load on it.
+    :ivar loads: the wind's, the current's, a passing ship's and the waves' load on it.
     :ivar external_load: force [N], moment about its origin [N m] held in frame_id axes;
         body_load: the same in its body axes (they turn with it); held until set again.
     :ivar load_schedule: offline, (times (n,), loads (n, 6)) as external_load, linear
@@ -227,7 +274,8 @@ class Ship:
         self.fenders = fenders(setup)
         self.fender_rows = np.array([fender.row() for fender in self.fenders]).reshape(
             len(self.fenders), FENDER_COLUMNS)
-        self.loads = ship_loads(setup)
+        self.loads = ship_loads(setup, hydrodynamics(setup))
+        self.check_waves(environment(setup.shared, setup.ship).waves)
         self.limits = external_load_limits(setup)
         self.external_load = np.zeros(6)
         self.body_load = np.zeros(6)
@@ -333,6 +381,10 @@ class Ship:
 
     # -- the loads on it ------------------------------------------------------------------
 
+    def check_waves(self, waves: Waves) -> None:
+        """Refuse waves its hydrodynamic database cannot load it with (check_waves)."""
+        check_waves(waves, self.loads.waves.database)
+
     def set_external_load(self, force, moment, body_axes: bool) -> None:
         """
         Hold an external load on the free ship from now on (it replaces the one before).
@@ -387,8 +439,11 @@ class Ship:
         Give the free body its loads from start to end [s]: their value at start, their rate.
 
         Taken about the centre of gravity where the ship is at start, with its velocity there
-        (the wind and current on it): over one output interval it turns and speeds up far
-        too little for that to matter.
+        (the wind and current on it) and its heading there (the waves): over one output
+        interval it turns and speeds up far too little for that to matter. The waves' loads
+        are linear between the interval's ends too: at the default 50 Hz a 4 s wave is
+        sampled 200 times a period, and the largest error of that line against the wave is
+        (omega dt)^2 / 8 = 1.2e-4 of its amplitude.
         """
         origin, orientation = self.body.origin_pose()
         lever = self.body.position - origin  # from the origin to the CG
@@ -400,6 +455,9 @@ class Ship:
             load = self.load_at(t)
             load += world_load(self.loads.at(t, environment, origin, rotation, velocity),
                                rotation)
+            if environment.waves.sea is not None:
+                load += world_wrench(self.loads.waves_at(t, environment, origin, rotation)[1],
+                                     rotation)
             load[3:] -= np.cross(lever, load[:3])  # the moment about the CG
             values.append(load)
         row[BODY_LOAD:BODY_LOAD + 6] = values[0]
@@ -422,6 +480,16 @@ class Ship:
             return np.zeros((3, 3))
         return self.loads.at(t, environment, state.position,
                              rotation_matrix(state.orientation), state.velocity)
+
+    def waves_at(self, t: float, state: ShipState,
+                 environment: Environment) -> Tuple[float, np.ndarray]:
+        """
+        Return the wave elevation at its origin [m] and the waves' loads on it (2, 6) at t.
+
+        Rows: first order, slow drift (ShipLoads.waves_at): body axes, about its origin.
+        """
+        return self.loads.waves_at(t, environment, state.position,
+                                   rotation_matrix(state.orientation))
 
     # -- its fenders ----------------------------------------------------------------------
 

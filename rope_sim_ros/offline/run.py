@@ -47,7 +47,7 @@ from ..messages.encode import encoder_for, pose_stamped
 from ..messages.topics import Layout
 from ..mooring.driver import Driver, SHIP
 from ..mooring.records import Handled, Published, Report, ScheduledCommand
-from ..mooring.ship import reports_ship_loads
+from ..mooring.ship import reports_ship_loads, reports_waves
 from ..mooring.status import ratings
 from ..params.arrangement import ArrangementParams, stored
 from ..params.table import ParameterError
@@ -320,7 +320,7 @@ def run_free(setup: ArrangementParams, duration: float, loads: Optional[LoadSche
     if out_path is not None:
         writer = CsvSink(out_path, setup.names, ratings(setup), free=True,
                          fenders=[(fender.name, fender.normal) for fender in setup.fenders],
-                         loads=True)
+                         loads=True, waves=reports_waves(setup))
         outputs.insert(0, writer)
     try:
         summary = simulate_free(setup, duration, loads, rate, outputs, progress, materials,
@@ -387,7 +387,7 @@ def run_motion(setup: ArrangementParams, streams: Streams, out_path=None,
                              origin=streams.origin,
                              fenders=[(fender.name, fender.normal)
                                       for fender in setup.fenders],
-                             loads=reports_ship_loads(setup))
+                             loads=reports_ship_loads(setup), waves=reports_waves(setup))
             outputs.insert(0, writer)
         summary = simulate(setup, streams, rate, outputs, progress, materials, commands,
                            listeners)

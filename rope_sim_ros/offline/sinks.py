@@ -24,7 +24,9 @@ lines on the ship (body frame, about its origin), then each line's EACH_LINE_COL
 its name (NAME_tension, ..., NAME_state); a free ship's adds its motion (SHIP_COLUMNS: its
 origin's pose as SHIP.csv names it and its velocity, frame_id axes) and each fender's
 FENDER_COLUMNS under its name; where wind, current or a passing ship act (or the ship is
-free), LOAD_COLUMNS: their loads on the ship, body axes about its origin.
+free), LOAD_COLUMNS: their loads on the ship, body axes about its origin; where waves are
+set (waves.spectrum not none), WAVE_COLUMNS: their elevation at the ship's origin, their
+first-order load and their slow drift on it, body axes about its origin.
 Times are in the motion file's own time base; every number is written with Python's
 shortest exact repr, so a row read back gives the very floats that were computed. A
 line's state is a word, fast, free or stowed (mooring/handling.py): the one column that is
@@ -78,6 +80,11 @@ FENDER_COLUMNS = ('compression', 'reaction')
 # The wind's, the current's and a passing ship's loads on the ship, body axes about its origin.
 LOAD_COLUMNS = tuple(f'{source}_{column}' for source in ('wind', 'current', 'passing')
                      for column in ('force_x', 'force_y', 'moment_z'))
+# The waves: their elevation at the ship's origin [m], their first-order load and their slow
+# drift on the ship [N, N m], body axes about its origin.
+WAVE_COLUMNS = ('wave_elevation', 'wave_force_x', 'wave_force_y', 'wave_force_z',
+                'wave_moment_x', 'wave_moment_y', 'wave_moment_z', 'drift_force_x',
+                'drift_force_y', 'drift_moment_z')
 # A run's summary per line (SummarySink), under its name, and a free ship's.
 LINE_RESULTS = ('max_tension', 'max_utilisation', 'time_of_max', 'mean_tension', 'parted')
 SHIP_RESULTS = ('max_surge', 'max_sway', 'max_yaw', *(f'{name}_motion' for name in MOTIONS),
@@ -100,7 +107,7 @@ class CsvSink:
     def __init__(self, path, names: Sequence[str], ratings: Sequence[Rating],
                  payload: bool = False, origin: float = 0.0, free: bool = False,
                  fenders: Sequence[Tuple[str, Sequence[float]]] = (),
-                 loads: bool = False) -> None:
+                 loads: bool = False, waves: bool = False) -> None:
         """
         Open (create or overwrite) the file and write the header.
 
@@ -112,6 +119,7 @@ class CsvSink:
         :param free: a free ship's run (SHIP_COLUMNS).
         :param fenders: each fender's name and normal (FENDER_COLUMNS).
         :param loads: the wind, current and passing-ship loads (LOAD_COLUMNS).
+        :param waves: the waves' elevation and loads (WAVE_COLUMNS).
         :raises OSError: it cannot be written.
         """
         self.path = os.fspath(path)
@@ -121,6 +129,7 @@ class CsvSink:
         self.origin = origin
         self.free = free
         self.loads = loads
+        self.waves = waves
         self.normals = [tuple(normal) for _, normal in fenders]
         self._file = open(self.path, 'w', newline='', encoding='utf-8')
         self._writer = csv.writer(self._file, lineterminator='\n')
@@ -133,6 +142,7 @@ class CsvSink:
             header += tuple(f'{name}_{column}' for name, _ in fenders
                             for column in FENDER_COLUMNS)
             header += LOAD_COLUMNS if loads else ()
+            header += WAVE_COLUMNS if waves else ()
         self._writer.writerow(header)
         self.rows = 0
 
@@ -165,6 +175,9 @@ class CsvSink:
                                                                      normal))]
             if self.loads:
                 numbers += out.ship_loads.ravel().tolist()
+            if self.waves:
+                drift = out.wave_loads[1]
+                numbers += [out.wave_elevation, *out.wave_loads[0], drift[0], drift[1], drift[5]]
             cells += _numbers(*numbers)
         self._writer.writerow(cells)
         self.rows += 1

@@ -46,7 +46,7 @@ from .names import check_setting, NAME, NAME_RULE
 from .ship import (check_current_tables, check_fender_names, check_passing_clear,
                    CURRENT_TABLES, fender_setup, FENDER_SPECS, FENDERS, FenderSetup, field_name,
                    PASSING_SHIP, passing_ship, PASSING_SPECS, PassingShipParams, SHIP,
-                   SHIP_SPECS, ShipParams, tables_relative_to)
+                   SHIP_SPECS, ShipParams, tables_relative_to, WAVES)
 from .table import allowed, check, LineParams, ParameterError, Spec, SPECS
 from .table import NODE_NAME as LINE_NODE_NAME
 
@@ -90,7 +90,7 @@ LINES_DESCRIPTION = ('names of the mooring lines; each line has its settings und
 LINE_NAME_RULE = f'{NAME_RULE} (it becomes a parameter prefix and a topic namespace)'
 MAX_LINES = 64
 # Names a line or a fender cannot take: the prefixes of the ship's own parameters.
-RESERVED = (SHIP, PASSING_SHIP)
+RESERVED = (SHIP, PASSING_SHIP, WAVES)
 # What a line must set itself (or take from a top-level default): where it is.
 REQUIRED = {
     'fairlead_offset': "m, in the ship's body frame",
@@ -302,7 +302,8 @@ def check_top_value(name: str, value: Any) -> Any:
         return check(name, value, PASSING_SPECS)
     if name in SPECS or name in OWN_SPECS:
         return check(name, value, {**SPECS, **OWN_SPECS})
-    for prefix, specs in ((SHIP, SHIP_SPECS), (PASSING_SHIP, PASSING_SPECS)):
+    for prefix, specs in ((SHIP, SHIP_SPECS), (PASSING_SHIP, PASSING_SPECS),
+                          (WAVES, SHIP_SPECS)):
         if name.startswith(prefix + '.'):
             raise ParameterError(f'unknown parameter {name!r}; {prefix} takes: '
                                  f'{", ".join(n for n in specs if n.startswith(prefix + "."))}')
@@ -338,7 +339,7 @@ def from_values(values: Mapping[str, Any]) -> ArrangementParams:
         if key in (LINES, FENDERS, BOLLARDS):
             continue
         line, dot, name = key.partition('.')
-        if not dot or line in (SHIP, PASSING_SHIP):
+        if not dot or line in RESERVED:
             top[key] = check_top_value(key, value)
         elif line in own:
             own[line][name] = check_line_value(line, name, value)

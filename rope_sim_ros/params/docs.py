@@ -141,9 +141,9 @@ def sections() -> List[Tuple[str, List[str]]]:
         ]),
         ('### The ship', [
             'Who moves the ship (`ship_mode`), the free ship as a body, its hull for the '
-            'fenders and the loads, its coefficient tables and the wind; the current is the '
-            "lines' `current` above. [free_ship.md](free_ship.md) and "
-            '[ship_loads.md](ship_loads.md) say how each acts.',
+            'fenders and the loads, its coefficient tables, the wind and the waves; the current '
+            "is the lines' `current` above. [free_ship.md](free_ship.md), "
+            '[ship_loads.md](ship_loads.md) and [waves.md](waves.md) say how each acts.',
             '',
             *table(spec_rows(SHIP_SPECS)),
         ]),

@@ -16,9 +16,11 @@
 Parameters resolved into the model's numbers: a line's and the environment of a mooring.
 
 A line's numbers take its material's where it gives none; the one environment of a mooring
-(its water, ground, current and wind) is its shared parameters and its ship's wind.
+(its water, ground, current, wind and waves) is its shared parameters and its ship's wind
+and waves.
 """
 
+from dataclasses import replace
 from typing import Optional
 
 import numpy as np
@@ -28,6 +30,7 @@ from .table import LineParams, ParameterError
 from ..model.materials import MaterialProperties
 from ..model.objects import Environment
 from ..model.rope import critical_axial_damping, RopeProperties
+from ..model.ship.waves import Waves
 from ..model.ship.wind import GustyWind, Wind
 
 
@@ -77,17 +80,17 @@ def rope_properties(params: LineParams, material: MaterialProperties) -> RopePro
 
 def environment(shared: LineParams, ship: Optional[ShipParams] = None) -> Environment:
     """
-    Return the one environment of a mooring: its shared parameters, and its ship's wind.
+    Return the one environment of a mooring: its shared parameters, its ship's wind and waves.
 
     quay_normal is made a unit vector (all zeros stay zeros: no quay).
 
-    :param ship: the ship's parameters (wind_speed, wind_direction, wind_spectrum,
-        wind_seed); None: no wind (a line alone).
+    :param ship: the ship's parameters (wind_*, waves.*); None: no wind and no waves (a
+        line alone).
     :raises ValueError: a number the model refuses (objects.Environment's message).
     """
     normal = np.array(shared.quay_normal, dtype=float)
     size = float(np.linalg.norm(normal))
-    return Environment(
+    built = Environment(
         gravity=tuple(float(c) for c in shared.gravity), air_density=float(shared.air_density),
         water_level=float(shared.water_level), water_density=float(shared.water_density),
         current=tuple(float(c) for c in shared.current),
@@ -98,6 +101,11 @@ def environment(shared: LineParams, ship: Optional[ShipParams] = None) -> Enviro
         quay_edge=tuple(float(c) for c in shared.quay_edge),
         quay_normal=tuple(float(c) for c in (normal / size if size > 0.0 else normal)),
         quay_depth=float(shared.quay_depth), wind=Wind() if ship is None else wind(ship))
+    if ship is None or ship.waves_spectrum == 'none':
+        return built
+    return replace(built, waves=Waves.make(
+        ship.waves_spectrum, ship.waves_height, ship.waves_period, ship.waves_direction,
+        ship.waves_peak_enhancement, ship.waves_seed, built.depth, built.g))
 
 
 def wind(ship: ShipParams) -> Wind:

@@ -41,15 +41,19 @@ from ..model.ship.motions import MOTION_CRITERIA, MotionLimits
 
 SHIP = 'ship'
 PASSING_SHIP = 'passing_ship'
+WAVES = 'waves'
 FENDERS = 'fenders'
 SHIP_MODES = ('driven', 'free')
 WIND_SPECTRA = ('none', 'api', 'npd')
+WAVE_SPECTRA = ('none', 'regular', 'jonswap')
 MAX_FENDERS = 32
 FENDERS_DESCRIPTION = 'names of the fenders on the quay; each has its settings under its name'
-# The ship's settings a run may change (as the lines' shared `current`): the wind.
+# The ship's settings a run may change (as the lines' shared `current`): the wind, the waves.
 WIND_SETTINGS = ('wind_speed', 'wind_direction')
+WAVE_SETTINGS = ('waves.height', 'waves.period', 'waves.direction')
+SHIP_SETTINGS = WIND_SETTINGS + WAVE_SETTINGS
 # What of the mooring's one environment a run may change, on its topics or as parameters.
-ENVIRONMENT_SETTINGS = ('current',) + WIND_SETTINGS
+ENVIRONMENT_SETTINGS = ('current',) + SHIP_SETTINGS
 
 # The ship as a whole: what the arrangement's top level takes (`ship.mass`, ...).
 SHIP_SPECS: Mapping[str, Spec] = {
@@ -145,6 +149,25 @@ SHIP_SPECS: Mapping[str, Spec] = {
         'none', '', 'none: a steady wind; api or npd: gusts from that spectrum about the mean, '
         'repeatable with wind_seed', choices=WIND_SPECTRA),
     'wind_seed': Spec(0, '', "seed of the gusts' random phases", 0, 2 ** 31 - 1),
+    # the waves on the ship (long-crested; their loads need ship.hydrodynamics)
+    'waves.spectrum': Spec(
+        'none', '', 'none: no waves; regular: one wave of height H and period T; jonswap: '
+        'an irregular sea of significant height Hs and peak period Tp, repeatable with '
+        'waves.seed; their loads on the ship come from its hydrodynamic database',
+        choices=WAVE_SPECTRA),
+    'waves.height': Spec(
+        0.0, 'm', 'wave height H (regular) or significant wave height Hs (jonswap); 0 = calm',
+        0.0, 30.0, read_only=False),
+    'waves.period': Spec(
+        8.0, 's', 'wave period T (regular) or peak period Tp (jonswap)', 1.0, 40.0,
+        read_only=False),
+    'waves.direction': Spec(
+        0.0, 'rad', 'direction the waves come FROM in frame_id, counter-clockwise from +x',
+        -2.0 * math.pi, 2.0 * math.pi, read_only=False),
+    'waves.peak_enhancement': Spec(
+        3.3, '', "JONSWAP's peak enhancement factor gamma (1 = Pierson-Moskowitz)", 1.0, 10.0),
+    'waves.seed': Spec(0, '', "seed of the irregular sea's frequencies and phases", 0,
+                       2 ** 31 - 1),
 }
 # A ship passing the moored one (Wang's slender-body loads, at the water's depth):
 # `passing_ship.*`.
@@ -233,6 +256,12 @@ class ShipParams:
     wind_direction: float = SHIP_SPECS['wind_direction'].default
     wind_spectrum: str = SHIP_SPECS['wind_spectrum'].default
     wind_seed: int = SHIP_SPECS['wind_seed'].default
+    waves_spectrum: str = SHIP_SPECS['waves.spectrum'].default
+    waves_height: float = SHIP_SPECS['waves.height'].default
+    waves_period: float = SHIP_SPECS['waves.period'].default
+    waves_direction: float = SHIP_SPECS['waves.direction'].default
+    waves_peak_enhancement: float = SHIP_SPECS['waves.peak_enhancement'].default
+    waves_seed: int = SHIP_SPECS['waves.seed'].default
 
     @property
     def free(self) -> bool:
@@ -253,6 +282,8 @@ def parameter_name(name: str) -> str:
     """Return a ShipParams field's parameter name: mode -> ship_mode, mass -> ship.mass."""
     if name == 'mode':
         return 'ship_mode'
+    if name.startswith(WAVES + '_'):
+        return f'{WAVES}.{name[len(WAVES) + 1:]}'
     return name if name in SHIP_SPECS else f'{SHIP}.{name}'
 
 
@@ -260,6 +291,8 @@ def field_name(name: str) -> str:
     """Return the ShipParams field of a parameter name (parameter_name's inverse)."""
     if name == 'ship_mode':
         return 'mode'
+    if name.startswith(WAVES + '.'):
+        return f'{WAVES}_{name.partition(".")[2]}'
     return name.partition('.')[2] if name.startswith(SHIP + '.') else name
 
 

@@ -1054,7 +1054,8 @@ HELP = {
         'environment/current,\n       ship/external_wrench (ship_mode free: tugs, thrusters)',
         "each line's topics under its name, ship/mooring_wrench, ship/stiffness,\n       "
         'mooring/markers, /diagnostics; ship/pose and ship/odometry (ship_mode free),\n'
-        '       ship/passing_ship_wrench (a passing ship), <fender>/reaction (fenders)',
+        '       ship/passing_ship_wrench (a passing ship), <fender>/reaction (fenders),\n'
+        '       ship/wave_wrench, environment/wave_elevation (waves)',
         'config/berth.yaml'),
 }
 

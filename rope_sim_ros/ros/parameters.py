@@ -41,7 +41,7 @@ from ..params.arrangement import (ARRANGEMENT_SPECS, ArrangementParams, LINE_SPE
                                   LINES_DESCRIPTION, OWN_SPECS, SHARED, single_line)
 from ..params.bollards import BOLLARD_SPECS, BOLLARDS, BOLLARDS_DESCRIPTION
 from ..params.ship import (FENDER_SPECS, FENDERS, FENDERS_DESCRIPTION, PASSING_SHIP, PASSING_SPECS,
-                           SHIP, SHIP_SPECS, WIND_SETTINGS)
+                           SHIP, SHIP_SETTINGS, SHIP_SPECS, WAVES)
 from ..params.table import allowed, check, LineParams, ParameterError, Spec, SPECS
 
 # Parameters rclpy itself declares or reads; not ours to warn about.
@@ -138,7 +138,7 @@ class NodeParameters:
             return SPECS.get(name)
         specs = {**ARRANGEMENT_SPECS, **SPECS, **OWN_SPECS, **SHIP_SPECS, **PASSING_SPECS}
         line, dot, base = name.partition('.')
-        if dot and line not in (SHIP, PASSING_SHIP):
+        if dot and line not in (SHIP, PASSING_SHIP, WAVES):
             if line in self.line_names:
                 return LINE_SPECS.get(base)
             return FENDER_SPECS.get(base) or BOLLARD_SPECS.get(base)
@@ -188,7 +188,7 @@ class NodeParameters:
         for name, value in given.items():
             line, dot, _ = name.partition('.')
             if name in (LINES, FENDERS, BOLLARDS) or (dot and line in (*names, *parts, SHIP,
-                                                                       PASSING_SHIP)) or \
+                                                                       PASSING_SHIP, WAVES)) or \
                     name in ARRANGEMENT_SPECS or name in SPECS or name in OWN_SPECS or \
                     name in SHIP_SPECS:
                 ours[name] = value
@@ -290,7 +290,8 @@ class NodeParameters:
         Return validated run-time changes by line (None: every line, a shared one).
 
         The arrangement's own parameters (marker_rate, stiffness_rate) are validated and left
-        out; wind_speed and wind_direction are every line's (None), as the Driver takes them.
+        out; the wind's and the waves' (SHIP_SETTINGS) are every line's (None), as the Driver
+        takes them.
 
         :raises ParameterError: a bad value, named as the node names it.
         """
@@ -305,7 +306,7 @@ class NodeParameters:
             if dot and line in self.line_names:
                 changes.setdefault(line, {})[base] = arrangement.check_line_value(
                     line, base, value)
-            elif p.name in SHARED or p.name in WIND_SETTINGS:
+            elif p.name in SHARED or p.name in SHIP_SETTINGS:
                 changes.setdefault(None, {})[p.name] = arrangement.check_top_value(p.name, value)
             elif p.name in ARRANGEMENT_SPECS or p.name in SHIP_SPECS:
                 arrangement.check_top_value(p.name, value)

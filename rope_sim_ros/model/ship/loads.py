@@ -28,8 +28,13 @@ The wind, the current and a passing ship on a moored ship, at one instant: one p
   and the loads take its speed through the water. A current changed at run time changes
   its speed over the ground from the next instant the loads are asked for.
 
-Every load is in the ship's body axes about its origin (F_x, F_y, M_z); world_load turns
-their sum into the frame_id axes a free ship's body takes.
+- Waves (waves.py): the first-order and slow-drift loads of the environment's sea state,
+  from the ship's hydrodynamic database, at the ship's origin and heading; none without a
+  sea state.
+
+Every load is in the ship's body axes about its origin (F_x, F_y, M_z; the waves' in six
+degrees of freedom); world_load turns their sum into the frame_id axes a free ship's body
+takes.
 """
 
 from dataclasses import dataclass, field, replace
@@ -40,6 +45,7 @@ import numpy as np
 
 from .coefficients import CoefficientTable, ocimf_loads
 from .passing import Hull, passing_loads
+from .waves import ShipWaves
 
 
 @dataclass(frozen=True)
@@ -98,6 +104,7 @@ class ShipLoads:
     :ivar depth: the depth of the water [m] (math.inf: deep water), for the passing ship's
         loads (the current's table is the caller's, for this depth).
     :ivar image_pairs: passing.passing_loads's: 0 sums the images until converged.
+    :ivar waves: the waves' loads on it (its hydrodynamic database, or none).
     """
 
     hull: Hull
@@ -108,6 +115,7 @@ class ShipLoads:
     passing: Optional[PassingShip] = None
     depth: float = math.inf
     image_pairs: int = 0
+    waves: ShipWaves = field(default_factory=ShipWaves)
     # the current the passing ship's track was set for (at run time the current may change)
     _track_current: Optional[tuple] = field(default=None, init=False, repr=False)
 
@@ -120,10 +128,10 @@ class ShipLoads:
         self._track_current = current
 
     def acts(self, environment) -> bool:
-        """Tell whether anything pushes a ship at rest: wind, a current, a passing ship."""
+        """Tell whether anything pushes a ship at rest: wind, a current, a passing ship, waves."""
         wind = environment.wind
         return (wind.speed > 0.0 or wind.gusts is not None or any(environment.current)
-                or self.passing is not None)
+                or self.passing is not None or environment.waves.sea is not None)
 
     def at(self, t: float, environment, position, rotation: np.ndarray,
            velocity) -> np.ndarray:
@@ -159,6 +167,25 @@ class ShipLoads:
                                          environment.water_density, self.passing.direction,
                                          image_pairs=self.image_pairs)
         return loads
+
+    def waves_at(self, t: float, environment, position, rotation: np.ndarray) -> tuple:
+        """
+        Return the wave elevation at the ship's origin [m] and the waves' loads on it (2, 6).
+
+        Rows: first order, slow drift; force [N], moment [N m], body axes about its origin;
+        zeros in a calm sea.
+
+        :param position, rotation: the ship's origin [m] and orientation matrix (body to
+            frame_id): its heading is the yaw of its body x.
+        """
+        yaw = math.atan2(rotation[1, 0], rotation[0, 0])
+        return self.waves.at(t, environment.waves, position, yaw)
+
+
+def world_wrench(wrench: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+    """Return body-axes wrenches (n, 6: force, moment) summed, in frame_id axes (6,)."""
+    total = np.asarray(wrench, dtype=float).reshape(-1, 6).sum(axis=0)
+    return np.concatenate([rotation @ total[:3], rotation @ total[3:]])
 
 
 def world_load(loads: np.ndarray, rotation: np.ndarray) -> np.ndarray:
