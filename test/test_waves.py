@@ -187,6 +187,21 @@ def test_newman_drift_in_irregular_waves_has_the_components_mean():
     assert drift[:, 0].std() > 0.3 * abs(mean[0])  # and it varies slowly about it
 
 
+def test_the_mean_drift_is_the_components_sum_at_the_ships_heading():
+    # what the berth check holds a ship at rest with: sum a_i^2 D_i, at its heading
+    sea = Waves.make('jonswap', 2.0, 10.0, 0.5, 3.3, 5, DEPTH, G).sea
+    loads = WaveLoads(database(), sea)
+    for yaw in (0.0, 0.4):
+        heading = 0.5 + math.pi - yaw - 2.0 * math.pi
+        mean = (sea.amplitude[:, None] ** 2 * linear_drift(sea.omega, heading)).sum(axis=0)
+        np.testing.assert_allclose(loads.mean_drift(yaw), mean, rtol=1e-9)
+    # and in a regular wave it is the slow drift itself, at every instant
+    waves = regular(height=3.0, period=2.0 * math.pi / 1.23, direction=-0.7)
+    loads = WaveLoads(database(), waves.sea)
+    np.testing.assert_allclose(loads.mean_drift(0.1), loads.at(1.7, 0.0, 0.0, 0.1)[1],
+                               rtol=1e-12)
+
+
 def test_the_heading_in_body_axes_follows_the_ship_yaw():
     direction, yaw = 0.9, 0.6
     turned = WaveLoads(database(), regular(direction=direction).sea)

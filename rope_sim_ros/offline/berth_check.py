@@ -29,6 +29,10 @@ Equipment Guidelines, MEG3 2008 and MEG4 2018): a 60 knot wind from any directio
 with a current of 3 knots from ahead or astern (0 or 180 degrees), of 2 knots at 10 or 170
 degrees, or of 0.75 knots from the beam (90 or 270 degrees). The wind speed is the 30 s
 mean at 10 m. --wind-speed and --current give another scenario.
+
+An arrangement with waves (waves.*, on a ship with its hydrodynamic database) adds their
+mean drift to every case's loads: the sea state it sets, from its direction, as the ship
+heads in each equilibrium. The waves' oscillating part is a dynamic run's (rope_sim run).
 """
 
 import csv
@@ -42,7 +46,7 @@ import numpy as np
 from ..model.ship.loads import world_load
 from ..model.ship.wind import Wind
 from ..model.statics.ship import StaticsError
-from ..mooring.ship import ship_loads
+from ..mooring.ship import hydrodynamics, ship_loads
 from ..mooring.statics import ship_statics
 from ..mooring.status import ratings
 from ..params.arrangement import ArrangementParams
@@ -112,7 +116,7 @@ def check(setup: ArrangementParams, wind_speed: float = MEG4_WIND,
         raise ParameterError(f'--wind-speed {wind_speed!r} is not allowed: must be 0 to 100 m/s')
     heading = setup.ship.start_yaw
     cases_of_current = _currents(currents, heading)
-    loads = ship_loads(setup)
+    loads = ship_loads(setup, hydrodynamics(setup))
     loads.passing = None  # a ship at rest: no passing ship in the check
     names_mbl = [rating.mbl for rating in ratings(setup)]
     weather = [environment(setup.shared, setup.ship)]  # each case's wind and current
@@ -170,14 +174,20 @@ def _currents(currents, heading: float) -> List[Tuple[Tuple[float, float, float]
 
 def _load_function(loads, weather: list):
     """
-    Return the statics' load function of the wind and current on a ship at rest.
+    Return the statics' load function of the wind, current and waves on a ship at rest.
 
-    :param weather: [the environment of the case at hand]: its wind and current.
+    The waves' is their mean drift (the slow drift's mean: the part a static equilibrium
+    holds); the arrangement's sea state, the same in every case.
+
+    :param weather: [the environment of the case at hand]: its wind, current and waves.
     """
     still = np.zeros(3)
 
     def load(position, rotation):
-        return world_load(loads.at(0.0, weather[0], position, rotation, still), rotation)
+        at_rest = loads.at(0.0, weather[0], position, rotation, still)
+        yaw = math.atan2(rotation[1, 0], rotation[0, 0])
+        drift = loads.waves.mean_drift(weather[0].waves, yaw)
+        return world_load(np.vstack([at_rest, drift]), rotation)
 
     return load
 

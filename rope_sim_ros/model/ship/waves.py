@@ -361,6 +361,17 @@ class WaveLoads:
         squared = (envelopes * envelopes).sum(axis=0)
         return first, squared[:3] - squared[3:]
 
+    def mean_drift(self, yaw: float) -> np.ndarray:
+        """
+        Return the slow drift's mean, sum a_i^2 D_i (3,): surge, sway [N], yaw [N m].
+
+        Body axes about the centre of gravity, for a ship heading yaw [rad]: what a
+        ship held at rest feels of the waves on average (the berth check's).
+        """
+        j, f = self.heading_weights(self.sea.travel - yaw)
+        drift = self.drift[j] * (1.0 - f) + self.drift[j + 1] * f  # (N, 3)
+        return (self.sea.amplitude ** 2) @ drift
+
 
 def about_origin(first: np.ndarray, drift: np.ndarray,
                  reference_point: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
@@ -410,3 +421,18 @@ class ShipWaves:
         loads[0] = first
         loads[1, [0, 1, 5]] = drift
         return sea.elevation(t, x, y), loads
+
+    def mean_drift(self, waves: Waves, yaw: float) -> np.ndarray:
+        """
+        Return the waves' mean drift on the ship heading yaw [rad] (3,): F_x, F_y, M_z.
+
+        Body axes about the ship's origin (WaveLoads.mean_drift); zeros in a calm sea.
+        """
+        sea = waves.sea
+        if sea is None or self.database is None:
+            return np.zeros(3)
+        if self._loads is None or self._loads.sea is not sea:
+            self._loads = WaveLoads(self.database, sea)
+        _, drift = about_origin(np.zeros(6), self._loads.mean_drift(yaw),
+                                self.database.reference_point)
+        return drift
