@@ -100,6 +100,11 @@ SHIP_SPECS: Mapping[str, Spec] = {
     'ship.block_coefficient': Spec(
         0.85, '', 'block coefficient C_b: the passing-ship loads take the hull as a parabolic '
         'sectional-area curve holding C_b L B T', 0.3, 1.0),
+    'ship.mesh': Spec(
+        '', '', "the hull's mesh for rope_sim hydro, in a format Capytaine reads (GDF, STL, "
+        'OBJ, PNL, ...), body axes with z = 0 at the still water, absolute or relative to the '
+        "parameter file's folder; empty = the parametric hull of ship.length, beam, draft and "
+        'block_coefficient'),
     'ship.wind_area_front': Spec(
         450.0, 'm^2', 'front projected area above the water, A_T of the wind coefficients',
         0.0, 1.0e6, low_open=True),
@@ -215,6 +220,7 @@ class ShipParams:
     beam: float = SHIP_SPECS['ship.beam'].default
     draft: float = SHIP_SPECS['ship.draft'].default
     block_coefficient: float = SHIP_SPECS['ship.block_coefficient'].default
+    mesh: str = SHIP_SPECS['ship.mesh'].default
     wind_area_front: float = SHIP_SPECS['ship.wind_area_front'].default
     wind_area_side: float = SHIP_SPECS['ship.wind_area_side'].default
     current_area_front: float = SHIP_SPECS['ship.current_area_front'].default
