@@ -33,6 +33,7 @@ origin; the forces are those on the body, the dofs rigid rotations about the rot
 centre (here the centre of gravity).
 """
 
+import dataclasses
 from dataclasses import dataclass
 import importlib.metadata
 import logging
@@ -50,8 +51,11 @@ OMEGA_MIN = 0.05
 OMEGA_MAX = 2.0
 OMEGA_COUNT = 40
 HEADING_STEP = 30.0
-# Panel size of the parametric hull [m]: A and B of the default ship change by < 2 % from
-# 3 m to 2 m panels at 0.3 to 1.2 rad/s (docs/waves.md, the convergence check).
+# Panel size of the parametric hull [m]: on the default ship (config/berth.yaml) 4 m and 3 m
+# panels give A within 1.1 % and B within 1 % (roll's, small, 5 %) of each other at 0.3,
+# 0.6 and 1.0 rad/s; at 1.3 rad/s 4 m panels give B33 < 0, 3 m ones keep B positive
+# semi-definite up to 1.3 rad/s (test/data/hydro/berth_ship.nc). Finer panels for the
+# higher frequencies: --panel-size.
 PANEL_SIZE = 3.0
 # Angles of the Kochin functions for the mean drift: every degree, one more each side of
 # [0, 2 pi] (Capytaine's far-field formula differentiates and interpolates in theta).
@@ -157,7 +161,10 @@ def hull_mesh(length: float, beam: float, draft: float, block_coefficient: float
     side = np.stack(np.broadcast_arrays(xs[:, None], ys[:, None], zs[None, :]), axis=-1)
     bottom = np.stack(np.broadcast_arrays(xs[:, None], ys[:, None] * fractions[None, :],
                                           -draft), axis=-1)
-    vertices = np.concatenate([side.reshape(-1, 3), bottom.reshape(-1, 3)])
+    # the end: a box's transom at x = L/2 (the other hulls' waterline closes there)
+    end = np.stack(np.broadcast_arrays(half_length, half_beam * widths[-1] * fractions[:, None],
+                                       zs[None, :]), axis=-1)
+    vertices = np.concatenate([side.reshape(-1, 3), bottom.reshape(-1, 3), end.reshape(-1, 3)])
     i, k = np.meshgrid(np.arange(nx), np.arange(nz), indexing='ij')
     s = (i * (nz + 1) + k).ravel()
     # side: normal +y (out of the port side of this quarter)
@@ -166,6 +173,11 @@ def hull_mesh(length: float, beam: float, draft: float, block_coefficient: float
     b = side.shape[0] * side.shape[1] + (i * (ny + 1) + j).ravel()
     # bottom: normal -z
     faces.append(np.stack([b, b + 1, b + ny + 2, b + ny + 1], axis=1))
+    if widths[-1] > 0.0:
+        j, k = np.meshgrid(np.arange(ny), np.arange(nz), indexing='ij')
+        e = side.size // 3 + bottom.size // 3 + (j * (nz + 1) + k).ravel()
+        # end: normal +x
+        faces.append(np.stack([e, e + nz + 1, e + nz + 2, e + 1], axis=1))
     quarter = cpt.Mesh(vertices, np.concatenate(faces), name='hull')
     return cpt.ReflectionSymmetricMesh(
         cpt.ReflectionSymmetricMesh(quarter, plane='xOz'), plane='yOz', name='hull')
@@ -224,9 +236,11 @@ def rigid_body(mesh, ship, settings: HydroSettings):
     cog = np.asarray(ship.center_of_gravity, dtype=float)
     lid = None
     if settings.lid:
-        # Just under the still water: Capytaine's free-surface Green function takes no
-        # panel at z = 0 but with its low-frequency singularities (it says so).
-        lid = mesh.generate_lid(z=-1e-3 * float(-mesh.vertices[:, 2].min()))
+        # Under the still water by 1 % of the draft: at 0.1 % (0.014 m on the default ship)
+        # the system is ill-conditioned (B55 -3.5e11 at 1.15 rad/s, B not positive); at 1 %
+        # and 5 % B is positive semi-definite (eigenvalues > -1e-5 of the largest) and
+        # within 1 % of itself at 1.15 rad/s.
+        lid = mesh.generate_lid(z=-0.01 * float(-mesh.vertices[:, 2].min()))
     return cpt.FloatingBody(mesh=mesh, lid_mesh=lid, name='ship',
                             dofs=cpt.rigid_body_dofs(rotation_center=cog),
                             center_of_mass=cog, mass=float(ship.mass))
@@ -281,8 +295,11 @@ def solve(mesh, ship, env: Environment, settings: HydroSettings,
         results += [_solve_one(finite, problem) for problem in problems]
         if progress is not None:
             progress(done, total, f'omega = {omega:.3f} rad/s')
+    # Without the lid: at infinite frequency there is no irregular frequency, and with the
+    # lid the default ship's A33 came out -1.1e11 kg (3.8e8 without, A33 at 2 rad/s 4.0e8).
+    bare = rigid_body(mesh, ship, dataclasses.replace(settings, lid=False))
     infinite_results = [_solve_one(infinite, cpt.RadiationProblem(
-        body=body, radiating_dof=dof, omega=np.inf, **water)) for dof in CAPYTAINE_DOFS]
+        body=bare, radiating_dof=dof, omega=np.inf, **water)) for dof in CAPYTAINE_DOFS]
     if progress is not None:
         progress(total, total, 'omega = inf')
     dataset = cpt.assemble_dataset(results, hydrostatics=True)
