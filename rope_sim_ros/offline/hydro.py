@@ -33,8 +33,7 @@ origin; the forces are those on the body, the dofs rigid rotations about the rot
 centre (here the centre of gravity).
 """
 
-import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import importlib.metadata
 import logging
 import math
@@ -297,7 +296,7 @@ def solve(mesh, ship, env: Environment, settings: HydroSettings,
             progress(done, total, f'omega = {omega:.3f} rad/s')
     # Without the lid: at infinite frequency there is no irregular frequency, and with the
     # lid the default ship's A33 came out -1.1e11 kg (3.8e8 without, A33 at 2 rad/s 4.0e8).
-    bare = rigid_body(mesh, ship, dataclasses.replace(settings, lid=False))
+    bare = rigid_body(mesh, ship, replace(settings, lid=False))
     infinite_results = [_solve_one(infinite, cpt.RadiationProblem(
         body=bare, radiating_dof=dof, omega=np.inf, **water)) for dof in CAPYTAINE_DOFS]
     if progress is not None:
@@ -377,7 +376,7 @@ def _attributes(ship, env: Environment, mesh, settings: HydroSettings) -> dict:
     }
 
 
-def write_database(dataset, path: str, force: bool = False) -> None:
+def write_database(dataset, path: str) -> None:
     """
     Write the dataset as NetCDF 3 (scipy), complex values separated: (complex: re, im).
 
@@ -451,5 +450,5 @@ def make_database(arrangement: str, out: str, overrides=None,
     env = environment_of(setup)
     mesh = ship_mesh(setup, settings, env)
     dataset = solve(mesh, setup.ship, env, settings, progress)
-    write_database(dataset, out, force)
+    write_database(dataset, out)
     return dataset

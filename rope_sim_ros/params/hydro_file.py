@@ -27,7 +27,6 @@ and sorted; the heading pi is repeated at -pi so that the record spans the full 
 """
 
 import math
-from typing import Dict
 
 from .table import ParameterError
 from ..model.ship.hydro import DOF, HydroDatabase
@@ -143,11 +142,3 @@ def _names(data) -> list:
 
 def _text(value) -> str:
     return value.decode('utf-8') if isinstance(value, bytes) else str(value)
-
-
-def file_attributes(path) -> Dict[str, object]:
-    """Return a database file's global attributes (its provenance), for the docs and tests."""
-    from scipy.io import netcdf_file
-    with netcdf_file(path, 'r', mmap=False) as stream:
-        return {key: _text(value) if isinstance(value, bytes) else value
-                for key, value in stream._attributes.items()}
