@@ -17,7 +17,8 @@
 
 Subcommands: run (a motion through a line or an arrangement, to CSV and/or a bag), resim (a
 bag's inputs with other parameters), plot and info (look at a bag), recover (complete a bag
-whose recorder was killed). A parameter file with `lines` for the mooring node is an
+whose recorder was killed), study, stiffness, berth-check and hydro (a ship's hydrodynamic
+database). A parameter file with `lines` for the mooring node is an
 arrangement, and its motion is the ship's (SHIP.csv); any other is a single line's
 (mooring_line: ros__parameters:), and its motion the fairlead's (MOTION.csv). A bag says
 itself which it is (the parameters it stores). This module parses arguments and reports
@@ -192,6 +193,33 @@ def build_parser() -> argparse.ArgumentParser:
     berth.add_argument('--set', action='append', default=[], metavar='NAME=VALUE',
                        help='override a parameter (repeatable)')
     berth.add_argument('--quiet', action='store_true', help='print only the file names')
+
+    hydro = commands.add_parser(
+        'hydro', help="the ship's hydrodynamic database (added mass, damping, wave loads) "
+        'from Capytaine',
+        description="Solve the arrangement's ship with Capytaine's boundary-element method "
+        'at its water depth, density and gravity: added mass and radiation damping per '
+        'frequency and at infinite frequency, the wave excitation (Froude-Krylov and '
+        'diffraction) per heading and the mean drift in surge, sway and yaw, all about the '
+        'centre of gravity (ship.center_of_gravity). The hull is ship.mesh, else a '
+        'parametric hull of ship.length, beam, draft and block_coefficient. Writes SHIP.nc '
+        "(Capytaine's NetCDF dataset; docs/waves.md).")
+    hydro.add_argument('arrangement', metavar='ARRANGEMENT.yaml', help="the mooring node's "
+                       'parameter file (the ship and the water)')
+    hydro.add_argument('--out', required=True, metavar='SHIP.nc', help='the database file')
+    hydro.add_argument('--force', action='store_true', help='overwrite an existing SHIP.nc')
+    hydro.add_argument('--set', action='append', default=[], metavar='NAME=VALUE',
+                       help='override a parameter (repeatable): --set ship.draft=12')
+    hydro.add_argument('--omega', nargs=3, type=float, metavar=('MIN', 'MAX', 'N'),
+                       help='N wave frequencies from MIN to MAX rad/s (default 0.05 2.0 40)')
+    hydro.add_argument('--heading-step', type=float, default=30.0, metavar='DEG',
+                       help='headings every DEG degrees round the circle (default 30)')
+    hydro.add_argument('--panel-size', type=float, default=3.0, metavar='M',
+                       help="the parametric hull's panel size [m] (default 3)")
+    hydro.add_argument('--no-lid', action='store_true',
+                       help='no lid at the waterline (the lid removes the irregular '
+                       'frequencies)')
+    hydro.add_argument('--quiet', action='store_true', help='no progress bar or summary')
     return parser
 
 
@@ -474,6 +502,30 @@ def _cmd_stiffness(args) -> int:
     return 0
 
 
+def _cmd_hydro(args) -> int:
+    import time
+    from .hydro import default_settings, make_database, OMEGA_COUNT, OMEGA_MAX, OMEGA_MIN
+    from ..params.files import parse_set
+    low, high, count = args.omega if args.omega else (OMEGA_MIN, OMEGA_MAX, OMEGA_COUNT)
+    if count != int(count):
+        raise ParameterError(f'hydro: --omega N = {count:g}: must be a whole number')
+    settings = default_settings(low, high, int(count), args.heading_step, args.panel_size,
+                                not args.no_lid)
+    progress = _progress(args.quiet)
+    start = time.monotonic()
+    try:
+        dataset = make_database(args.arrangement, args.out, parse_set(args.set), settings,
+                                args.force, None if progress is None else progress.show)
+    finally:
+        if progress is not None:
+            progress.finish()
+    if not args.quiet:
+        print(f'{dataset.sizes["omega"]} frequencies x {dataset.sizes["wave_direction"]} '
+              f'headings, {dataset.attrs["mesh_faces"]} panels -> {args.out} in '
+              f'{time.monotonic() - start:.1f} s')
+    return 0
+
+
 COMMANDS = {
     'run': _cmd_run,
     'resim': _cmd_resim,
@@ -483,6 +535,7 @@ COMMANDS = {
     'study': _cmd_study,
     'stiffness': _cmd_stiffness,
     'berth-check': _cmd_berth_check,
+    'hydro': _cmd_hydro,
 }
 
 

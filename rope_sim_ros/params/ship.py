@@ -109,6 +109,11 @@ SHIP_SPECS: Mapping[str, Spec] = {
         'bulk_cranes', '', "the row of PIANC's (1995) motion criteria for safe working that a "
         "run's ship motions are held to (rope_sim info, a study's results): the kind of ship "
         'and of its cargo handling', choices=tuple(MOTION_CRITERIA)),
+    'ship.mesh': Spec(
+        '', '', "the hull's mesh for rope_sim hydro, in a format Capytaine reads (GDF, STL, "
+        'OBJ, PNL, ...), body axes with z = 0 at the still water, absolute or relative to the '
+        "parameter file's folder; empty = the parametric hull of ship.length, beam, draft and "
+        'block_coefficient'),
     'ship.wind_area_front': Spec(
         450.0, 'm^2', 'front projected area above the water, A_T of the wind coefficients',
         0.0, 1.0e6, low_open=True),
@@ -244,6 +249,7 @@ class ShipParams:
     draft: float = SHIP_SPECS['ship.draft'].default
     block_coefficient: float = SHIP_SPECS['ship.block_coefficient'].default
     motion_criteria: str = SHIP_SPECS['ship.motion_criteria'].default
+    mesh: str = SHIP_SPECS['ship.mesh'].default
     wind_area_front: float = SHIP_SPECS['ship.wind_area_front'].default
     wind_area_side: float = SHIP_SPECS['ship.wind_area_side'].default
     current_area_front: float = SHIP_SPECS['ship.current_area_front'].default
