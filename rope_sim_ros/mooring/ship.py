@@ -35,7 +35,7 @@ import numpy as np
 
 from .records import ShipState
 from .trajectory import TrajectoryError
-from ..model.body import Body, Fender, out_of_bounds
+from ..model.body import Body, clear_memory, Fender, out_of_bounds
 from ..model.forces.body import place_points
 from ..model.forces.fender import contact, fender_force
 from ..model.frames import rotation_matrix
@@ -323,8 +323,9 @@ class Ship:
     # -- a free ship in its System --------------------------------------------------------
 
     def reset(self, system: System) -> None:
-        """Put a free ship back at its start pose, at rest (no acceleration kept)."""
+        """Put a free ship back at its start pose, at rest (no acceleration, no memory kept)."""
         system.body_table[0, :BODY_CLOCK] = self.start_row[:BODY_CLOCK]
+        clear_memory(system.body_table[0])
         place_points(system.body_table, system.points_table, system.point_x, system.point_v)
 
     def out_of_bounds(self, system: System) -> str:
