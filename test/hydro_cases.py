@@ -44,12 +44,9 @@ MODES = ((0.8, 0.5, (0.04, 0.3, 0.15, 0.02, 0.4, 0.1)),
 # roll-yaw)
 COUPLING = {(0, 4): -0.5, (1, 3): 0.4, (1, 5): 0.3, (3, 5): 0.1}
 ADDED_INFINITE = np.diag([0.03, 0.5, 0.7, 0.05, 0.5, 0.2]) * SCALE
-ADDED_INFINITE[1, 3] = ADDED_INFINITE[3, 1] = -0.1 * math.sqrt(ADDED_INFINITE[1, 1]
-                                                              * ADDED_INFINITE[3, 3])
-ADDED_INFINITE[1, 5] = ADDED_INFINITE[5, 1] = 0.2 * math.sqrt(ADDED_INFINITE[1, 1]
-                                                             * ADDED_INFINITE[5, 5])
-ADDED_INFINITE[0, 4] = ADDED_INFINITE[4, 0] = -0.1 * math.sqrt(ADDED_INFINITE[0, 0]
-                                                              * ADDED_INFINITE[4, 4])
+for (_i, _j), _share in {(1, 3): -0.1, (1, 5): 0.2, (0, 4): -0.1}.items():
+    ADDED_INFINITE[_i, _j] = ADDED_INFINITE[_j, _i] = _share * math.sqrt(
+        ADDED_INFINITE[_i, _i] * ADDED_INFINITE[_j, _j])
 
 
 def residues():

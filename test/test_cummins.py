@@ -21,13 +21,14 @@ without a database as before, to the bit.
 """
 
 import math
+from pathlib import Path
 
+from hydro_cases import (database, heave_poles, MASS, METACENTRIC, RADII, rigid_mass,
+                         stiffness, transfer, WATER, WATERPLANE)
 import numpy as np
 import pytest
 
-from hydro_cases import (database, heave_poles, INERTIA, MASS, METACENTRIC, RADII, rigid_mass, stiffness,
-                         transfer, WATER, WATERPLANE)
-from rope_sim_ros.model.body import Body, clear_memory
+from rope_sim_ros.model.body import Body, clear_memory, Fender
 from rope_sim_ros.model.frames import rotation_matrix
 from rope_sim_ros.model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_MODE,
                                        BODY_MODES, MODE_COLUMNS, MODE_STATE)
@@ -41,9 +42,10 @@ G = 9.81
 # would be a seventh of the barge's heave damping)
 INTEGRATORS = ('improved_euler', 'implicit')
 DATABASE = database()
+DATA = Path(__file__).parent / 'data'
 # [N s/m, N m s] viscous damping, added to the memory's: holds surge, sway and yaw (no
-# restoring), damps roll and pitch some 5 % of critical; heave has the memory's alone
-VISCOUS = (2.0e5, 2.0e5, 0.0, 8.5e6, 2.2e8, 5.0e8)
+# restoring), damps roll some 10 % and pitch 5 % of critical; heave has the memory's alone
+VISCOUS = (2.0e5, 2.0e5, 0.0, 1.7e7, 2.2e8, 5.0e8)
 
 
 def barge(hydrodynamics=DATABASE, damping=VISCOUS) -> Body:
@@ -92,8 +94,10 @@ def heave_frequency() -> float:
 @pytest.mark.parametrize('integrator', INTEGRATORS)
 def test_heave_decay_has_the_frequency_domain_period_and_damping(integrator):
     """
-    Released 0.3 m high, the barge heaves at T = 2 pi / omega_n, k = omega_n^2 (m + A(omega_n)),
-    its amplitude decaying by zeta = B(omega_n) / (2 omega_n (m + A(omega_n))).
+    Released 0.3 m high, the barge heaves as the frequency domain says.
+
+    At T = 2 pi / omega_n, k = omega_n^2 (m + A(omega_n)), its amplitude decaying by
+    zeta = B(omega_n) / (2 omega_n (m + A(omega_n))).
     """
     body = barge()
     body.position[2] += 0.3
@@ -132,22 +136,27 @@ def forced_response(integrator: str, omega: float, load: np.ndarray, dt: float =
     """
     Return the barge's steady complex amplitudes (6,) under the load Re(load exp(-i omega t)).
 
-    The load is held linear over 0.05 s intervals, as a run's external load, and eased in
-    over its first 20 s (1 - cos) / 2 so as to start little of the free motions; the
-    motions from 60 s on, four periods, are fitted with a constant, a drift and cos, sin.
+    The load (body axes) is held linear over 0.05 s intervals, as a run's external load
+    (world axes, turned with the body at each interval's start), and eased in
+    over its first 30 s (1 - cos) / 2 so as to start little of the free motions; the
+    motions from 100 s on, four periods, are fitted with a constant, a drift and cos, sin.
     """
     body = barge()
     system = system_of(body)
     table = system.body_table
     interval = 0.05
     per = int(round(interval / dt))
-    settle, ease = 60.0, 20.0
+    settle, ease = 100.0, 30.0
     total = settle + 4 * 2.0 * math.pi / omega
     samples, times = [], []
     for k in range(int(round(total / interval))):
         t0, t1 = k * interval, (k + 1) * interval
-        f0 = (load * np.exp(-1j * omega * t0)).real * _eased(t0, ease)
-        f1 = (load * np.exp(-1j * omega * t1)).real * _eased(t1, ease)
+        # in body axes, as a wave's load: turned into world axes at each interval's start
+        # (in world axes the 2e7 N m pitch moment would leak into roll by the yaw the
+        # transients leave, 0.01 rad giving as much as the roll moment itself)
+        turn = np.kron(np.eye(2), rotation_matrix(body.quaternion))
+        f0 = turn @ (load * np.exp(-1j * omega * t0)).real * _eased(t0, ease)
+        f1 = turn @ (load * np.exp(-1j * omega * t1)).real * _eased(t1, ease)
         table[0, BODY_LOAD:BODY_LOAD + 6] = f0
         table[0, BODY_LOAD_RATE:BODY_LOAD_RATE + 6] = (f1 - f0) / interval
         table[0, BODY_CLOCK] = 0.0
@@ -180,7 +189,7 @@ def frequency_domain(omega: float, load: np.ndarray) -> np.ndarray:
 @pytest.mark.parametrize('omega', [0.5, 0.9, 1.3])
 def test_forced_motion_has_the_frequency_domain_amplitude_and_phase(integrator, omega):
     """Every motion's complex amplitude within 2 % of the largest of its kind's."""
-    load = np.array([2.0e4, 1.0e5, 3.0e5, 1.0e6, 2.0e7, 3.0e6], dtype=complex)
+    load = np.array([2.0e4, 1.0e5, 3.0e5, 2.0e5, 2.0e7, 3.0e6], dtype=complex)
     load[3] *= np.exp(0.5j)  # roll a little out of phase
     simulated = forced_response(integrator, omega, load)
     expected = frequency_domain(omega, load)
@@ -188,8 +197,6 @@ def test_forced_motion_has_the_frequency_domain_amplitude_and_phase(integrator, 
         scale = np.abs(expected[group]).max()
         assert np.abs(simulated[group] - expected[group]).max() <= 0.02 * scale, (
             simulated, expected)
-    # the memory acts: without it (A_inf alone, no B) the heave would be far off
-    assert abs(expected[2]) > 0.0
 
 
 def test_a_database_gives_the_full_added_mass_and_memory_modes():
@@ -213,22 +220,33 @@ def test_restart_clears_the_memory():
     assert np.abs(states).max() == 0.0
 
 
-@pytest.mark.parametrize('integrator', INTEGRATORS)
+def plain_run(integrator: str) -> np.ndarray:
+    """Return the BODY row's first 19 numbers after 300 steps of a ship without a database."""
+    body = Body.ship(3.69e6, (1.0, 0.0, -1.0), (5.0, 17.0, 17.0),
+                     (1e5, 2e6, 3e6, 1e7, 4e9, 5e8), (2e5, 2e5, 1e6, 1.7e7, 2.2e8, 5e8),
+                     (1e3,) * 6, 900.0, (2.0, 80.0), (0.0, 0.0, 0.0), 0.2, (60.0, 15.0, 4.0),
+                     1025.0, 9.81)
+    body.position[2] += 0.2
+    body.velocity[:] = (0.1, -0.3, 0.0)
+    body.omega[:] = (0.01, 0.0, 0.002)
+    system = System(Environment(water_level=0.0))
+    system.add_body(body)
+    system.add_fender(Fender((0.0, -9.0, 0.0), (0.0, 1.0, 0.0), ((0.0, 0.0), (1.0, 1e6)), 0.2))
+    system.pack()
+    system.body_table[0, BODY_LOAD:BODY_LOAD + 6] = (1e4, -2e5, 0.0, 1e5, 0.0, 3e5)
+    drive = np.zeros((300, 0, 3))
+    run_kernel(system, integrator, 0.01, drive, drive.copy(), 10, False, True)
+    return system.body_table[0, :19].copy()
+
+
+@pytest.mark.parametrize('integrator', ('improved_euler', 'implicit_euler'))
 def test_a_ship_without_a_database_steps_as_before_to_the_bit(integrator):
-    """hydrodynamics=None is the Body of before: the same row's numbers, the same steps."""
-    plain = Body.ship(MASS, (0.0, 0.0, -1.0), RADII, (1e5, 2e6, 3e6, 1e7, 4e9, 5e8), VISCOUS,
-                      (1e3,) * 6, WATERPLANE, METACENTRIC, (0.0, 0.0, 0.0), 0.2,
-                      (60.0, 15.0, 4.0), WATER, G)
-    assert plain.added_matrix is None and plain.radiation is None
-    plain.position[2] += 0.2
-    plain.velocity[:] = (0.1, -0.2, 0.0)
-    plain.omega[:] = (0.01, 0.0, 0.002)
-    system = system_of(plain)
-    table = system.body_table
-    assert table[0, BODY_MODES] == 0.0 and not table[0, BODY_MODE:].any()
-    steps(system, integrator, 0.01, 500)
-    # the same steps by the formulas of before, written out: mass diag(m + A) in body axes
-    assert np.isfinite(table).all()
-    assert INERTIA[0] > 0.0
-    rotation = rotation_matrix(plain.quaternion)
-    assert abs(np.linalg.det(rotation) - 1.0) < 1e-12
+    """The numbers the code before ship.hydrodynamics computed (test/data/README.md)."""
+    before = {}
+    for line in (DATA / 'free_ship_without_database.txt').read_text().splitlines():
+        if line and not line.startswith('#'):
+            name, *numbers = line.split()
+            before[name] = np.array([float.fromhex(n) for n in numbers])
+    now = plain_run(integrator)
+    assert now[2] != 0.0  # it moved
+    np.testing.assert_array_equal(now, before[integrator])

@@ -56,8 +56,12 @@ velocities linear over a step). The modes are a realisation of K's samples (Kung
 eigensystem realisation: a Hankel matrix of the samples, its singular values truncated),
 of the least order that fits K within MODE_TOLERANCE of each entry's scale.
 benchmarks/radiation_memory.py measured the choice against the convolution summed over the
-history at every step: the same decay and response within 0.1 % on the tests' hull, at
-a cost per step hundreds of times smaller (the figures in the benchmark's docstring).
+history at every step, on the tests' barge (12 modes, a 21 s memory): its heave decay's
+period within 0.01 % of the exact pole's either way, its damping within 0.5 % (the modes'
+fit) and 0.06 %; the memory cost 3 us a step as modes, 82 us as the convolution at a step
+of 0.01 s and 519 us at 0.002 s (it grows as the step shrinks; the modes' does not). A
+history kept every 10th step cost a sixth and erred 1 to 6 % in damping; and the adaptive
+integrator's steps vary, which a sampled history would have to follow.
 """
 
 from dataclasses import dataclass
@@ -114,9 +118,9 @@ def cosine_weights(nodes: np.ndarray, t: np.ndarray) -> np.ndarray:
     difference = 2.0 * np.sin(0.5 * (a + b) * safe) * np.sin(0.5 * span * safe)  # cos at - cos bt
     left = -np.sin(a * safe) / safe + difference / (span * safe ** 2)
     right = np.sin(b * safe) / safe - difference / (span * safe ** 2)
-    mid = 0.5 * (a + b) * t
-    left_series = 0.5 * span * (np.cos(mid) + span * t * np.sin(mid) / 6.0)
-    right_series = 0.5 * span * (np.cos(mid) - span * t * np.sin(mid) / 6.0)
+    c, s, x = np.cos(a * t), np.sin(a * t), span * t  # the series about a, to (L t)^3
+    left_series = span * (c * (0.5 - x * x / 24.0) - s * (x / 6.0 - x ** 3 / 120.0))
+    right_series = span * (c * (0.5 - x * x / 8.0) - s * (x / 3.0 - x ** 3 / 30.0))
     left = np.where(small, left_series, left)
     right = np.where(small, right_series, right)
     weights[:, :-1] += left
