@@ -51,16 +51,34 @@ from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables
 from ..params.table import LineParams, ParameterError
 
 
-def ship_body(setup: ArrangementParams) -> Body:
-    """Return the arrangement's ship as a Body floating at rest at its start pose."""
+def ship_body(setup: ArrangementParams, hydrodynamics: bool = True) -> Body:
+    """
+    Return the arrangement's ship as a Body floating at rest at its start pose.
+
+    :param hydrodynamics: read ship.hydrodynamics' database, if it names one (its full added
+        mass and radiation memory); False: the Body's geometry and mass are all that is
+        wanted.
+    :raises ParameterError: a database that cannot be read, or whose memory no modes fit.
+    """
     ship = setup.ship
     shared = setup.shared
     g = float(np.linalg.norm(shared.gravity))
-    return Body.ship(ship.mass, ship.center_of_gravity, ship.radii_of_gyration,
-                     ship.added_mass, ship.linear_damping, ship.quadratic_damping,
-                     ship.waterplane_area, ship.metacentric_height, ship.start_position,
-                     ship.start_yaw, (ship.length, ship.beam, ship.draft),
-                     shared.water_density, g)
+    database = None
+    if hydrodynamics and ship.hydrodynamics:
+        # imported here: the reader comes with `rope_sim hydro` (params/hydro_file.py)
+        from ..params.hydro_file import read_hydro_database
+        database = read_hydro_database(ship.hydrodynamics)
+    try:
+        return Body.ship(ship.mass, ship.center_of_gravity, ship.radii_of_gyration,
+                         ship.added_mass, ship.linear_damping, ship.quadratic_damping,
+                         ship.waterplane_area, ship.metacentric_height, ship.start_position,
+                         ship.start_yaw, (ship.length, ship.beam, ship.draft),
+                         shared.water_density, g, hydrodynamics=database)
+    except ValueError as e:
+        if database is None:
+            raise
+        raise ParameterError(f'parameter ship.hydrodynamics {ship.hydrodynamics!r}: '
+                             f'{e}') from None
 
 
 def fenders(setup: ArrangementParams, body: int = 0) -> List[Fender]:
@@ -78,7 +96,7 @@ def fender_gaps(setup: ArrangementParams, position, orientation) -> np.ndarray:
 
     :param position: the body origin in frame_id; orientation: (x, y, z, w).
     """
-    body = ship_body(setup)
+    body = ship_body(setup, hydrodynamics=False)
     rotation = rotation_matrix(orientation)
     body.quaternion = np.array(orientation, dtype=float)
     body.position = np.asarray(position, dtype=float) - rotation @ np.asarray(body.origin)

@@ -448,10 +448,10 @@ def read_setup(path, overrides: Optional[Mapping[str, Any]] = None) -> Arrangeme
 
 
 def with_tables_from(setup: ArrangementParams, folder: str) -> ArrangementParams:
-    """Return the setup with its ship's coefficient tables relative to `folder` made absolute."""
+    """Return the setup with its ship's tables' paths relative to `folder` made absolute."""
     ship = setup.ship
     tables = {name: tables_relative_to(getattr(ship, name), folder)
-              for name in ('wind_coefficients', 'current_coefficients')}
+              for name in ('wind_coefficients', 'current_coefficients', 'hydrodynamics')}
     tables = {name: value for name, value in tables.items() if value != getattr(ship, name)}
     return replace(setup, ship=replace(ship, **tables)) if tables else setup
 
