@@ -79,7 +79,8 @@ class Body:
         velocity [m/s]; omega: angular velocity, world axes [rad/s]. Views of the System's
         BODY table once packed.
     :ivar added_matrix: None, or a hydrodynamic database's added mass at infinite frequency,
-        6x6 about the centre of gravity in body axes, which replaces `added` in its motion.
+        6x6 about the centre of gravity in body axes (its symmetric part), which replaces
+        `added` in its motion.
     :ivar radiation: None, or its radiation memory's modes (model/ship/radiation.py).
     """
 
@@ -121,8 +122,10 @@ class Body:
             added = np.asarray(self.added_matrix, dtype=float)
             if added.shape != (6, 6) or not np.isfinite(added).all():
                 raise ValueError('body added_matrix must be 6x6 finite numbers')
-            mass = self._rigid_mass() + 0.5 * (added + added.T)
-            if np.linalg.eigvalsh(mass).min() <= 0.0:
+            # its symmetric part: a solver's A_inf is symmetric but for its numerics, and the
+            # step's Cholesky solve takes a symmetric mass matrix
+            added = 0.5 * (added + added.T)
+            if np.linalg.eigvalsh(self._rigid_mass() + added).min() <= 0.0:
                 raise ValueError('body added_matrix: its mass and inertia with the added mass '
                                  'must be positive definite')
             self.added_matrix = added
