@@ -44,9 +44,10 @@ quadrature error, at any t.
 **The memory's length** (`memory`): K is taken as 0 from the time past which every entry
 stays below MEMORY_FRACTION (1e-4) of its scale, sqrt(K_ii(0) K_jj(0)) (a coupling's scale
 is its two degrees of freedom's), up to MAX_MEMORY (120 s). So short a fraction because
-A(omega) - A_inf weighs K by t at low frequency (-(1 / omega) sin(omega t) -> -t): on the
-tests' hull, cut at 1e-3 (19 s) A at 0.02 rad/s came 2.5 % off, at 1e-4 (21 s) 0.2 %. The
-modes (below) fit K up to FIT_FRACTION (1e-3) only: past it their own decay stands for it.
+A(omega) - A_inf weighs K by t at low frequency (-(1 / omega) sin(omega t) -> -t): on an
+analytic hull like the tests', cut at 1e-3 (19 s) A at 0.02 rad/s came 2.5 % off, at 1e-4
+0.1 %. The modes (below) fit K up to FIT_FRACTION (1e-3) only: past it their own decay
+stands for it.
 
 **Stepped as modes** (radiation_modes): the simulator does not sum the convolution over the
 past at each step; it carries K as a sum of damped modes, K(t) = sum_i w_i Re(c_i b_i^T
