@@ -23,17 +23,21 @@ its hydrostatic stiffness from its waterplane and metacentric heights).
 
 from dataclasses import dataclass, field
 import math
-from typing import Sequence, Tuple
+from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
 from .frames import rotation_matrix
-from .layout import (BODY_ADDED, BODY_COLUMNS, BODY_HULL, BODY_INERTIA, BODY_LINEAR_DAMPING,
-                     BODY_MASS, BODY_OMEGA, BODY_ORIGIN, BODY_POSITION, BODY_QUADRATIC_DAMPING,
+from .layout import (BODY_ADDED, BODY_ADDED_MATRIX, BODY_COLUMNS, BODY_FULL_ADDED, BODY_HULL,
+                     BODY_INERTIA, BODY_LINEAR_DAMPING, BODY_MASS, BODY_MODE, BODY_MODES,
+                     BODY_OMEGA, BODY_ORIGIN, BODY_POSITION, BODY_QUADRATIC_DAMPING,
                      BODY_QUATERNION, BODY_REST_Z, BODY_RESTORING, BODY_VELOCITY, FENDER_BODY,
                      FENDER_CAPACITY, FENDER_COLUMNS, FENDER_CURVE_COMPRESSION,
                      FENDER_CURVE_REACTION, FENDER_FRICTION, FENDER_NORMAL, FENDER_POINTS,
-                     FENDER_POSITION)
+                     FENDER_POSITION, MODE_CAPACITY, MODE_COLUMNS, MODE_INPUT, MODE_OUTPUT,
+                     MODE_POLE, MODE_STATE, MODE_WEIGHT)
+from .ship.hydro import HydroDatabase
+from .ship.radiation import database_modes, RadiationModes
 
 
 # A free ship past any of these bounds has left every state a moored ship can be in (a load
@@ -74,6 +78,10 @@ class Body:
     :ivar position: the centre of gravity [m]; quaternion: (x, y, z, w), body to world;
         velocity [m/s]; omega: angular velocity, world axes [rad/s]. Views of the System's
         BODY table once packed.
+    :ivar added_matrix: None, or a hydrodynamic database's added mass at infinite frequency,
+        6x6 about the centre of gravity in body axes (its symmetric part), which replaces
+        `added` in its motion.
+    :ivar radiation: None, or its radiation memory's modes (model/ship/radiation.py).
     """
 
     mass: float
@@ -89,6 +97,8 @@ class Body:
     quaternion: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, 0.0, 1.0]))
     velocity: np.ndarray = field(default_factory=lambda: np.zeros(3))
     omega: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    added_matrix: Optional[np.ndarray] = None
+    radiation: Optional[RadiationModes] = None
 
     def __post_init__(self):
         """Check every number (ValueError naming the first that is wrong)."""
@@ -108,6 +118,30 @@ class Body:
         self.quaternion /= norm
         self.velocity = np.array(_numbers('body velocity', self.velocity, 3))
         self.omega = np.array(_numbers('body omega', self.omega, 3))
+        if self.added_matrix is not None:
+            added = np.asarray(self.added_matrix, dtype=float)
+            if added.shape != (6, 6) or not np.isfinite(added).all():
+                raise ValueError('body added_matrix must be 6x6 finite numbers')
+            # its symmetric part: a solver's A_inf is symmetric but for its numerics, and the
+            # step's Cholesky solve takes a symmetric mass matrix
+            added = 0.5 * (added + added.T)
+            if np.linalg.eigvalsh(self._rigid_mass() + added).min() <= 0.0:
+                raise ValueError('body added_matrix: its mass and inertia with the added mass '
+                                 'must be positive definite')
+            self.added_matrix = added
+        if self.radiation is not None and self.radiation.poles.size > MODE_CAPACITY:
+            raise ValueError(f'body radiation: {self.radiation.poles.size} modes, at most '
+                             f'{MODE_CAPACITY}')
+
+    def _rigid_mass(self) -> np.ndarray:
+        """Return its rigid mass and inertia about the centre of gravity, body axes (6, 6)."""
+        return np.diag([self.mass] * 3 + list(self.inertia))
+
+    def mass_matrix(self) -> np.ndarray:
+        """Return its mass and inertia with the added ones, body axes (6, 6)."""
+        if self.added_matrix is not None:
+            return self._rigid_mass() + self.added_matrix
+        return self._rigid_mass() + np.diag(self.added)
 
     @classmethod
     def ship(cls, mass: float, center_of_gravity: Sequence[float],
@@ -115,12 +149,15 @@ class Body:
              linear_damping: Sequence[float], quadratic_damping: Sequence[float],
              waterplane_area: float, metacentric_height: Sequence[float],
              start_position: Sequence[float], start_yaw: float, hull: Sequence[float],
-             water_density: float, g: float) -> 'Body':
+             water_density: float, g: float,
+             hydrodynamics: Optional[HydroDatabase] = None) -> 'Body':
         """
         Return a ship floating at rest at its start pose (the ship.* parameters' meanings).
 
         Its inertia is m k^2 per radius of gyration k; its heave stiffness rho g A_wp, its
-        roll and pitch stiffnesses m g GM_T and m g GM_L.
+        roll and pitch stiffnesses m g GM_T and m g GM_L. With a hydrodynamic database its
+        added mass is the database's at infinite frequency (`added` its diagonal) and it
+        carries the radiation memory of the database's damping.
         """
         cog = np.array(_numbers('center_of_gravity', center_of_gravity, 3))
         half = 0.5 * start_yaw
@@ -129,10 +166,16 @@ class Body:
         position = origin + rotation_matrix(quaternion) @ cog
         radii = _numbers('radii_of_gyration', radii_of_gyration, 3, 0.0)
         gm = _numbers('metacentric_height', metacentric_height, 2)
+        added_matrix = radiation = None
+        if hydrodynamics is not None:
+            added_matrix = hydrodynamics.added_mass_infinite
+            added_mass = tuple(max(float(a), 0.0) for a in np.diagonal(added_matrix))
+            radiation = database_modes(hydrodynamics)
         return cls(mass, tuple(mass * k * k for k in radii), added_mass, linear_damping,
                    quadratic_damping,
                    (water_density * g * waterplane_area, mass * g * gm[0], mass * g * gm[1]),
-                   float(origin[2]), hull, tuple(-cog), position, quaternion)
+                   float(origin[2]), hull, tuple(-cog), position, quaternion,
+                   added_matrix=added_matrix, radiation=radiation)
 
     def origin_pose(self) -> Tuple[np.ndarray, np.ndarray]:
         """Return the body origin's position [m] and the orientation (x, y, z, w) now."""
@@ -143,16 +186,21 @@ class Body:
         """
         Return its kinetic energy and the potential of its hydrostatic restoring now [J].
 
-        Kinetic with the added masses, each along its body axis; the potential
+        Kinetic with the added masses (a database's full one at infinite frequency); the
+        radiation memory's waves are not counted; the potential
         1/2 (k_heave dz^2 + k_roll phi^2 + k_pitch theta^2), dz the body origin's rise
         above where it floats freely, phi and theta its roll and pitch.
         """
         rotation = rotation_matrix(self.quaternion)
         velocity = rotation.T @ self.velocity
         omega = rotation.T @ self.omega
-        linear = self.mass + np.asarray(self.added[:3])
-        angular = np.asarray(self.inertia) + np.asarray(self.added[3:])
-        kinetic = 0.5 * float(linear @ velocity ** 2 + angular @ omega ** 2)
+        if self.added_matrix is not None:
+            u = np.concatenate((velocity, omega))
+            kinetic = 0.5 * float(u @ self.mass_matrix() @ u)
+        else:
+            linear = self.mass + np.asarray(self.added[:3])
+            angular = np.asarray(self.inertia) + np.asarray(self.added[3:])
+            kinetic = 0.5 * float(linear @ velocity ** 2 + angular @ omega ** 2)
         heave = float((self.position + rotation @ np.asarray(self.origin))[2]) - self.rest_z
         x, y, z, w = self.quaternion
         roll = math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
@@ -176,6 +224,20 @@ class Body:
         row[BODY_REST_Z] = self.rest_z
         row[BODY_HULL:BODY_HULL + 3] = self.hull
         row[BODY_ORIGIN:BODY_ORIGIN + 3] = self.origin
+        if self.added_matrix is not None:
+            row[BODY_FULL_ADDED] = 1.0
+            row[BODY_ADDED_MATRIX:BODY_ADDED_MATRIX + 36] = self.added_matrix.ravel()
+        if self.radiation is not None:
+            modes = self.radiation
+            row[BODY_MODES] = modes.poles.size
+            for i in range(modes.poles.size):
+                m = BODY_MODE + i * MODE_COLUMNS
+                row[m + MODE_POLE:m + MODE_POLE + 2] = modes.poles[i].real, modes.poles[i].imag
+                row[m + MODE_WEIGHT] = modes.weights[i]
+                row[m + MODE_INPUT:m + MODE_INPUT + 6] = modes.inputs[i].real
+                row[m + MODE_INPUT + 6:m + MODE_INPUT + 12] = modes.inputs[i].imag
+                row[m + MODE_OUTPUT:m + MODE_OUTPUT + 6] = modes.outputs[i].real
+                row[m + MODE_OUTPUT + 6:m + MODE_OUTPUT + 12] = modes.outputs[i].imag
         return row
 
 
@@ -227,6 +289,13 @@ class Fender:
             row[FENDER_CURVE_COMPRESSION + i] = compression
             row[FENDER_CURVE_REACTION + i] = push
         return row
+
+
+def clear_memory(row: np.ndarray) -> None:
+    """Clear a body's radiation memory in its BODY row (in place): no past motion."""
+    for i in range(int(row[BODY_MODES])):
+        m = BODY_MODE + i * MODE_COLUMNS
+        row[m + MODE_STATE:m + MODE_STATE + 2] = 0.0
 
 
 def out_of_bounds(row: np.ndarray, start: np.ndarray) -> str:

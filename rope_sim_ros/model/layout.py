@@ -67,7 +67,9 @@ the body's centre of gravity, in body axes [m]).
 BODY table (B, BODY_COLUMNS): a rigid body in six degrees of freedom (a free ship), its state
 first (the step writes it), then what it is (forces/body.py says how each term acts). Its
 reference point is its centre of gravity; velocities, loads and moments are in world axes,
-the mass, damping and restoring it is given in body axes.
+the mass, damping and restoring it is given in body axes. Last, what a hydrodynamic database
+gives it: the full added mass at infinite frequency and the modes of its radiation memory,
+whose states (MODE_STATE) the step writes too (the Cummins equation, model/ship/radiation.py).
 
 FENDER table (F, FENDER_COLUMNS): a fender on the quay that a body's hull side pushes on: its
 face's place and its outward normal (out of the quay, toward the ship), the friction
@@ -191,7 +193,22 @@ BODY_HULL = 46  # 3: the hull box the fenders touch: length, beam, draft [m]
 BODY_ORIGIN = 49  # 3: its body origin (the hull box's centre in plan) from the CG, body axes
 BODY_LOAD = 52  # 6: external force [N] and moment about the CG [N m], world axes, at clock 0
 BODY_LOAD_RATE = 58  # 6: their change per second of the clock
-BODY_COLUMNS = 64
+# a hydrodynamic database's (model/ship/radiation.py): with BODY_FULL_ADDED 1 the added mass
+# is BODY_ADDED_MATRIX, the full 6x6 A_inf about the centre of gravity in body axes (row-major),
+# in place of BODY_ADDED's diagonal; BODY_MODES of the radiation memory's modes follow, each
+# MODE_COLUMNS long from BODY_MODE (0 modes, 0 flag: no database, the constants above only)
+BODY_FULL_ADDED = 64
+BODY_ADDED_MATRIX = 65  # 36
+BODY_MODES = 101  # the number of modes in use
+BODY_MODE = 102  # the first mode's first column
+MODE_POLE = 0  # 2: its pole lambda [1/s], real and imaginary part
+MODE_WEIGHT = 2  # 1 for a real pole, 2 for one of a complex pair (its conjugate left out)
+MODE_INPUT = 3  # 12: b, real parts (6) then imaginary parts (6): z' = lambda z + b . u
+MODE_OUTPUT = 15  # 12: c likewise: the memory load (body axes) is weight Re(c z)
+MODE_STATE = 27  # 2: state: z, real and imaginary part
+MODE_COLUMNS = 29
+MODE_CAPACITY = 48  # at most this many modes a body (radiation.MAX_MODES)
+BODY_COLUMNS = BODY_MODE + MODE_CAPACITY * MODE_COLUMNS
 
 FENDER_POSITION = 0  # 3: the centre of its face, uncompressed [m]
 FENDER_NORMAL = 3  # 3: unit normal out of the quay, toward the ship

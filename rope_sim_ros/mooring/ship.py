@@ -36,7 +36,7 @@ import numpy as np
 
 from .records import ShipState
 from .trajectory import TrajectoryError
-from ..model.body import Body, Fender, out_of_bounds
+from ..model.body import Body, clear_memory, Fender, out_of_bounds
 from ..model.forces.body import place_points
 from ..model.forces.fender import contact, fender_force
 from ..model.frames import rotation_matrix
@@ -54,16 +54,28 @@ from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables, 
 from ..params.table import LineParams, ParameterError
 
 
-def ship_body(setup: ArrangementParams) -> Body:
-    """Return the arrangement's ship as a Body floating at rest at its start pose."""
+def ship_body(setup: ArrangementParams, database: Optional[HydroDatabase] = None) -> Body:
+    """
+    Return the arrangement's ship as a Body floating at rest at its start pose.
+
+    :param database: its hydrodynamic database (hydrodynamics(setup)): its full added mass
+        and radiation memory; None: the constant ship.added_mass and damping alone.
+    :raises ParameterError: a database whose memory no modes fit.
+    """
     ship = setup.ship
     shared = setup.shared
     g = float(np.linalg.norm(shared.gravity))
-    return Body.ship(ship.mass, ship.center_of_gravity, ship.radii_of_gyration,
-                     ship.added_mass, ship.linear_damping, ship.quadratic_damping,
-                     ship.waterplane_area, ship.metacentric_height, ship.start_position,
-                     ship.start_yaw, (ship.length, ship.beam, ship.draft),
-                     shared.water_density, g)
+    try:
+        return Body.ship(ship.mass, ship.center_of_gravity, ship.radii_of_gyration,
+                         ship.added_mass, ship.linear_damping, ship.quadratic_damping,
+                         ship.waterplane_area, ship.metacentric_height, ship.start_position,
+                         ship.start_yaw, (ship.length, ship.beam, ship.draft),
+                         shared.water_density, g, hydrodynamics=database)
+    except ValueError as e:
+        if database is None:
+            raise
+        raise ParameterError(f'parameter ship.hydrodynamics {ship.hydrodynamics!r}: '
+                             f'{e}') from None
 
 
 def fenders(setup: ArrangementParams, body: int = 0) -> List[Fender]:
@@ -144,9 +156,33 @@ def passing_ship(setup: ArrangementParams) -> Optional[PassingShip]:
     return track.in_current(track.start_time, setup.shared.current)
 
 
+# How far a database's water depth may be from the mooring's: its added mass, damping and
+# drift change with the depth under the keel (a fraction of the mooring's depth).
+DEPTH_TOLERANCE = 0.01
+
+
 def hydrodynamics(setup: ArrangementParams) -> Optional[HydroDatabase]:
-    """Return the ship's hydrodynamic database (ship.hydrodynamics), or None: it has none."""
-    return None
+    """
+    Return the ship's hydrodynamic database (ship.hydrodynamics), or None: it has none.
+
+    :raises ParameterError: a file that cannot be read (HydroFileError), or one solved at
+        another water depth than the mooring's (water_level - seabed_level).
+    """
+    path = setup.ship.hydrodynamics
+    if not path:
+        return None
+    # imported here: a run without a database loads no NetCDF reader
+    from ..params.hydro_file import read_hydro_database
+    database = read_hydro_database(path)
+    depth = water_depth(setup.shared)
+    same = (math.isinf(depth) and math.isinf(database.water_depth)) or (
+        abs(database.water_depth - depth) <= DEPTH_TOLERANCE * depth)
+    if not same:
+        raise ParameterError(
+            f'parameter ship.hydrodynamics {path!r}: solved in {database.water_depth:g} m of '
+            f'water, the mooring is in {depth:g} m (water_level - seabed_level): solve it '
+            'again at this depth (rope_sim hydro)')
+    return database
 
 
 # The largest share of a sea's variance at frequencies its ship's hydrodynamic database
@@ -269,12 +305,13 @@ class Ship:
         """Build the ship of an arrangement, at rest at its start pose."""
         self.free = setup.ship.free
         self.center_of_gravity = np.array(setup.ship.center_of_gravity, dtype=float)
-        self.body = ship_body(setup)
+        database = hydrodynamics(setup)
+        self.body = ship_body(setup, database)
         self.start_row = self.body.row()
         self.fenders = fenders(setup)
         self.fender_rows = np.array([fender.row() for fender in self.fenders]).reshape(
             len(self.fenders), FENDER_COLUMNS)
-        self.loads = ship_loads(setup, hydrodynamics(setup))
+        self.loads = ship_loads(setup, database)
         self.check_waves(environment(setup.shared, setup.ship).waves)
         self.limits = external_load_limits(setup)
         self.external_load = np.zeros(6)
@@ -371,8 +408,9 @@ class Ship:
     # -- a free ship in its System --------------------------------------------------------
 
     def reset(self, system: System) -> None:
-        """Put a free ship back at its start pose, at rest (no acceleration kept)."""
+        """Put a free ship back at its start pose, at rest (no acceleration, no memory kept)."""
         system.body_table[0, :BODY_CLOCK] = self.start_row[:BODY_CLOCK]
+        clear_memory(system.body_table[0])
         place_points(system.body_table, system.points_table, system.point_x, system.point_v)
 
     def out_of_bounds(self, system: System) -> str:

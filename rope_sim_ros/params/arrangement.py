@@ -449,10 +449,10 @@ def read_setup(path, overrides: Optional[Mapping[str, Any]] = None) -> Arrangeme
 
 
 def with_tables_from(setup: ArrangementParams, folder: str) -> ArrangementParams:
-    """Return the setup with its ship's tables and mesh relative to `folder` made absolute."""
+    """Return the setup with its ship's tables, mesh and database absolute, from `folder`."""
     ship = setup.ship
     tables = {name: tables_relative_to(getattr(ship, name), folder)
-              for name in ('wind_coefficients', 'current_coefficients', 'mesh')}
+              for name in ('wind_coefficients', 'current_coefficients', 'mesh', 'hydrodynamics')}
     tables = {name: value for name, value in tables.items() if value != getattr(ship, name)}
     return replace(setup, ship=replace(ship, **tables)) if tables else setup
 

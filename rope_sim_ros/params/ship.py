@@ -139,6 +139,12 @@ SHIP_SPECS: Mapping[str, Spec] = {
         'empty = the shipped loaded tanker or bulk carrier, deep '
         '(config/ship/current_coefficients_tanker_loaded.csv) and at 1.1 to 5 times the '
         "draft (UFC 4-159-03's depth factor: current_coefficients_tanker_loaded_depth_*.csv)"),
+    'ship.hydrodynamics': Spec(
+        '', '', "the hull's hydrodynamic database (`rope_sim hydro` writes it), absolute or "
+        "relative to the parameter file's folder: a free ship then takes its added mass at "
+        'infinite frequency, 6x6 with its couplings, in place of ship.added_mass and the '
+        'radiation memory of its damping (the Cummins equation); ship.linear_damping and '
+        'ship.quadratic_damping still add; empty = none (docs/waves.md)'),
     'stiffness_rate': Spec(
         1.0, 'Hz', 'rate of ship/stiffness (the 6x6 stiffness of the lines and fenders about '
         "the ship's present pose); 0 = off", 0.0, 100.0, read_only=False),
@@ -257,6 +263,7 @@ class ShipParams:
     wind_coefficients: str = SHIP_SPECS['ship.wind_coefficients'].default
     # a path, or [ratio, path, ratio, path, ...] as text (check_current_tables)
     current_coefficients: Any = SHIP_SPECS['ship.current_coefficients'].default
+    hydrodynamics: str = SHIP_SPECS['ship.hydrodynamics'].default
     stiffness_rate: float = SHIP_SPECS['stiffness_rate'].default
     wind_speed: float = SHIP_SPECS['wind_speed'].default
     wind_direction: float = SHIP_SPECS['wind_direction'].default

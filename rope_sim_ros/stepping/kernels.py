@@ -30,14 +30,15 @@ from ..model.forces.assembly import (accelerations, has_contact, line_forces, li
                                      particle_accelerations, particle_environment,
                                      particle_environment_block, point_environment,
                                      point_environment_block, set_ends)
-from ..model.forces.body import body_loads, lever_of, mass_matrix, place_points, rotation_of, turn
+from ..model.forces.body import (body_loads, finish_modes, lever_of, mass_matrix, place_points,
+                                 rotation_of, start_modes, turn)
 from ..model.forces.drag import add_drag, add_drag_block
 from ..model.forces.gravity import add_weight
 from ..model.forces.springs import spring_block_at
-from ..model.layout import (ADJUST, AXIAL, BODY_ACCEL, BODY_CLOCK, BODY_OMEGA, BODY_POSITION,
-                            BODY_VELOCITY, CARRIED, DRAG, DRIVEN, END_A, ENV_GRAVITY, FIRST, FLUID,
-                            FREE, HISTORY, INV_MASS, KIND, LAST, MASS, MAX_STRAIN, OWN_MASS,
-                            POINT_BODY, REST, TANGENTS)
+from ..model.layout import (ADJUST, AXIAL, BODY_ACCEL, BODY_CLOCK, BODY_MODE, BODY_MODES,
+                            BODY_OMEGA, BODY_POSITION, BODY_VELOCITY, CARRIED, DRAG, DRIVEN, END_A,
+                            ENV_GRAVITY, FIRST, FLUID, FREE, HISTORY, INV_MASS, KIND, LAST, MASS,
+                            MAX_STRAIN, MODE_COLUMNS, OWN_MASS, POINT_BODY, REST, TANGENTS)
 from ..model.linalg import dense_cholesky_solve, inverse3
 from ..model.parting import check_segments, hold_peaks
 from ..model.superelastic import adjust, over_limit
@@ -254,10 +255,16 @@ def _moving_points(points):
 
 @numba.njit(cache=True)
 def _euler_bodies(bodies, accel, dt, out):
-    """Put the bodies one Euler step of dt ahead into out (improved Euler's first stage)."""
+    """
+    Put the bodies one Euler step of dt ahead into out (improved Euler's first stage).
+
+    Their radiation memory's modes are stepped exactly over dt for velocities linear from
+    the body's to out's (forces/body.py).
+    """
     for b in range(bodies.shape[0]):
-        for c in range(bodies.shape[1]):
+        for c in range(BODY_MODE + int(bodies[b, BODY_MODES]) * MODE_COLUMNS):  # the rest unused
             out[b, c] = bodies[b, c]
+        start_modes(out[b], dt)
         for p in range(3):
             out[b, BODY_POSITION + p] += dt * bodies[b, BODY_VELOCITY + p]
             out[b, BODY_VELOCITY + p] += dt * accel[b, p]
@@ -265,13 +272,19 @@ def _euler_bodies(bodies, accel, dt, out):
         turn(out[b], dt * bodies[b, BODY_OMEGA], dt * bodies[b, BODY_OMEGA + 1],
              dt * bodies[b, BODY_OMEGA + 2])
         out[b, BODY_CLOCK] += dt
+        finish_modes(out[b], dt)
 
 
 @numba.njit(cache=True)
 def _heun_bodies(bodies, predicted, accel, accel_predicted, dt):
-    """Finish the bodies' improved Euler step: the mean of both stages' rates (in place)."""
+    """
+    Finish the bodies' improved Euler step: the mean of both stages' rates (in place).
+
+    Their radiation memory's modes as in _euler_bodies, to the step's end.
+    """
     for b in range(bodies.shape[0]):
         body = bodies[b]
+        start_modes(body, dt)
         rx = 0.5 * dt * (body[BODY_OMEGA] + predicted[b, BODY_OMEGA])
         ry = 0.5 * dt * (body[BODY_OMEGA + 1] + predicted[b, BODY_OMEGA + 1])
         rz = 0.5 * dt * (body[BODY_OMEGA + 2] + predicted[b, BODY_OMEGA + 2])
@@ -282,6 +295,7 @@ def _heun_bodies(bodies, predicted, accel, accel_predicted, dt):
             body[BODY_OMEGA + p] += 0.5 * dt * (accel[b, 3 + p] + accel_predicted[b, 3 + p])
         turn(body, rx, ry, rz)
         body[BODY_CLOCK] += dt
+        finish_modes(body, dt)
 
 
 # -- implicit Euler: the seed's scheme made implicit -----------------------------------------
@@ -814,9 +828,10 @@ def implicit_euler_run(arrays, drive_x, drive_v, dt, max_iterations, implicit_be
                         multiplier, free_of, end_free, free_index, coupling, solved_coupling,
                         column, column_blocks, end_force, schur, point_rhs, solution)
         _solve(lines, points, point_x, bodies, fenders, free_of, schur, point_rhs, solution,
-               solved_coupling, transform, reduced, reduced_rhs, body_accel, dt_c, half_h2)
+               solved_coupling, transform, reduced, reduced_rhs, body_accel, dt, dt_c,
+               half_h2)
         _update(x, v, accel, point_x, point_v, point_accel, points, lines, bodies, free_of,
-                point_rhs, solution, body_accel, dt_c, half_h2)
+                point_rhs, solution, body_accel, dt, dt_c, half_h2)
         _limit_strains(x, v, inv_mass, rest, lines, line_real, points, point_x, point_v,
                        max_iterations)
         _after_step(x, v, particles, lines, line_real, points, rest, inv_mass, dt, k, gravity,
@@ -1019,7 +1034,7 @@ def _condense_lines(x, v, f, sub, tangent, particles, lines, line_real, env, dt_
 
 @numba.njit(cache=True, inline='always')
 def _solve(lines, points, point_x, bodies, fenders, free_of, schur, point_rhs, solution,
-           solved_coupling, transform, reduced, reduced_rhs, body_accel, dt_c, half_h2):
+           solved_coupling, transform, reduced, reduced_rhs, body_accel, dt, dt_c, half_h2):
     """
     Solve the condensed system: the points' accelerations, then every line's interior.
 
@@ -1028,8 +1043,8 @@ def _solve(lines, points, point_x, bodies, fenders, free_of, schur, point_rhs, s
     a_k = A^-1 r - A^-1 B a (solution).
     """
     if bodies.shape[0] > 0:
-        _solve_with_bodies(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c,
-                           half_h2, transform, reduced, reduced_rhs, body_accel)
+        _solve_with_bodies(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt,
+                           dt_c, half_h2, transform, reduced, reduced_rhs, body_accel)
     else:
         dense_cholesky_solve(schur, point_rhs)
     for line in range(lines.shape[0]):
@@ -1046,7 +1061,7 @@ def _solve(lines, points, point_x, bodies, fenders, free_of, schur, point_rhs, s
 
 @numba.njit(cache=True, inline='always')
 def _update(x, v, accel, point_x, point_v, point_accel, points, lines, bodies, free_of,
-            point_rhs, solution, body_accel, dt_c, half_h2):
+            point_rhs, solution, body_accel, dt, dt_c, half_h2):
     """
     Finish the step from the solved accelerations a: x += h^2 beta a, v += h gamma a.
 
@@ -1063,7 +1078,7 @@ def _update(x, v, accel, point_x, point_v, point_accel, points, lines, bodies, f
                     point_x[q, p] += half_h2 * point_rhs[3 * j + p]
                     point_v[q, p] += dt_c * point_rhs[3 * j + p]
     if bodies.shape[0] > 0:
-        _correct_bodies(bodies, body_accel, dt_c, half_h2)
+        _correct_bodies(bodies, body_accel, dt, dt_c, half_h2)
         place_points(bodies, points, point_x, point_v)
     for line in range(lines.shape[0]):
         for i in range(lines[line, FIRST] + 1, lines[line, LAST]):
@@ -1091,7 +1106,7 @@ def _body_arrays(points, free_of, n_free, n_bodies):
 
 
 @numba.njit(cache=True)
-def _solve_with_bodies(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt_c,
+def _solve_with_bodies(schur, point_rhs, points, point_x, free_of, bodies, fenders, dt, dt_c,
                        half_h2, transform, reduced, reduced_rhs, body_accel):
     """
     Solve the point system S a = g with the carried points' accelerations a_q = J_q y.
@@ -1134,7 +1149,7 @@ def _solve_with_bodies(schur, point_rhs, points, point_x, free_of, bodies, fende
         body = bodies[b]
         rotation_of(body, rotation)
         mass_matrix(body, rotation, mass)
-        body_loads(body, b, fenders, rotation, body[BODY_CLOCK], load, True, stiffness,
+        body_loads(body, b, fenders, rotation, body[BODY_CLOCK], dt, load, True, stiffness,
                    damping)
         c = first_body + 6 * b
         for p in range(6):
@@ -1178,10 +1193,15 @@ def _reduce(schur, rhs, transform, reduced, reduced_rhs):
 
 @numba.njit(cache=True)
 def _predict_bodies(bodies, dt, ahead_x, ahead_v):
-    """Put every body at its predictor (as _predict_rows does the particles; rigidly turned)."""
+    """
+    Put every body at its predictor (as _predict_rows does the particles; rigidly turned).
+
+    Its radiation memory's modes start a step of dt at its state before (forces/body.py).
+    """
     history = ahead_x != 0.0 or ahead_v != 0.0
     for b in range(bodies.shape[0]):
         body = bodies[b]
+        start_modes(body, dt)
         rotate = np.empty(3)
         for p in range(3):
             body[BODY_POSITION + p] += dt * body[BODY_VELOCITY + p]
@@ -1196,8 +1216,12 @@ def _predict_bodies(bodies, dt, ahead_x, ahead_v):
 
 
 @numba.njit(cache=True)
-def _correct_bodies(bodies, accel, dt_c, half_h2):
-    """Finish every body's implicit step from its solved accelerations (kept for the next)."""
+def _correct_bodies(bodies, accel, dt, dt_c, half_h2):
+    """
+    Finish every body's implicit step from its solved accelerations (kept for the next).
+
+    And its radiation memory's step of dt at its new velocities (forces/body.py).
+    """
     for b in range(bodies.shape[0]):
         body = bodies[b]
         for p in range(3):
@@ -1207,6 +1231,7 @@ def _correct_bodies(bodies, accel, dt_c, half_h2):
         for p in range(6):
             body[BODY_ACCEL + p] = accel[b, p]
         turn(body, half_h2 * accel[b, 3], half_h2 * accel[b, 4], half_h2 * accel[b, 5])
+        finish_modes(body, dt)
 
 
 def run_kernel(system, integrator: str, dt: float, drive_x: np.ndarray, drive_v: np.ndarray,

@@ -346,7 +346,8 @@ def body_accelerations(bodies, fenders, points, point_x, point_a, iso, aniso, bo
         body = bodies[b]
         rotation_of(body, rotation)
         mass_matrix(body, rotation, mass)
-        body_loads(body, b, fenders, rotation, body[BODY_CLOCK], load, False, unused, unused)
+        body_loads(body, b, fenders, rotation, body[BODY_CLOCK], 0.0, load, False, unused,
+                   unused)
         omega = body[BODY_OMEGA:BODY_OMEGA + 3]
         for q in range(points.shape[0]):
             if points[q, KIND] != CARRIED or int(points[q, POINT_BODY]) != b:

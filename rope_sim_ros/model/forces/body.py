@@ -30,6 +30,10 @@ Its own loads, all about the centre of gravity in world axes:
   angle restoring, the ship's weight and buoyancy balancing at rest, conservative at any
   angle and without a moment about the vertical;
 - damping on its velocity in body axes, linear and quadratic in each degree of freedom;
+- with a hydrodynamic database (model/ship/radiation.py): its full added mass at infinite
+  frequency, couplings and all, in place of the diagonal one, and the radiation memory's
+  load -int_0^t K(t - tau) u(tau) dtau, u its six velocities in body axes, carried as
+  modes whose states the integrators step with the body (start_modes, finish_modes);
 - the gyroscopic moment -omega x (I omega), its inertia and added inertia together;
 - its fenders (fender.py) and an external force and moment given per run, linear in time.
 The lines' forces come to it through its points (the integrators add them).
@@ -44,10 +48,13 @@ import numba
 import numpy as np
 
 from .fender import fender_force
-from ..layout import (BODY_ADDED, BODY_INERTIA, BODY_LINEAR_DAMPING, BODY_LOAD, BODY_LOAD_RATE,
-                      BODY_MASS, BODY_OMEGA, BODY_ORIGIN, BODY_POSITION, BODY_QUADRATIC_DAMPING,
-                      BODY_QUATERNION, BODY_REST_Z, BODY_RESTORING, BODY_VELOCITY, CARRIED,
-                      FENDER_BODY, FENDER_NORMAL, KIND, POINT_BODY, POINT_OFFSET)
+from ..layout import (BODY_ADDED, BODY_ADDED_MATRIX, BODY_FULL_ADDED, BODY_INERTIA,
+                      BODY_LINEAR_DAMPING, BODY_LOAD, BODY_LOAD_RATE, BODY_MASS, BODY_MODE,
+                      BODY_MODES, BODY_OMEGA, BODY_ORIGIN, BODY_POSITION,
+                      BODY_QUADRATIC_DAMPING, BODY_QUATERNION, BODY_REST_Z, BODY_RESTORING,
+                      BODY_VELOCITY, CARRIED, FENDER_BODY, FENDER_NORMAL, KIND, MODE_COLUMNS,
+                      MODE_INPUT, MODE_OUTPUT, MODE_POLE, MODE_STATE, MODE_WEIGHT, POINT_BODY,
+                      POINT_OFFSET)
 
 
 @numba.njit(cache=True, inline='always')
@@ -119,8 +126,28 @@ def mass_matrix(body, rotation, mass):
     for k in range(3):
         linear[k] = body[BODY_MASS] + body[BODY_ADDED + k]
         angular[k] = body[BODY_INERTIA + k] + body[BODY_ADDED + 3 + k]
+    if body[BODY_FULL_ADDED] != 0.0:  # a database's A_inf, couplings and all
+        for k in range(3):
+            linear[k] = body[BODY_MASS]
+            angular[k] = body[BODY_INERTIA + k]
+        _full_to_world(rotation, body, BODY_ADDED_MATRIX, mass)
     _to_world(rotation, linear, mass, 0, 0)
     _to_world(rotation, angular, mass, 3, 3)
+
+
+@numba.njit(cache=True)
+def _full_to_world(rotation, body, column, out):
+    """Add T X T^T into out (6, 6): X the body's 6x6 from `column` (row-major, body axes)."""
+    for p in range(2):
+        for q in range(2):
+            for i in range(3):
+                for j in range(3):
+                    s = 0.0
+                    for k in range(3):
+                        for m in range(3):
+                            s += (rotation[i, k] * body[column + 6 * (3 * p + k) + 3 * q + m]
+                                  * rotation[j, m])
+                    out[3 * p + i, 3 * q + j] += s
 
 
 @numba.njit(cache=True, inline='always')
@@ -161,13 +188,139 @@ def add_point_matrix(matrix, lever, block, scale):
             matrix[3 + i, 3 + j] -= scale * s
 
 
+@numba.njit(cache=True, inline='always')
+def _hold(pole, h):
+    """
+    Return exp(lambda h) and the first-order hold's weights g0, g1 of a mode over a step h.
+
+    z' = lambda z + f, f linear over the step from f0 to f1: z1 = exp(lambda h) z0 + g0 f0
+    + g1 f1, exactly (their series where the closed form would cancel).
+    """
+    x = pole * h
+    growth = np.exp(x)
+    if abs(x) < 1e-3:
+        g1 = h * (0.5 + x / 6.0 + x * x / 24.0)
+        g0 = h * (0.5 + x / 3.0 + x * x / 8.0)
+    else:
+        g1 = (growth - 1.0 - x) / (pole * x)
+        g0 = (growth - 1.0) / pole - g1
+    return growth, g0, g1
+
+
+@numba.njit(cache=True, inline='always')
+def _body_velocities(body, rotation, u):
+    """Put the body's velocity and angular velocity in body axes into u (6,)."""
+    for k in range(3):
+        u[k] = 0.0
+        u[3 + k] = 0.0
+        for i in range(3):
+            u[k] += rotation[i, k] * body[BODY_VELOCITY + i]
+            u[3 + k] += rotation[i, k] * body[BODY_OMEGA + i]
+
+
+@numba.njit(cache=True, inline='always')
+def _driven(body, m, u):
+    """Return b . u of the mode whose first column is m."""
+    bu = 0j
+    for k in range(6):
+        bu += complex(body[m + MODE_INPUT + k], body[m + MODE_INPUT + 6 + k]) * u[k]
+    return bu
+
+
 @numba.njit(cache=True)
-def body_loads(body, b, fenders, rotation, t, load, jacobians, stiffness, damping):
+def start_modes(body, h):
+    """
+    Start a step h of the radiation memory's modes at the body's state now (its start).
+
+    z <- exp(lambda h) z + g0 b . u0; finish_modes adds g1 b . u1 at the step's end
+    (_hold). Nothing without modes.
+    """
+    modes = int(body[BODY_MODES])
+    if modes == 0:
+        return
+    rotation = np.empty((3, 3))
+    rotation_of(body, rotation)
+    u = np.empty(6)
+    _body_velocities(body, rotation, u)
+    for i in range(modes):
+        m = BODY_MODE + i * MODE_COLUMNS
+        growth, g0, _ = _hold(complex(body[m + MODE_POLE], body[m + MODE_POLE + 1]), h)
+        z = (growth * complex(body[m + MODE_STATE], body[m + MODE_STATE + 1])
+             + g0 * _driven(body, m, u))
+        body[m + MODE_STATE] = z.real
+        body[m + MODE_STATE + 1] = z.imag
+
+
+@numba.njit(cache=True)
+def finish_modes(body, h):
+    """Finish the step h start_modes started, at the body's state now (its end)."""
+    modes = int(body[BODY_MODES])
+    if modes == 0:
+        return
+    rotation = np.empty((3, 3))
+    rotation_of(body, rotation)
+    u = np.empty(6)
+    _body_velocities(body, rotation, u)
+    for i in range(modes):
+        m = BODY_MODE + i * MODE_COLUMNS
+        _, _, g1 = _hold(complex(body[m + MODE_POLE], body[m + MODE_POLE + 1]), h)
+        z = complex(body[m + MODE_STATE], body[m + MODE_STATE + 1]) + g1 * _driven(body, m, u)
+        body[m + MODE_STATE] = z.real
+        body[m + MODE_STATE + 1] = z.imag
+
+
+@numba.njit(cache=True)
+def _memory_load(body, rotation, ahead, load, jacobians, damping):
+    """
+    Add the radiation memory's load -sum_i w_i Re(c_i z_i) (body axes) to load (6,).
+
+    ahead > 0: the modes are started on a step of that length (start_modes) and the body is
+    at its end: z_i + g1 b_i . u, and (jacobians) its slope in u into damping, world axes.
+    """
+    u = np.empty(6)
+    _body_velocities(body, rotation, u)
+    memory = np.zeros(6)
+    slope = np.zeros((6, 6))
+    for i in range(int(body[BODY_MODES])):
+        m = BODY_MODE + i * MODE_COLUMNS
+        weight = body[m + MODE_WEIGHT]
+        z = complex(body[m + MODE_STATE], body[m + MODE_STATE + 1])
+        g1 = 0j
+        if ahead > 0.0:
+            _, _, g1 = _hold(complex(body[m + MODE_POLE], body[m + MODE_POLE + 1]), ahead)
+            z += g1 * _driven(body, m, u)
+        for k in range(6):
+            c = complex(body[m + MODE_OUTPUT + k], body[m + MODE_OUTPUT + 6 + k])
+            memory[k] += weight * (c * z).real
+            if jacobians and ahead > 0.0:
+                for j in range(6):
+                    b = complex(body[m + MODE_INPUT + j], body[m + MODE_INPUT + 6 + j])
+                    slope[k, j] += weight * (g1 * c * b).real
+    for part in range(2):
+        for i in range(3):
+            for k in range(3):
+                load[3 * part + i] -= rotation[i, k] * memory[3 * part + k]
+    if jacobians and ahead > 0.0:
+        for p in range(2):
+            for q in range(2):
+                for i in range(3):
+                    for j in range(3):
+                        s = 0.0
+                        for k in range(3):
+                            for n in range(3):
+                                s += rotation[i, k] * slope[3 * p + k, 3 * q + n] * rotation[j, n]
+                        damping[3 * p + i, 3 * q + j] += s
+
+
+@numba.njit(cache=True)
+def body_loads(body, b, fenders, rotation, t, ahead, load, jacobians, stiffness, damping):
     """
     Put body b's own loads (see the module docstring) into load (6,).
 
     :param t: the body's clock (BODY_CLOCK) at this state: the external load is
         BODY_LOAD + BODY_LOAD_RATE t.
+    :param ahead: 0, or the step [s] the radiation memory's modes were started on
+        (start_modes) with the body now at its end (_memory_load).
     :param jacobians: also fill stiffness and damping (6, 6) (minus the loads' Jacobians in
         position and velocity, world axes about the centre of gravity); else they are left.
     """
@@ -219,6 +372,8 @@ def body_loads(body, b, fenders, rotation, t, load, jacobians, stiffness, dampin
                 load[3 * part + i] += rotation[i, k] * pull
         if jacobians:
             _to_world(rotation, slopes, damping, 3 * part, 3 * part)
+    if body[BODY_MODES] > 0.0:  # the radiation memory (model/ship/radiation.py)
+        _memory_load(body, rotation, ahead, load, jacobians, damping)
     # gyroscopic: -omega x (I omega), inertia and added inertia in world axes
     inertia = np.zeros((6, 6))
     mass_matrix(body, rotation, inertia)

@@ -418,7 +418,7 @@ class ShipStatics:
         table = self.fenders if fenders else self.fenders[:0]
         load = np.zeros(6)
         unused = np.zeros((6, 6))
-        body_loads(row, 0, table, rotation, 0.0, load, False, unused, unused.copy())
+        body_loads(row, 0, table, rotation, 0.0, 0.0, load, False, unused, unused.copy())
         load[3:] += np.cross(centre, load[:3])  # about the origin, not the centre of gravity
         count = len(table)
         compressions = np.zeros(count)
