@@ -33,6 +33,7 @@ from rope_sim_ros.model.frames import rotation_matrix
 from rope_sim_ros.model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_MODE,
                                        BODY_MODES, MODE_COLUMNS, MODE_STATE)
 from rope_sim_ros.model.objects import Environment, System
+from rope_sim_ros.model.ship.radiation import consistent_added_mass
 from rope_sim_ros.stepping.adaptive import NEWMARK
 from rope_sim_ros.stepping.kernels import run_kernel
 
@@ -203,7 +204,12 @@ def test_a_database_gives_the_full_added_mass_and_memory_modes():
     row = barge().row()
     assert row[BODY_MODES] == barge().radiation.poles.size > 0
     body = barge()
-    np.testing.assert_array_equal(body.mass_matrix(), rigid_mass() + DATABASE.added_mass_infinite)
+    added = consistent_added_mass(DATABASE, body.radiation)
+    np.testing.assert_array_equal(body.mass_matrix(), rigid_mass() + added)
+    # the analytic database is consistent: the A_inf its A(omega) and memory make is its own
+    scale = np.sqrt(np.outer(np.diagonal(rigid_mass() + added), np.diagonal(rigid_mass() + added)))
+    assert np.abs(added - DATABASE.added_mass_infinite).max() / scale.max() < 1e-3
+    assert (np.abs(added - DATABASE.added_mass_infinite) / scale).max() < 2e-3
 
 
 def test_restart_clears_the_memory():

@@ -37,7 +37,7 @@ from .layout import (BODY_ADDED, BODY_ADDED_MATRIX, BODY_COLUMNS, BODY_FULL_ADDE
                      FENDER_POSITION, MODE_CAPACITY, MODE_COLUMNS, MODE_INPUT, MODE_OUTPUT,
                      MODE_POLE, MODE_STATE, MODE_WEIGHT)
 from .ship.hydro import HydroDatabase
-from .ship.radiation import database_modes, RadiationModes
+from .ship.radiation import consistent_added_mass, database_modes, RadiationModes
 
 
 # A free ship past any of these bounds has left every state a moored ship can be in (a load
@@ -168,9 +168,9 @@ class Body:
         gm = _numbers('metacentric_height', metacentric_height, 2)
         added_matrix = radiation = None
         if hydrodynamics is not None:
-            added_matrix = hydrodynamics.added_mass_infinite
-            added_mass = tuple(max(float(a), 0.0) for a in np.diagonal(added_matrix))
             radiation = database_modes(hydrodynamics)
+            added_matrix = consistent_added_mass(hydrodynamics, radiation)
+            added_mass = tuple(max(float(a), 0.0) for a in np.diagonal(added_matrix))
         return cls(mass, tuple(mass * k * k for k in radii), added_mass, linear_damping,
                    quadratic_damping,
                    (water_density * g * waterplane_area, mass * g * gm[0], mass * g * gm[1]),
