@@ -605,3 +605,35 @@ def test_a_bad_commands_file_refuses_the_study_naming_the_case(tmp_path, capsys,
                           f'{tmp_path / "bad.csv"}: ') and err.count('\n') == 1, err
     assert message in err
     assert not (tmp_path / 'out').exists()
+
+
+def test_waves_are_factors_and_the_studys_seed_is_the_seas(tmp_path):
+    # A free ship with the berth's hydrodynamic database in a JONSWAP swell: waves.height a
+    # case's value like any parameter's, and the study's seed the sea's draw unless the case
+    # sets waves.seed itself (no wind: the sea is the only random input here). The database
+    # is named relative to the arrangement file, as rope_sim run --set takes it.
+    write_study(tmp_path, '')
+    database = REPO_ROOT / 'test' / 'data' / 'hydro' / 'berth_ship.nc'
+    path = tmp_path / 'swell.yaml'
+    path.write_text(
+        f'study:\n  arrangement: berth4.yaml\n  duration: 2.0\n  rate: 10.0\n'
+        f'  set: {{ship_mode: free, ship.hydrodynamics: {os.path.relpath(database, tmp_path)},'
+        f' waves.spectrum: jonswap,'
+        f' waves.period: 10.0, waves.direction: -0.7854}}\n'
+        f'  cases:\n    - {{waves.height: 0.5, seed: 1}}\n    - {{waves.height: 1.0, seed: 1}}\n'
+        f'    - {{waves.height: 1.0, seed: 2}}\n'
+        f'    - {{waves.height: 1.0, seed: 2, waves.seed: 1}}\n')
+    study = read_study(path)
+    prepared = prepare(study)
+    assert [item.setup.ship.waves_height for item in prepared] == [0.5, 1.0, 1.0, 1.0]
+    assert [item.setup.ship.waves_seed for item in prepared] == [0, 0, 0, 1]
+    named = prepared[0].setup.ship.hydrodynamics  # absolute: a worker's directory is any
+    assert os.path.isabs(named) and os.path.samefile(named, database), named
+    outcomes = [run_case(job_of(study, item), None) for item in prepared]
+    assert [o.status for o in outcomes] == [OK] * 4, [o.status for o in outcomes]
+    # the first-order load scales with the height: 1 m of the same sea sways the ship from
+    # rest over 2 s 2.3 times as far as 0.5 m
+    sway = [o.summary['max_sway'] for o in outcomes]
+    assert sway[1] > 1.5 * sway[0] > 0.0, sway
+    assert outcomes[2].summary != outcomes[1].summary  # another seed, another sea
+    assert outcomes[3].summary == outcomes[1].summary  # waves.seed 1 set: seed 1's sea

@@ -270,11 +270,14 @@ def _free_ship(job: Job, out_path: Optional[str], summary: SummarySink) -> None:
     """
     Run a free ship's case from rest under its loads file (if any): its summary, OUT.csv.
 
-    The case's seed is its gusts' (wind_seed), unless the case sets wind_seed itself.
+    The case's seed is its gusts' (wind_seed) and its irregular sea's (waves.seed), each
+    unless the case sets it itself.
     """
     setup = job.setup
     if setup.ship.wind_seed == SHIP_SPECS['wind_seed'].default:
         setup = replace(setup, ship=replace(setup.ship, wind_seed=job.seed))
+    if setup.ship.waves_seed == SHIP_SPECS['waves.seed'].default:
+        setup = replace(setup, ship=replace(setup.ship, waves_seed=job.seed))
     loads = read_loads(job.loads) if job.loads else None
     run_free(setup, job.duration, loads, out_path, job.rate, sinks=[summary],
              commands=job.commands)

@@ -33,7 +33,10 @@ A study is a mapping under ``study:``::
 
 A factor (or a key of a case) is any parameter `--set` takes (top-level, `head_1.pretension`,
 `head_1.material`, `passing_ship.speed`, ...) or one of CASE_FILES (`arrangement`, `motion`,
-`loads`, `commands`: a file per case, relative to the study file) or `seed`. Full factorial:
+`loads`, `commands`: a file per case, relative to the study file) or `seed`. The ship's
+tables and database (`ship.hydrodynamics`, `ship.wind_coefficients`, ...) are relative to
+the case's arrangement file wherever they are set, as `rope_sim run --set` takes them, and
+made absolute here: a worker runs in any directory. Full factorial:
 the last factor varies fastest; case k is the k-th combination (0-based). Every case's
 parameters are validated here, before anything runs, and its commands against its lines
 and bollards: a study with a bad value refuses at once, in one line naming the case; what
@@ -58,7 +61,7 @@ import numpy as np
 
 from ..motion import MotionError, read_commands, read_ship_motion, Streams
 from ...params.arrangement import (ArrangementParams, flatten, from_values,
-                                   is_arrangement_file, NODE_NAME)
+                                   is_arrangement_file, NODE_NAME, with_tables_from)
 from ...params.files import read_params_file, read_yaml_file
 from ...params.table import ParameterError
 
@@ -421,7 +424,9 @@ def prepare(study: Study) -> List[PreparedCase]:
         if case.arrangement not in bases:
             bases[case.arrangement] = _base_values(case.arrangement)
         try:
-            setup = from_values({**bases[case.arrangement], **study.fixed, **case.overrides})
+            setup = with_tables_from(
+                from_values({**bases[case.arrangement], **study.fixed, **case.overrides}),
+                os.path.dirname(case.arrangement))  # as rope_sim run's --set takes them
         except ParameterError as e:
             raise StudyError(f'{study.path}: case {case.index} ({case.describe()}): {e}') \
                 from None
