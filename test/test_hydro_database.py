@@ -23,6 +23,7 @@ a whole band needs.
 import math
 import os
 from pathlib import Path
+import stat
 import subprocess
 import sys
 
@@ -317,6 +318,10 @@ def test_the_command_through_the_launcher(tmp_path):
     assert f'2 frequencies x 2 headings, 96 panels -> {out}' in result.stdout
     record = read_hydro_database(out)
     assert record.excitation.shape == (3, 2, 6)
+    # written as any file of the user's is: readable by others where the umask lets it be
+    mask = os.umask(0)
+    os.umask(mask)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o666 & ~mask
     result = subprocess.run(
         [sys.executable, '-m', 'rope_sim_ros', 'hydro', BERTH, '--out', str(out), '--force',
          '--set', 'ship.draft=-1'], env=env, capture_output=True, text=True, timeout=120)

@@ -402,6 +402,10 @@ def write_database(dataset, path: str) -> None:
     os.close(handle)
     try:
         data.to_netcdf(temporary, engine='scipy', format='NETCDF3_64BIT')
+        # a file as any other the user writes (mkstemp makes it the user's alone)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(temporary, 0o666 & ~mask)
         os.replace(temporary, path)
     except BaseException:
         os.unlink(temporary)
