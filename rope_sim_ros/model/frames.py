@@ -168,6 +168,13 @@ def rotation_matrix(q: Sequence[float]) -> np.ndarray:
         [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)]])
 
 
+def cross(a, b) -> np.ndarray:
+    """Return a x b of two 3-vectors (np.cross checks its axes for 10-40 us a call)."""
+    a0, a1, a2 = float(a[0]), float(a[1]), float(a[2])
+    b0, b1, b2 = float(b[0]), float(b[1]), float(b[2])
+    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
+
+
 def cross_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Return the cross products of the rows of a and b (n, 3), compiled (np.cross: 10 us)."""
     return _cross_rows(np.ascontiguousarray(a, dtype=float),

@@ -39,9 +39,9 @@ from .trajectory import TrajectoryError
 from ..model.body import Body, clear_memory, Fender, out_of_bounds
 from ..model.forces.body import place_points
 from ..model.forces.fender import contact, fender_force
-from ..model.frames import rotation_matrix
-from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_OMEGA, BODY_ORIGIN,
-                            BODY_QUATERNION, BODY_VELOCITY, FENDER_COLUMNS)
+from ..model.frames import cross, rotation_matrix
+from ..model.layout import (BODY_CLOCK, BODY_LOAD, BODY_LOAD_RATE, BODY_ORIGIN, BODY_POSITION,
+                            FENDER_COLUMNS)
 from ..model.objects import Environment, System
 from ..model.ship.coefficients import table_at_ratio
 from ..model.ship.hydro import HydroDatabase
@@ -394,7 +394,7 @@ class Ship:
         """Return a point the body carries (body axes, from its CG): position, velocity."""
         body = self.body
         lever = rotation_matrix(body.quaternion) @ offset_from_gravity
-        return body.position + lever, body.velocity + np.cross(body.omega, lever)
+        return body.position + lever, body.velocity + cross(body.omega, lever)
 
     def state(self) -> ShipState:
         """Return its motion now (its body origin's): a driven ship's pose followed, at rest."""
@@ -402,7 +402,7 @@ class Ship:
             return ShipState(self._origin[0], self._origin[1], np.zeros(3), np.zeros(3))
         body = self.body
         position, orientation = body.origin_pose()
-        velocity = body.velocity + np.cross(body.omega, position - body.position)
+        velocity = body.velocity + cross(body.omega, position - body.position)
         return ShipState(position, orientation, velocity, body.omega.copy())
 
     # -- a free ship in its System --------------------------------------------------------
@@ -486,7 +486,7 @@ class Ship:
         origin, orientation = self.body.origin_pose()
         lever = self.body.position - origin  # from the origin to the CG
         rotation = rotation_matrix(orientation)
-        velocity = self.body.velocity - np.cross(self.body.omega, lever)
+        velocity = self.body.velocity - cross(self.body.omega, lever)
         row = system.body_table[0]
         values = []
         for t in (start, end):
@@ -496,7 +496,7 @@ class Ship:
             if environment.waves.sea is not None:
                 load += world_wrench(self.loads.waves_at(t, environment, origin, rotation)[1],
                                      rotation)
-            load[3:] -= np.cross(lever, load[:3])  # the moment about the CG
+            load[3:] -= cross(lever, load[:3])  # the moment about the CG
             values.append(load)
         row[BODY_LOAD:BODY_LOAD + 6] = values[0]
         row[BODY_LOAD_RATE:BODY_LOAD_RATE + 6] = (
@@ -538,10 +538,14 @@ class Ship:
         points = self.fender_rows[:, :3].copy() if count else np.zeros((0, 3))
         if not count:
             return compressions, forces, points
-        row = self.placed_body().row()
-        rotation = rotation_matrix(row[BODY_QUATERNION:BODY_QUATERNION + 4])
-        velocity = row[BODY_VELOCITY:BODY_VELOCITY + 3]
-        omega = row[BODY_OMEGA:BODY_OMEGA + 3]
+        body = self.placed_body()
+        # the fenders read the hull's geometry and where it is: the start row's geometry
+        # with the body's position now (a whole row() writes the memory's modes, 80 us)
+        row = self.start_row.copy()
+        row[BODY_POSITION:BODY_POSITION + 3] = body.position
+        rotation = rotation_matrix(body.quaternion)
+        velocity = body.velocity
+        omega = body.omega
         for f in range(count):
             compressions[f] = fender_force(self.fender_rows[f], row, rotation, velocity,
                                            omega, forces[f], points[f])[0]

@@ -94,9 +94,11 @@ from dataclasses import dataclass, field
 import math
 from typing import Optional, Tuple
 
+import numba
 import numpy as np
 
 from .hydro import HydroDatabase
+from ..frames import cross
 
 SPECTRA = ('regular', 'jonswap')  # 'none' (no waves) is the caller's business
 DEFAULT_PEAK_ENHANCEMENT = 3.3
@@ -350,16 +352,12 @@ class WaveLoads:
             F2 (surge, sway [N], yaw [N m]), body axes about the centre of gravity.
         """
         j, f = self.heading_weights(self.sea.travel - yaw)
-        waves = self.sea.complex_amplitudes(t, x, y)
-        parts = np.concatenate([waves.real, waves.imag])  # (2N,)
-        first = (1.0 - f) * (parts @ self.excitation[j]) + f * (parts @ self.excitation[j + 1])
-        drift = self.drift[j] * (1.0 - f) + self.drift[j + 1] * f  # (N, 3)
-        root = np.sqrt(np.abs(drift))
-        signed = np.concatenate([np.where(drift > 0.0, root, 0.0),
-                                 np.where(drift < 0.0, root, 0.0)], axis=1)  # (N, 6)
-        envelopes = parts.reshape(2, -1) @ signed  # Re, Im of Z+ (3) and Z- (3)
-        squared = (envelopes * envelopes).sum(axis=0)
-        return first, squared[:3] - squared[3:]
+        sea = self.sea
+        along = x * math.cos(sea.travel) + y * math.sin(sea.travel)
+        first, drift = np.zeros(6), np.zeros(3)
+        _loads(sea.amplitude, sea.k, sea.omega, sea.phase, along, t, self.excitation[j],
+               self.excitation[j + 1], self.drift[j], self.drift[j + 1], f, first, drift)
+        return first, drift
 
     def mean_drift(self, yaw: float) -> np.ndarray:
         """
@@ -373,6 +371,41 @@ class WaveLoads:
         return (self.sea.amplitude ** 2) @ drift
 
 
+@numba.njit(cache=True)
+def _loads(amplitude, k, omega, phase, along, t, excitation, excitation_next, drift,
+           drift_next, f, first, slow):
+    """
+    Put the first-order load (6,) and Newman's slow drift (3,) at t into first and slow.
+
+    One pass over the components (WaveLoads.at; the module docstring's formulas): each
+    component's a cos(theta), a sin(theta) at the ship's origin (`along` its travel),
+    against X = [Re X; -Im X] (2N, 6) and D (N, 3) at the two ring headings either side,
+    weighed 1 - f and f. Compiled: numpy's products over the 1,575 components of a 8 s sea
+    took 0.2 ms an evaluation, three an output.
+    """
+    count = amplitude.size
+    envelopes = np.zeros((4, 3))  # Re, Im of Z+ and of Z-
+    for i in range(count):
+        theta = k[i] * along - omega[i] * t + phase[i]
+        c = amplitude[i] * math.cos(theta)
+        s = amplitude[i] * math.sin(theta)
+        for m in range(6):
+            first[m] += ((1.0 - f) * (c * excitation[i, m] + s * excitation[count + i, m])
+                         + f * (c * excitation_next[i, m] + s * excitation_next[count + i, m]))
+        for m in range(3):
+            d = (1.0 - f) * drift[i, m] + f * drift_next[i, m]
+            root = math.sqrt(abs(d))
+            if d > 0.0:
+                envelopes[0, m] += c * root
+                envelopes[1, m] += s * root
+            elif d < 0.0:
+                envelopes[2, m] += c * root
+                envelopes[3, m] += s * root
+    for m in range(3):
+        slow[m] = (envelopes[0, m] ** 2 + envelopes[1, m] ** 2
+                   - envelopes[2, m] ** 2 - envelopes[3, m] ** 2)
+
+
 def about_origin(first: np.ndarray, drift: np.ndarray,
                  reference_point: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """
@@ -382,9 +415,9 @@ def about_origin(first: np.ndarray, drift: np.ndarray,
     """
     r = np.asarray(reference_point, dtype=float)
     moved = np.array(first, dtype=float)
-    moved[3:] += np.cross(r, moved[:3])
+    moved[3:] += cross(r, moved[:3])
     force = np.array([drift[0], drift[1], 0.0])
-    turned = np.array([drift[0], drift[1], drift[2] + np.cross(r, force)[2]])
+    turned = np.array([drift[0], drift[1], drift[2] + cross(r, force)[2]])
     return moved, turned
 
 
