@@ -629,6 +629,16 @@ def test_waves_are_factors_and_the_studys_seed_is_the_seas(tmp_path):
     assert [item.setup.ship.waves_seed for item in prepared] == [0, 0, 0, 1]
     named = prepared[0].setup.ship.hydrodynamics  # absolute: a worker's directory is any
     assert os.path.isabs(named) and os.path.samefile(named, database), named
+    # the key holds the database's contents: solved again at the same path, the cases run
+    # again when the study is taken up
+    copy = tmp_path / 'ship.nc'
+    copy.write_bytes(database.read_bytes())
+    again = path.read_text().replace(os.path.relpath(database, tmp_path), 'ship.nc')
+    path.write_text(again)
+    before = [item.key for item in prepare(read_study(path))]
+    copy.write_bytes(database.read_bytes() + b'\0')
+    after = [item.key for item in prepare(read_study(path))]
+    assert all(a != b for a, b in zip(before, after))
     outcomes = [run_case(job_of(study, item), None) for item in prepared]
     assert [o.status for o in outcomes] == [OK] * 4, [o.status for o in outcomes]
     # the first-order load scales with the height: 1 m of the same sea sways the ship from

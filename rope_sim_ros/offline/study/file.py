@@ -447,15 +447,19 @@ def prepare(study: Study) -> List[PreparedCase]:
             motions[case.motion] = (streams, _streams_digest(streams))
         if case.loads is not None and case.loads not in loads:
             loads[case.loads] = _file_digest(case.loads)
+        database = setup.ship.hydrodynamics
+        if database and database not in loads:  # a database solved again at its path
+            loads[database] = _file_digest(database)
         streams, motion_digest = motions[case.motion] if case.motion else (None, '')
         scheduled = _commands(study, case, setup, commands)
         key = _digest(json.dumps({
             'parameters': setup.values(), 'motion': motion_digest,
             'loads': loads.get(case.loads, ''), 'duration': repr(study.duration),
             'rate': repr(study.rate), 'seed': case.seed, 'keep': study.keep,
-            # only with commands: a case without keeps the key it had before they existed
+            # only with commands, a database: a case without keeps the key it had before
             **({'commands': [[c.t, c.line, c.command, c.bollard] for c in scheduled]}
                if scheduled else {}),
+            **({'hydrodynamics': loads[database]} if database else {}),
         }, sort_keys=True, default=repr).encode())
         prepared.append(PreparedCase(case, setup, streams, key, scheduled))
     return prepared
