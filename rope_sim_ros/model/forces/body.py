@@ -228,6 +228,33 @@ def _driven(body, m, u):
 
 
 @numba.njit(cache=True)
+def _step_modes(body, h, start):
+    """
+    Take the start or the end of a step h of the radiation memory's modes.
+
+    Start: z <- exp(lambda h) z + g0 b . u; end: z <- z + g1 b . u; u the body's velocities
+    now (_hold).
+    """
+    modes = int(body[BODY_MODES])
+    if modes == 0:
+        return
+    rotation = np.empty((3, 3))
+    rotation_of(body, rotation)
+    u = np.empty(6)
+    _body_velocities(body, rotation, u)
+    for i in range(modes):
+        m = BODY_MODE + i * MODE_COLUMNS
+        growth, g0, g1 = _hold(complex(body[m + MODE_POLE], body[m + MODE_POLE + 1]), h)
+        z = complex(body[m + MODE_STATE], body[m + MODE_STATE + 1])
+        if start:
+            z = growth * z + g0 * _driven(body, m, u)
+        else:
+            z = z + g1 * _driven(body, m, u)
+        body[m + MODE_STATE] = z.real
+        body[m + MODE_STATE + 1] = z.imag
+
+
+@numba.njit(cache=True)
 def start_modes(body, h):
     """
     Start a step h of the radiation memory's modes at the body's state now (its start).
@@ -235,38 +262,13 @@ def start_modes(body, h):
     z <- exp(lambda h) z + g0 b . u0; finish_modes adds g1 b . u1 at the step's end
     (_hold). Nothing without modes.
     """
-    modes = int(body[BODY_MODES])
-    if modes == 0:
-        return
-    rotation = np.empty((3, 3))
-    rotation_of(body, rotation)
-    u = np.empty(6)
-    _body_velocities(body, rotation, u)
-    for i in range(modes):
-        m = BODY_MODE + i * MODE_COLUMNS
-        growth, g0, _ = _hold(complex(body[m + MODE_POLE], body[m + MODE_POLE + 1]), h)
-        z = (growth * complex(body[m + MODE_STATE], body[m + MODE_STATE + 1])
-             + g0 * _driven(body, m, u))
-        body[m + MODE_STATE] = z.real
-        body[m + MODE_STATE + 1] = z.imag
+    _step_modes(body, h, True)
 
 
 @numba.njit(cache=True)
 def finish_modes(body, h):
     """Finish the step h start_modes started, at the body's state now (its end)."""
-    modes = int(body[BODY_MODES])
-    if modes == 0:
-        return
-    rotation = np.empty((3, 3))
-    rotation_of(body, rotation)
-    u = np.empty(6)
-    _body_velocities(body, rotation, u)
-    for i in range(modes):
-        m = BODY_MODE + i * MODE_COLUMNS
-        _, _, g1 = _hold(complex(body[m + MODE_POLE], body[m + MODE_POLE + 1]), h)
-        z = complex(body[m + MODE_STATE], body[m + MODE_STATE + 1]) + g1 * _driven(body, m, u)
-        body[m + MODE_STATE] = z.real
-        body[m + MODE_STATE + 1] = z.imag
+    _step_modes(body, h, False)
 
 
 @numba.njit(cache=True)

@@ -443,17 +443,15 @@ class ShipWaves:
             yaw: its heading [rad].
         """
         loads = np.zeros((2, 6))
-        sea = waves.sea
-        if sea is None or self.database is None:
+        hull = self._in(waves)
+        if hull is None:
             return 0.0, loads
-        if self._loads is None or self._loads.sea is not sea:
-            self._loads = WaveLoads(self.database, sea)
         x, y = float(position[0]), float(position[1])
-        first, drift = self._loads.at(t, x, y, yaw)
+        first, drift = hull.at(t, x, y, yaw)
         first, drift = about_origin(first, drift, self.database.reference_point)
         loads[0] = first
         loads[1, [0, 1, 5]] = drift
-        return sea.elevation(t, x, y), loads
+        return waves.sea.elevation(t, x, y), loads
 
     def mean_drift(self, waves: Waves, yaw: float) -> np.ndarray:
         """
@@ -461,11 +459,17 @@ class ShipWaves:
 
         Body axes about the ship's origin (WaveLoads.mean_drift); zeros in a calm sea.
         """
+        hull = self._in(waves)
+        if hull is None:
+            return np.zeros(3)
+        _, drift = about_origin(np.zeros(6), hull.mean_drift(yaw), self.database.reference_point)
+        return drift
+
+    def _in(self, waves: Waves) -> Optional[WaveLoads]:
+        """Return the hull's loads in this sea state (made once per sea), or None: calm."""
         sea = waves.sea
         if sea is None or self.database is None:
-            return np.zeros(3)
+            return None
         if self._loads is None or self._loads.sea is not sea:
             self._loads = WaveLoads(self.database, sea)
-        _, drift = about_origin(np.zeros(6), self._loads.mean_drift(yaw),
-                                self.database.reference_point)
-        return drift
+        return self._loads
