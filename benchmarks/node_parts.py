@@ -26,7 +26,13 @@ each part in microseconds of thread CPU an output, over the outputs after the fi
 The wrappers add about a microsecond a call; the parts nest (a part's time includes its
 callees').
 
-    python benchmarks/node_parts.py [--line] [--seconds 15]
+--offline steps the same mooring with the same poses in this process without ROS, through
+the same Driver, with the same parts wrapped: back to back (what the parts cost with warm
+caches, the floor of the simulation's own parts), or paced (each pose at its time on the wall
+clock, sleeping between outputs as the node does). The floor of the node's I/O (a pose in,
+a wrench out) is benchmarks/node_floor.py's.
+
+    python benchmarks/node_parts.py [--line] [--seconds 15] [--offline back-to-back|paced]
 """
 
 import argparse
@@ -61,11 +67,17 @@ PARTS = (
     ('mooring.driver', 'Driver', '_emit', 'driver: output taken'),
     ('mooring.outputs', None, 'mooring_output', 'mooring: output gathered'),
 )
+RATE = 100.0  # poses and outputs a second
 FIRST = 100  # outputs before the count starts (the start, the kernels loaded)
 
 
-def child(line: bool, out: str) -> None:
-    """Run the node with its parts wrapped; write their times to `out` as it ends."""
+def instrument() -> tuple:
+    """
+    Wrap the PARTS to add up their thread CPU; return (totals, calls, before).
+
+    `before` is filled with the totals and calls at the FIRST-th output, so that the counts
+    start after the start; totals and calls keep adding up, 'outputs' among the calls.
+    """
     import importlib
     totals, calls, before = {}, {}, {}
     clock = time.thread_time
@@ -84,7 +96,10 @@ def child(line: bool, out: str) -> None:
         setattr(owner, name, timed)
 
     for module, cls, name, label in PARTS:
-        module = importlib.import_module(f'rope_sim_ros.{module}')
+        try:
+            module = importlib.import_module(f'rope_sim_ros.{module}')
+        except ImportError:  # (offline: the node's modules need not load)
+            continue
         owner = getattr(module, cls) if cls else module
         if hasattr(owner, name):
             wrap(owner, name, label)
@@ -99,16 +114,27 @@ def child(line: bool, out: str) -> None:
     def counted_emit(self, *args):
         calls['outputs'] = calls.get('outputs', 0) + 1
         if calls['outputs'] == FIRST:
-            before.update(totals=dict(totals), calls=dict(calls), cpu=time.process_time())
+            before.update(totals=dict(totals), calls=dict(calls))
         return emit(self, *args)
     driver._emit = counted_emit
+    return totals, calls, before
+
+
+def counted(totals: dict, calls: dict, before: dict) -> dict:
+    """Return the totals and calls since `before`."""
+    return {'totals': {k: v - before['totals'][k] for k, v in totals.items()},
+            'calls': {k: v - before['calls'].get(k, 0) for k, v in calls.items()}}
+
+
+def child(line: bool, out: str) -> None:
+    """Run the node with its parts wrapped; write their times to `out` as it ends."""
+    import importlib
+    totals, calls, before = instrument()
 
     def write():
         if not before or Path(out).exists():
             return
-        Path(out).write_text(json.dumps({
-            'totals': {k: v - before['totals'][k] for k, v in totals.items()},
-            'calls': {k: v - before['calls'].get(k, 0) for k, v in calls.items()}}))
+        Path(out).write_text(json.dumps(counted(totals, calls, before)))
     atexit.register(write)
     node = importlib.import_module('rope_sim_ros.ros.node')
     sys.argv = ['node'] + sys.argv[4:]
@@ -116,6 +142,56 @@ def child(line: bool, out: str) -> None:
         (node.main_line if line else node.main_mooring)()
     finally:
         write()
+
+
+def offline(line: bool, seconds: float, paced: bool) -> None:
+    """
+    Step the same mooring with the same poses in this process, without ROS; print its parts.
+
+    Back to back, or paced: each pose taken at its time on the wall clock, sleeping between
+    outputs as the node does.
+    """
+    import math
+    import arrangement_speed
+    sys.path.insert(0, str(installed_node.REPO))
+    from rope_sim_ros.mooring.driver import Driver
+    from rope_sim_ros.params.arrangement import from_values, read_setup
+    if line:
+        setup = read_setup(installed_node.REPO / 'config' / 'mooring_line.yaml',
+                           {'publish_rate': RATE, 'segments': 50})
+
+        def pose(t):
+            return [32.0 + 0.5 * math.sin(2.0 * math.pi * 0.16 * t), 12.0, 6.0], [0, 0, 0, 1]
+    else:
+        setup = from_values({**arrangement_speed.berth('polyester'), 'publish_rate': RATE})
+        pose = arrangement_speed.ship_pose
+    totals, calls, before = instrument()
+    driver = Driver(setup, rate=RATE)
+    cpu = start = None
+    steps = int(round(seconds * RATE))
+    for i in range(steps + 1):
+        t = i / RATE
+        if i == FIRST:
+            cpu, start = time.process_time(), time.monotonic() - t
+        if paced and start is not None:
+            time.sleep(max(0.0, start + t - time.monotonic()))
+        position, orientation = pose(t)
+        driver.push_ship(arrangement_speed.T0 + round(t * 1e9), position, orientation)
+        driver.advance(math.inf, max_lag=math.inf)
+    share = (time.process_time() - cpu) / ((steps - FIRST) / RATE)
+    report(f'{"mooring_line" if line else "mooring, 16 lines"} offline, '
+           f'{"paced" if paced else "back to back"}: {100 * share:.1f} % of one core over '
+           f'{(steps - FIRST) / RATE:g} s simulated', counted(totals, calls, before))
+
+
+def report(title: str, data: dict) -> None:
+    """Print the parts' thread CPU an output."""
+    outputs = data['calls'].pop('outputs')
+    print(f'{title}; thread CPU an output over {outputs} outputs:')
+    for label, total in data['totals'].items():
+        if data['calls'][label]:
+            print(f'  {label:40s} {1e6 * total / outputs:7.1f} us ({data["calls"][label]} '
+                  'calls)')
 
 
 def parent(line: bool, seconds: float) -> None:
@@ -132,13 +208,13 @@ def parent(line: bool, seconds: float) -> None:
     if line:
         args = ['--ros-args', '--params-file',
                 str(installed_node.REPO / 'config' / 'mooring_line.yaml'),
-                '-p', 'publish_rate:=100.0', '-p', 'segments:=50']
+                '-p', f'publish_rate:={RATE}', '-p', 'segments:=50']
         output, cls, topic = 'fairlead/tension', Wrench, 'fairlead/pose'
         place = line_node_cpu._place_fairlead
     else:
         params = folder / 'berth16.yaml'
         params.write_text(yaml.safe_dump({'mooring': {'ros__parameters': {
-            **arrangement_speed.berth('polyester'), 'publish_rate': 100.0}}}))
+            **arrangement_speed.berth('polyester'), 'publish_rate': RATE}}}))
         args = ['--ros-args', '--params-file', str(params)]
         output, cls, topic = 'ship/mooring_wrench', WrenchStamped, 'ship/pose'
         place = arrangement_speed._place_ship
@@ -151,22 +227,16 @@ def parent(line: bool, seconds: float) -> None:
     client.create_subscription(cls, output, lambda msg: received.append(1), 1000)
     publisher = client.create_publisher(PoseStamped, topic, 1000)
     try:
-        result = installed_node.feed(node, client, publisher, output, seconds, 100.0, place,
+        result = installed_node.feed(node, client, publisher, output, seconds, RATE, place,
                                      received)
     finally:
         client.destroy_node()
         rclpy.try_shutdown()
         node.send_signal(2)
         node.wait(30)
-    data = json.loads(out.read_text())
-    outputs = data['calls'].pop('outputs')
-    print(f'{"mooring_line" if line else "mooring, 16 lines"}: {100 * result["cpu"]:.1f} % of '
-          f'one core, {result["outputs"]:.1f} outputs a second; thread CPU an output over '
-          f'{outputs} outputs:')
-    for label, total in data['totals'].items():
-        if data['calls'][label]:
-            print(f'  {label:40s} {1e6 * total / outputs:7.1f} us ({data["calls"][label]} '
-                  'calls)')
+    report(f'{"mooring_line" if line else "mooring, 16 lines"}: {100 * result["cpu"]:.1f} % '
+           f'of one core, {result["outputs"]:.1f} outputs a second',
+           json.loads(out.read_text()))
 
 
 def main():
@@ -176,8 +246,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--line', action='store_true', help='one mooring_line node')
     parser.add_argument('--seconds', type=float, default=15.0)
+    parser.add_argument('--offline', choices=('back-to-back', 'paced'),
+                        help='the same mooring and poses stepped in this process, no ROS')
     args = parser.parse_args()
-    parent(args.line, args.seconds)
+    if args.offline:
+        offline(args.line, args.seconds, args.offline == 'paced')
+    else:
+        parent(args.line, args.seconds)
 
 
 if __name__ == '__main__':
