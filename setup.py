@@ -186,6 +186,7 @@ setup(
     name=package_name,
     version='0.1.0',
     packages=find_packages(exclude=['test', 'benchmarks']),
+    package_data={'rope_sim_ros.ros': ['fastdds_discovery.xml']},
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),

@@ -43,6 +43,7 @@ from rclpy.node import Node
 from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock as ClockMsg
 
+from .discovery import use_quick_discovery
 from ..bag import bag_info, BagError, read_messages
 from ..ros2bag import message_class
 
@@ -201,6 +202,7 @@ def main(args=None) -> int:
     """Play the bag until its end (or Ctrl-C); exit code 2 for a bad bag or argument."""
     argv = sys.argv if args is None else args
     options = parse_args(rclpy.utilities.remove_ros_args(argv)[1:])
+    use_quick_discovery()
     rclpy.init(args=argv)
     try:
         node = BagReplay(options.bag, options.rate, options.loop, options.clock_rate,

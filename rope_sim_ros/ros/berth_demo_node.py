@@ -63,6 +63,7 @@ from rosgraph_msgs.msg import Clock
 from std_msgs.msg import String
 from std_srvs.srv import Trigger
 
+from .discovery import use_quick_discovery
 from ..messages.topics import (EXTERNAL_WRENCH, FAIRLEAD_TENSION, FENDER_REACTION, LET_GO_ALL,
                                MOORING_NODE, PASSING_WRENCH, SHIP_ODOMETRY, SHIP_POSE)
 from ..model.frames import rotation_matrix
@@ -552,6 +553,7 @@ def main(argv=None) -> int:
         print(f'berth demo: {e}', file=sys.stderr)
         return 2
     duration = args.duration or plan.duration or DEFAULT_DURATION
+    use_quick_discovery()
     rclpy.init()
     node = BerthDemo(setup, plan, duration, lambda row: print(row, flush=True))
     try:

@@ -25,6 +25,8 @@ from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from rclpy.timer import Timer
 
+from .discovery import use_quick_discovery
+
 # How long a failed spin waits for a signal's shutdown to land before it re-raises [s].
 SHUTDOWN_GRACE = 1.0
 # The longest one wait of the executor lasts: how soon a signal ends the spin [s].
@@ -84,6 +86,7 @@ def run_node(start: Callable[[], Node], name: str, errors: Tuple[Type[Exception]
     :param name: the logger's name for a start-up error.
     :param errors: what start raises for a user's mistake: logged as one line, exit code 2.
     """
+    use_quick_discovery()
     rclpy.init(args=args)
     try:
         node = start()
