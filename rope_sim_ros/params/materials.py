@@ -14,12 +14,12 @@
 
 """The files of the configuration: where config/ is, and the materials file read from it."""
 
+import functools
 import os
 from pathlib import Path
 import sys
 
-import yaml
-
+from .files import load_yaml
 from ..model.materials import MaterialError, MaterialLibrary
 
 CONFIG_DIR = Path(__file__).resolve().parents[2] / 'config'
@@ -47,13 +47,23 @@ def default_config_dir() -> Path:
 
 def read_materials(path) -> MaterialLibrary:
     """
-    Read a materials.yaml file.
+    Read a materials.yaml file (once while it stays as it is: a node's start reads it thrice).
 
     :raises MaterialError: the file is missing or has no `materials:` map.
     """
     try:
+        changed = os.stat(path).st_mtime_ns
+    except OSError as e:
+        raise MaterialError(f'cannot read materials file {path}: {e.strerror}') from None
+    return _read_materials(str(path), changed)
+
+
+@functools.lru_cache(maxsize=8)
+def _read_materials(path: str, changed: int) -> MaterialLibrary:
+    """Read the materials file at path as it was when last changed (read_materials)."""
+    try:
         with open(path, encoding='utf-8') as f:
-            data = yaml.safe_load(f)
+            data = load_yaml(f.read())
     except OSError as e:
         raise MaterialError(f'cannot read materials file {path}: {e.strerror}') from None
     if not isinstance(data, dict) or not isinstance(data.get('materials'), dict):
