@@ -181,3 +181,24 @@ def test_the_wave_topics_are_outputs_only_with_waves(hull, repo_root):
         sec, nanosec, setup.ship_frame_id, total[:3], total[3:])
     assert built[topics.WAVE_ELEVATION] == cdr.float64(out.wave_elevation)
     assert out.wave_loads[1, 0] != 0.0 and out.wave_loads[1, 2:5].tolist() == [0.0] * 3
+
+
+def test_the_default_damping_beside_a_database_is_warned_of(repo_root, tmp_path, capsys):
+    # The defaults stand for the whole damping of a ship without a database; with one its
+    # radiation memory counts the waves' part a second time: said once, at the start.
+    database = repo_root / 'test' / 'data' / 'hydro' / 'berth_ship.nc'
+    berth = repo_root / 'config' / 'berth.yaml'
+    start = ['run', '--params', str(berth), '--set', 'ship_mode=free', '--duration', '0.2',
+             '--rate', '10', '--quiet']
+    viscous = '[0.0, 0.0, 0.0, 6.0e8, 0.0, 0.0]'  # the roll's viscous damping alone
+    cases = ((['--set', f'ship.hydrodynamics={database}'], 1),
+             (['--set', f'ship.hydrodynamics={database}', '--set',
+               f'ship.linear_damping={viscous}'], 0),
+             ([], 0))
+    for k, (extra, warnings) in enumerate(cases):
+        assert cli.main([*start, *extra, '--out', str(tmp_path / f'{k}.csv')]) == 0
+        said = capsys.readouterr().err
+        assert said.count('ship.linear_damping is at its defaults') == warnings, said
+    setup = read_setup(berth, {'ship_mode': 'free', 'ship.hydrodynamics': str(database)})
+    assert 'give ship.linear_damping the viscous part alone' in \
+        mooring_ship.damping_advice(setup)

@@ -50,7 +50,8 @@ from ..model.ship.passing import Hull
 from ..model.ship.waves import ShipWaves, Waves
 from ..params.arrangement import ArrangementParams
 from ..params.resolve import environment
-from ..params.ship import PASSING_SHIP, read_coefficients, read_current_tables, WAVES
+from ..params.ship import (PASSING_SHIP, read_coefficients, read_current_tables, SHIP_SPECS,
+                           WAVES)
 from ..params.table import LineParams, ParameterError
 
 
@@ -188,6 +189,25 @@ def hydrodynamics(setup: ArrangementParams) -> Optional[HydroDatabase]:
 # The largest share of a sea's variance at frequencies its ship's hydrodynamic database
 # leaves out (they take no load): past it the database is refused for that sea.
 OUTSIDE_SHARE = 0.05
+
+
+def damping_advice(setup: ArrangementParams) -> Optional[str]:
+    """
+    Return a warning for a free ship with a hydrodynamic database and the default damping.
+
+    ship.linear_damping's defaults stand for the whole damping of a ship without a database,
+    the waves it makes in heave and pitch too; with a database its radiation memory is that
+    part, and the defaults count it a second time (the motions come out too small).
+    """
+    ship = setup.ship
+    if not (ship.free and ship.hydrodynamics):
+        return None
+    if list(ship.linear_damping) != list(SHIP_SPECS['ship.linear_damping'].default):
+        return None
+    return ("ship.linear_damping is at its defaults, a ship's whole damping without a "
+            "hydrodynamic database: with ship.hydrodynamics the database's radiation damping "
+            'counts the wave part (heave and pitch most) a second time; give '
+            'ship.linear_damping the viscous part alone (docs/waves.md)')
 
 
 def check_waves(waves: Waves, database: Optional[HydroDatabase]) -> None:

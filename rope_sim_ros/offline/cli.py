@@ -353,6 +353,7 @@ def _run_free(args, setup) -> int:
     """rope_sim run of a free ship: --duration s from rest under --loads."""
     from .motion import read_loads
     from .run import run_free
+    from ..mooring.ship import damping_advice
     if args.motion is not None:
         raise ParameterError('run: a free ship (ship_mode: free) takes no --motion: give '
                              '--duration S and optionally --loads LOADS.csv')
@@ -362,6 +363,9 @@ def _run_free(args, setup) -> int:
         raise ParameterError("run: a free ship's run writes --out OUT.csv; record a bag "
                              'with the mooring node')
     loads = read_loads(args.loads) if args.loads is not None else None
+    advice = damping_advice(setup)
+    if advice:
+        print(f'{PROG}: warning: {advice}', file=sys.stderr)
     commands = _commands(args, setup)
     progress = _progress(args.quiet)
     try:

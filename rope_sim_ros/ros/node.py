@@ -89,6 +89,7 @@ from ..mooring.events import encode_event
 from ..mooring.handling import LINE_COMMANDS
 from ..mooring.pacing import Pace, Pacer
 from ..mooring.records import Published
+from ..mooring.ship import damping_advice
 from ..mooring.trajectory import TrajectoryError
 from ..params import arrangement
 from ..params.arrangement import stored
@@ -170,6 +171,9 @@ class MooringNode(Node):
             warm_up(setup, self.get_logger().info)
         except ValueError as e:  # ParameterError, MaterialError, an unstable line
             raise StartupError(str(e)) from None
+        advice = damping_advice(setup)
+        if advice:
+            self.get_logger().warning(advice)
         driver = self.driver
         self.names = list(driver.names)
         self.ratings = driver.ratings
