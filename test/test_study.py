@@ -625,6 +625,12 @@ def test_waves_are_factors_and_the_studys_seed_is_the_seas(tmp_path):
         f'    - {{waves.height: 1.0, seed: 2, waves.seed: 1}}\n')
     study = read_study(path)
     prepared = prepare(study)
+    # the database beside the default damping (which counts the waves' damping again): said
+    # once for the cases it concerns, before they run
+    said = []
+    run_study(path, tmp_path / 'dry', None, None, True, said.append, progress=False)
+    warned = [line for line in said if 'ship.linear_damping is at its defaults' in line]
+    assert len(warned) == 1 and warned[0].startswith('warning: 4 of 4 cases (0, 1, 2, 3): '), said
     assert [item.setup.ship.waves_height for item in prepared] == [0.5, 1.0, 1.0, 1.0]
     assert [item.setup.ship.waves_seed for item in prepared] == [0, 0, 0, 1]
     named = prepared[0].setup.ship.hydrodynamics  # absolute: a worker's directory is any

@@ -39,6 +39,7 @@ from .file import prepare, PreparedCase, read_study, Study, StudyError
 from .plots import load_matplotlib, plot_study
 from .results import (case_name, CASES_DIR, OK, read_record, result_rows, write_atomic,
                       write_record, write_results)
+from ...mooring.ship import damping_advice
 from ...mooring.status import ratings
 
 Say = Callable[[str], None]
@@ -177,6 +178,17 @@ def _write_bag(path: str, files: Dict[str, bytes]) -> None:
     os.replace(temporary, path)
 
 
+def damping_warnings(prepared: List[PreparedCase]) -> List[str]:
+    """Return a warning for the cases of a free ship with a database and the default damping."""
+    warned = [(item.case.index, advice) for item in prepared
+              if (advice := damping_advice(item.setup))]
+    if not warned:
+        return []
+    cases = ', '.join(str(index) for index, _ in warned[:10])
+    more = ', ...' if len(warned) > 10 else ''
+    return [f'warning: {len(warned)} of {len(prepared)} cases ({cases}{more}): {warned[0][1]}']
+
+
 def run_study(path, out, workers: Optional[int] = None, scheduler: Optional[str] = None,
               dry_run: bool = False, say: Say = print, progress: bool = True,
               plots: bool = True) -> StudyReport:
@@ -200,6 +212,8 @@ def run_study(path, out, workers: Optional[int] = None, scheduler: Optional[str]
     study = read_study(path)
     prepared = prepare(study)
     check_runnable(study, prepared)
+    for line in damping_warnings(prepared):
+        say(line)
     folder = os.fspath(out)
     report = StudyReport(study, cases=len(prepared))
     report.timings['prepare'] = time.monotonic() - start
