@@ -137,7 +137,7 @@ def mass_matrix(body, rotation, mass):
 
 @numba.njit(cache=True)
 def _full_to_world(rotation, body, column, out):
-    """Add T X T^T into out (6, 6): X the body's 6x6 from `column` (row-major, body axes)."""
+    """Add T X T^T into out (6, 6): X a 6x6 in body axes, row-major in `body` from `column`."""
     for p in range(2):
         for q in range(2):
             for i in range(3):
@@ -303,15 +303,7 @@ def _memory_load(body, rotation, ahead, load, jacobians, damping):
             for k in range(3):
                 load[3 * part + i] -= rotation[i, k] * memory[3 * part + k]
     if jacobians and ahead > 0.0:
-        for p in range(2):
-            for q in range(2):
-                for i in range(3):
-                    for j in range(3):
-                        s = 0.0
-                        for k in range(3):
-                            for n in range(3):
-                                s += rotation[i, k] * slope[3 * p + k, 3 * q + n] * rotation[j, n]
-                        damping[3 * p + i, 3 * q + j] += s
+        _full_to_world(rotation, slope.ravel(), 0, damping)
 
 
 @numba.njit(cache=True)
