@@ -246,8 +246,7 @@ def node_run(values: dict, seconds: float, every_output: bool,
 
     :returns: its CPU share while fed, the outputs received and the poses sent.
     """
-    import rclpy
-    from geometry_msgs.msg import PoseArray, PoseStamped, Wrench, WrenchStamped
+    from geometry_msgs.msg import PoseArray, Wrench, WrenchStamped
     from std_msgs.msg import Float64
     from visualization_msgs.msg import MarkerArray
     import yaml
@@ -256,30 +255,17 @@ def node_run(values: dict, seconds: float, every_output: bool,
         params.write_text(yaml.safe_dump(
             {'mooring': {'ros__parameters': {**values, 'publish_rate': RATE}}}))
         node = installed_node.start('mooring', ['--ros-args', '--params-file', str(params)])
-        rclpy.init()
-        client = rclpy.create_node('arrangement_speed')
-        received = []
-        client.create_subscription(WrenchStamped, 'ship/mooring_wrench',
-                                   lambda msg: received.append(time.monotonic()), 1000)
+        also = []
         if every_output:
             types = {'rope/particles': PoseArray, 'fairlead/tension': Wrench,
                      'bollard/tension': Wrench, 'fairlead/peak_tension': Float64,
                      'bollard/peak_tension': Float64, 'winch/length': Float64}
-            topics = [(f'{name}/{relative}', cls) for name in values['lines']
-                      for relative, cls in types.items()]
-            topics += [('ship/mooring_wrench_world', WrenchStamped),
-                       ('mooring/markers', MarkerArray)]
-            for topic, cls in topics:
-                client.create_subscription(cls, topic, lambda msg: None, 100, raw=True)
-        publisher = client.create_publisher(PoseStamped, 'ship/pose', 1000)
-        try:
-            return installed_node.feed(node, client, publisher, 'ship/mooring_wrench',
-                                       seconds, RATE, _place_ship, received, late_stamps)
-        finally:
-            client.destroy_node()
-            rclpy.try_shutdown()
-            node.send_signal(2)
-            node.wait(30)
+            also = [(f'{name}/{relative}', cls) for name in values['lines']
+                    for relative, cls in types.items()]
+            also += [('ship/mooring_wrench_world', WrenchStamped),
+                     ('mooring/markers', MarkerArray)]
+        return installed_node.feed(node, 'ship/mooring_wrench', WrenchStamped, 'ship/pose',
+                                   seconds, RATE, _place_ship, late_stamps, also)
 
 
 def _place_ship(pose, t: float) -> None:

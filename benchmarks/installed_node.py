@@ -24,7 +24,7 @@ from pathlib import Path
 import subprocess
 import sys
 import time
-from typing import Callable, List
+from typing import Any, Callable, List, Sequence, Tuple
 
 REPO = Path(__file__).resolve().parent.parent
 INSTALL = REPO / 'install' / 'rope_sim_ros'
@@ -56,45 +56,60 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
 
 
-def feed(node: subprocess.Popen, client, publisher, output: str, seconds: float, rate: float,
-         place: Callable, received: list, late_stamps: bool = False) -> dict:
+def feed(node: subprocess.Popen, output: str, output_type, pose_topic: str, seconds: float,
+         rate: float, place: Callable, late_stamps: bool = False,
+         also: Sequence[Tuple[str, Any]] = ()) -> dict:
     """
-    Wait for the node, then publish a PoseStamped at `rate` for `seconds` + 1 s of wall time.
+    Feed a started node PoseStamped at `rate` for `seconds` + 1 s of wall time; then stop it.
 
-    Each pose is where the motion is at its stamp, as a simulator sends the sample of its own
-    time. With late_stamps it is where the motion was at its due time, stamped when sent, up
-    to a millisecond or two later (this loop's own jitter): a sender that stamps at publish.
+    A client node here subscribes to `output` (and, raw, to each (topic, type) of `also`),
+    waits for the node, then publishes the poses on `pose_topic`. Each pose is where the
+    motion is at its stamp, as a simulator sends the sample of its own time. With
+    late_stamps it is where the motion was at its due time, stamped when sent, up to a
+    millisecond or two later (this loop's own jitter): a sender that stamps at publish.
     That jitter is motion the lines feel: their ends jerk along the cubic through the
-    samples, and the adaptive step follows each jerk with improved Euler.
+    samples, and the adaptive step follows each jerk with improved Euler. At the end the
+    node gets SIGINT and is waited for.
 
-    :param client: the rclpy node that publishes and receives.
-    :param publisher: its PoseStamped publisher to the node's pose topic.
-    :param output: the node's output topic whose publisher shows it is up.
+    :param output: the node's output topic counted (its publisher shows the node is up).
     :param place: place(pose, t) sets a geometry_msgs/Pose for time t [s] from the first.
-    :param received: a list the client's subscription appends to, one item per output.
     :returns: over the last `seconds` (the first second is the node's start): 'cpu', the
-        node's share of one core; 'outputs', items received a second; and 'sent', poses.
+        node's share of one core; 'outputs', `output` messages received a second; and
+        'sent', poses.
     """
     import rclpy
     from geometry_msgs.msg import PoseStamped
-    deadline = time.monotonic() + 120.0
-    while publisher.get_subscription_count() == 0 or not client.count_publishers(output):
-        if time.monotonic() > deadline or node.poll() is not None:
-            raise SystemExit(f'the node did not come up (no {output})')
-        rclpy.spin_once(client, timeout_sec=0.1)
-    sent, start, start_ns = 0, time.monotonic(), client.get_clock().now().nanoseconds
-    while time.monotonic() - start < seconds + 1.0:
-        t = sent / rate
-        if time.monotonic() - start >= t:
-            if sent == rate:  # one second in: the start is behind us
-                cpu, wall, first = cpu_seconds(node.pid), time.monotonic(), len(received)
-            msg = PoseStamped()
-            msg.header.frame_id = 'world'
-            stamp = client.get_clock().now()
-            msg.header.stamp = stamp.to_msg()
-            place(msg.pose, t if late_stamps else (stamp.nanoseconds - start_ns) * 1e-9)
-            publisher.publish(msg)
-            sent += 1
-        rclpy.spin_once(client, timeout_sec=0.001)
-    cpu, wall = cpu_seconds(node.pid) - cpu, time.monotonic() - wall
-    return {'cpu': cpu / wall, 'outputs': (len(received) - first) / wall, 'sent': sent}
+    rclpy.init()
+    client = rclpy.create_node('benchmark_feed')
+    received = []
+    client.create_subscription(output_type, output, lambda msg: received.append(1), 1000)
+    for topic, cls in also:
+        client.create_subscription(cls, topic, lambda msg: None, 100, raw=True)
+    publisher = client.create_publisher(PoseStamped, pose_topic, 1000)
+    try:
+        deadline = time.monotonic() + 120.0
+        while publisher.get_subscription_count() == 0 or not client.count_publishers(output):
+            if time.monotonic() > deadline or node.poll() is not None:
+                raise SystemExit(f'the node did not come up (no {output})')
+            rclpy.spin_once(client, timeout_sec=0.1)
+        sent, start, start_ns = 0, time.monotonic(), client.get_clock().now().nanoseconds
+        while time.monotonic() - start < seconds + 1.0:
+            t = sent / rate
+            if time.monotonic() - start >= t:
+                if sent == rate:  # one second in: the start is behind us
+                    cpu, wall, first = cpu_seconds(node.pid), time.monotonic(), len(received)
+                msg = PoseStamped()
+                msg.header.frame_id = 'world'
+                stamp = client.get_clock().now()
+                msg.header.stamp = stamp.to_msg()
+                place(msg.pose, t if late_stamps else (stamp.nanoseconds - start_ns) * 1e-9)
+                publisher.publish(msg)
+                sent += 1
+            rclpy.spin_once(client, timeout_sec=0.001)
+        cpu, wall = cpu_seconds(node.pid) - cpu, time.monotonic() - wall
+        return {'cpu': cpu / wall, 'outputs': (len(received) - first) / wall, 'sent': sent}
+    finally:
+        client.destroy_node()
+        rclpy.try_shutdown()
+        node.send_signal(2)
+        node.wait(30)

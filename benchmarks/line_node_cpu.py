@@ -31,8 +31,6 @@ import argparse
 import math
 
 import installed_node
-import rclpy
-from rclpy.node import Node
 
 RATE = 100.0
 # every output of a line without payload, with its message type
@@ -43,31 +41,17 @@ OUTPUTS = {'rope/particles': 'PoseArray', 'fairlead/tension': 'Wrench',
 
 def run(seconds: float, every_output: bool, late_stamps: bool = False) -> dict:
     """Return the node's share of a core and the tensions received a second (feed's)."""
-    from geometry_msgs.msg import PoseArray, PoseStamped, Wrench
+    from geometry_msgs.msg import PoseArray, Wrench
     from std_msgs.msg import Float64
     classes = {'PoseArray': PoseArray, 'Wrench': Wrench, 'Float64': Float64}
     node = installed_node.start('mooring_line', [
         '--ros-args', '--params-file',
         str(installed_node.INSTALL / 'share' / 'rope_sim_ros' / 'config' / 'mooring_line.yaml'),
         '-p', f'publish_rate:={RATE}', '-p', 'segments:=50'])
-    rclpy.init()
-    client = Node('line_node_cpu')
-    received = []
-    client.create_subscription(Wrench, 'fairlead/tension', lambda msg: received.append(1), 1000)
-    if every_output:
-        for topic, type_name in OUTPUTS.items():
-            if topic != 'fairlead/tension':
-                client.create_subscription(classes[type_name], topic, lambda msg: None, 100,
-                                           raw=True)
-    publisher = client.create_publisher(PoseStamped, 'fairlead/pose', 1000)
-    try:
-        return installed_node.feed(node, client, publisher, 'fairlead/tension', seconds, RATE,
-                                   _place_fairlead, received, late_stamps)
-    finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        node.send_signal(2)
-        node.wait(30)
+    also = [(topic, classes[type_name]) for topic, type_name in OUTPUTS.items()
+            if every_output and topic != 'fairlead/tension']
+    return installed_node.feed(node, 'fairlead/tension', Wrench, 'fairlead/pose', seconds,
+                               RATE, _place_fairlead, late_stamps, also)
 
 
 def _place_fairlead(pose, t: float) -> None:

@@ -30,7 +30,6 @@ import subprocess
 import sys
 
 import installed_node
-import rclpy
 
 RATE = 100.0
 
@@ -64,28 +63,15 @@ spin_until_shutdown(node)
 
 def run(seconds: float, line: bool) -> dict:
     """Return the bare node's share of a core and its outputs received a second (feed's)."""
-    from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
+    from geometry_msgs.msg import Wrench, WrenchStamped
     os.environ.setdefault('ROS_DOMAIN_ID', str(os.getpid() % 101 + 1))
     os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     env = dict(os.environ, PYTHONPATH=str(installed_node.REPO))
     node = subprocess.Popen([sys.executable, '-c', FLOOR, 'line' if line else 'ship'], env=env,
                             stdin=subprocess.DEVNULL)
-    rclpy.init()
-    client = rclpy.create_node('node_floor')
-    received = []
     output = 'fairlead/tension' if line else 'ship/mooring_wrench'
-    client.create_subscription(Wrench if line else WrenchStamped, output,
-                               lambda msg: received.append(1), 1000)
-    publisher = client.create_publisher(PoseStamped, 'fairlead/pose' if line else 'ship/pose',
-                                        1000)
-    try:
-        return installed_node.feed(node, client, publisher, output, seconds, RATE, _place,
-                                   received)
-    finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        node.send_signal(2)
-        node.wait(30)
+    return installed_node.feed(node, output, Wrench if line else WrenchStamped,
+                               'fairlead/pose' if line else 'ship/pose', seconds, RATE, _place)
 
 
 def _place(pose, t: float) -> None:

@@ -196,8 +196,7 @@ def report(title: str, data: dict) -> None:
 
 def parent(line: bool, seconds: float) -> None:
     """Start the node, feed it, and print its parts."""
-    import rclpy
-    from geometry_msgs.msg import PoseStamped, Wrench, WrenchStamped
+    from geometry_msgs.msg import Wrench, WrenchStamped
     import yaml
     import arrangement_speed
     import line_node_cpu
@@ -221,19 +220,7 @@ def parent(line: bool, seconds: float) -> None:
     env = dict(os.environ, PYTHONPATH=str(installed_node.REPO))
     node = subprocess.Popen([sys.executable, __file__, 'child', 'line' if line else 'ship',
                              str(out), *args], env=env, stdin=subprocess.DEVNULL)
-    rclpy.init()
-    client = rclpy.create_node('node_parts')
-    received = []
-    client.create_subscription(cls, output, lambda msg: received.append(1), 1000)
-    publisher = client.create_publisher(PoseStamped, topic, 1000)
-    try:
-        result = installed_node.feed(node, client, publisher, output, seconds, RATE, place,
-                                     received)
-    finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        node.send_signal(2)
-        node.wait(30)
+    result = installed_node.feed(node, output, cls, topic, seconds, RATE, place)
     report(f'{"mooring_line" if line else "mooring, 16 lines"}: {100 * result["cpu"]:.1f} % '
            f'of one core, {result["outputs"]:.1f} outputs a second',
            json.loads(out.read_text()))
