@@ -29,19 +29,20 @@ Printed: the heave period and damping ratio against the exact pole of the same e
 (hydro_cases.heave_poles), and the memory's cost per step (the whole step less the same
 step without memory, best of 5).
 
-Measured (2 shared cores, the barge's 12 modes, its K's memory 21 s):
+Measured (2 shared cores, load average 1, the barge's 12 modes, its K's memory 21 s):
 
     method                    dt [s]  period err  zeta err  memory us/step
-    convolution                0.010      -0.03%     0.06%           82.13
-    convolution, every 10      0.010      -0.04%    -6.14%           12.29
-    modes                      0.010       0.00%    -0.47%            3.37
-    convolution                0.002      -0.00%    -0.03%          519.06
-    convolution, every 10      0.002      -0.01%    -1.33%           77.49
-    modes                      0.002       0.00%    -0.47%            2.78
+    convolution                0.010      -0.03%     0.06%           19.99
+    convolution, every 10      0.010      -0.04%    -6.14%            2.24
+    modes                      0.010       0.00%    -0.47%            0.38
+    convolution                0.002      -0.00%    -0.03%          102.71
+    convolution, every 10      0.002      -0.01%    -1.33%           13.12
+    modes                      0.002       0.00%    -0.47%            0.37
 
 The modes are as right as the full convolution (their -0.47 % in damping is their fit of K,
-within 1 %, the same at either step) at 25 to 190 times less cost, which does not grow as
-the step shrinks; a history kept every 10th step costs a sixth and errs 1 to 6 % in damping.
+within 1 %, the same at either step) at 50 to 280 times less cost, which does not grow as
+the step shrinks; a history kept every 10th step costs an eighth to a ninth and errs 1 to 6 %
+in damping.
 A variable step (the adaptive integrator's) would need the history resampled besides.
 """
 
@@ -102,6 +103,18 @@ def _hold(pole, h):
 
 
 @numba.njit(cache=True)
+def _modes_after(z, growth, g0, g1, inputs, u0, u1, after):
+    """Put the modes z a step on into after (z itself may be it), velocities u0 to u1."""
+    for i in range(z.shape[0]):
+        b0 = 0j
+        b1 = 0j
+        for q in range(6):
+            b0 += inputs[i, q] * u0[q]
+            b1 += inputs[i, q] * u1[q]
+        after[i] = growth[i] * z[i] + g0[i] * b0 + g1[i] * b1
+
+
+@numba.njit(cache=True)
 def _modes_run(mass_inv, stiffness, poles, weights, inputs, outputs, dt, x, v, out):
     """Improved Euler with the memory as modes (z exact for velocities linear over a step)."""
     r = poles.shape[0]
@@ -120,13 +133,7 @@ def _modes_run(mass_inv, stiffness, poles, weights, inputs, outputs, dt, x, v, o
         xp = x + dt * v
         vp = v + dt * a
         zp = np.empty(r, dtype=np.complex128)
-        for i in range(r):
-            b0 = 0j
-            b1 = 0j
-            for q in range(6):
-                b0 += inputs[i, q] * v[q]
-                b1 += inputs[i, q] * vp[q]
-            zp[i] = growth[i] * z[i] + g0[i] * b0 + g1[i] * b1
+        _modes_after(z, growth, g0, g1, inputs, v, vp, zp)
         mu2 = np.zeros(6)
         for i in range(r):
             for p in range(6):
@@ -134,13 +141,7 @@ def _modes_run(mass_inv, stiffness, poles, weights, inputs, outputs, dt, x, v, o
         a2 = mass_inv @ (-stiffness @ xp - mu2)
         x1 = x + 0.5 * dt * (v + vp)
         v1 = v + 0.5 * dt * (a + a2)
-        for i in range(r):
-            b0 = 0j
-            b1 = 0j
-            for q in range(6):
-                b0 += inputs[i, q] * v[q]
-                b1 += inputs[i, q] * v1[q]
-            z[i] = growth[i] * z[i] + g0[i] * b0 + g1[i] * b1
+        _modes_after(z, growth, g0, g1, inputs, v, v1, z)
         x, v = x1, v1
         out[k] = x
 
