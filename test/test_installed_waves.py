@@ -61,6 +61,8 @@ def test_run_moves_the_free_ship_in_a_regular_wave(colcon_install, colcon_env, t
                       '--set', 'waves.period=8.0', '--set', 'waves.direction=-1.5708',
                       '--duration', '4', '--rate', '10', '--out', str(out), '--quiet')
     assert result.returncode == 0, result.stderr[-3000:]
+    # the database beside ship.linear_damping's defaults (the waves' damping twice): said once
+    assert result.stderr.count('ship.linear_damping is at its defaults') == 1, result.stderr
     with open(out, newline='') as stream:
         rows = list(csv.DictReader(stream))
     assert len(rows) == 41
