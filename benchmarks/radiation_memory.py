@@ -53,6 +53,8 @@ import hydro_cases as hc
 import numba
 import numpy as np
 
+# the first-order hold of a mode over a step, as the body's step takes it
+from rope_sim_ros.model.forces.body import _hold
 from rope_sim_ros.model.ship.radiation import (radiation_modes, retardation,
                                                retardation_function)
 
@@ -92,14 +94,6 @@ def _convolution_run(mass_inv, stiffness, kernel, every, dt, x, v, out):
         history[count] = v
         count += 1
         out[k] = x
-
-
-@numba.njit(cache=True)
-def _hold(pole, h):
-    x = pole * h
-    growth = np.exp(x)
-    g1 = (growth - 1.0 - x) / (pole * x)
-    return growth, (growth - 1.0) / pole - g1, g1
 
 
 @numba.njit(cache=True)
